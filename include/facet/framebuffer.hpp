@@ -1,0 +1,60 @@
+// framebuffer.hpp - the render target: RGBA8 colour and float depth, row 0 at the top of the image.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace facet {
+
+inline constexpr int kTileSize = 64;  // pixels; one thread owns a tile while it is rasterized
+inline constexpr int kMaxDimension = 16384;
+
+// Packs a colour in [0, 1] as little-endian RGBA8: r in the low byte. Values are rounded and clamped.
+std::uint32_t pack_rgba8(glm::vec4 color);
+glm::vec4 unpack_rgba8(std::uint32_t rgba);
+
+class Framebuffer {
+ public:
+  // Throws std::invalid_argument unless 1 <= width, height <= kMaxDimension.
+  Framebuffer(int width, int height);
+
+  int width() const { return width_; }
+  int height() const { return height_; }
+  int tiles_x() const { return tiles_x_; }
+  int tiles_y() const { return tiles_y_; }
+
+  // Rows are top to bottom; x grows to the right. Valid after Renderer::finish().
+  std::span<std::uint32_t> color() { return color_; }
+  std::span<const std::uint32_t> color() const { return color_; }
+  std::span<float> depth() { return depth_; }
+  std::span<const float> depth() const { return depth_; }
+  std::uint32_t pixel(int x, int y) const { return color_[static_cast<std::size_t>(y) * width_ + x]; }
+  float depth_at(int x, int y) const { return depth_[static_cast<std::size_t>(y) * width_ + x]; }
+
+  // The colour as bytes R, G, B, A per pixel, top row first (what PNG writers take).
+  std::vector<std::uint8_t> rgba8() const;
+
+  // A clear is recorded and applied to each tile just before the tile is first drawn (while it is in cache), or
+  // at Renderer::finish() for tiles nothing touched.
+  struct PendingClear {
+    bool color = false, depth = false;
+    std::uint32_t color_value = 0;
+    float depth_value = 1.0f;
+  };
+  void request_clear(glm::vec4 color, float depth, bool clear_color = true, bool clear_depth = true);
+  // Applies the pending clear to one tile if it has not been applied yet. Only the tile's owner thread calls it.
+  void resolve_clear(int tile_index);
+  void resolve_all_clears();
+
+ private:
+  int width_, height_, tiles_x_, tiles_y_;
+  std::vector<std::uint32_t> color_;
+  std::vector<float> depth_;
+  PendingClear pending_;
+  std::vector<std::uint8_t> tile_needs_clear_;
+};
+
+}  // namespace facet

@@ -1,0 +1,29 @@
+// render_state.hpp - per-draw fixed-function state: culling, depth test, blending and draw order.
+#pragma once
+
+namespace facet {
+
+enum class CullMode { none, back, front };  // front faces are counter-clockwise in window space (y up)
+
+enum class DepthFunc { never, less, equal, lequal, greater, notequal, gequal, always };
+
+enum class BlendMode { none, alpha };  // alpha: src * a + dst * (1 - a)
+
+enum class DrawOrder {
+  as_given,       // index order, as OpenGL draws
+  back_to_front,  // the painter's algorithm: triangles sorted by depth, farthest first (use with depth_test off)
+};
+
+struct RenderState {
+  CullMode cull = CullMode::back;
+  bool depth_test = true;
+  bool depth_write = true;
+  DepthFunc depth_func = DepthFunc::less;
+  BlendMode blend = BlendMode::none;
+  bool color_write = true;
+  DrawOrder order = DrawOrder::as_given;
+  float depth_offset = 0.0f;  // added to window depth before the test, e.g. -1e-4 pulls outlines onto a surface
+  float line_width = 1.0f;    // pixels, for draw_lines
+};
+
+}  // namespace facet

@@ -1,0 +1,21 @@
+#!/usr/bin/env bash
+# deps.sh - installs the Debian packages facet needs to build, test and benchmark, skipping those already present.
+set -euo pipefail
+
+packages=(g++ cmake ninja-build pkg-config libglm-dev libstb-dev libtinyobjloader-dev libcli11-dev
+          libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels python3)
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
+done
+[ ${#missing[@]} -eq 0 ] && exit 0
+
+echo "deps.sh: installing ${missing[*]}" >&2
+apt=(env DEBIAN_FRONTEND=noninteractive apt-get -o DPkg::Lock::Timeout=300 -y)
+if [ "$(id -u)" -ne 0 ]; then
+  command -v sudo >/dev/null || { echo "deps.sh: need root or sudo to install: ${missing[*]}" >&2; exit 1; }
+  apt=(sudo "${apt[@]}")
+fi
+# A fresh machine has no package lists yet, so update first when the plain install fails.
+"${apt[@]}" install --no-install-recommends "${missing[@]}" ||
+  { "${apt[@]}" update && "${apt[@]}" install --no-install-recommends "${missing[@]}"; }

@@ -1,0 +1,67 @@
+// framebuffer.cpp - colour/depth storage and the deferred per-tile clear.
+#include "facet/framebuffer.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <string>
+
+namespace facet {
+
+std::uint32_t pack_rgba8(glm::vec4 color) {
+  auto channel = [](float c) -> std::uint32_t {
+    // NaN compares false both ways and lands on 0 rather than being undefined in the conversion.
+    float clamped = c > 0.0f ? (c < 1.0f ? c : 1.0f) : 0.0f;
+    return static_cast<std::uint32_t>(clamped * 255.0f + 0.5f);
+  };
+  return channel(color.r) | channel(color.g) << 8 | channel(color.b) << 16 | channel(color.a) << 24;
+}
+
+glm::vec4 unpack_rgba8(std::uint32_t rgba) {
+  return glm::vec4(rgba & 0xff, (rgba >> 8) & 0xff, (rgba >> 16) & 0xff, rgba >> 24) / 255.0f;
+}
+
+Framebuffer::Framebuffer(int width, int height) : width_(width), height_(height) {
+  if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
+    throw std::invalid_argument("framebuffer size " + std::to_string(width) + "x" + std::to_string(height) +
+                                " is outside 1.." + std::to_string(kMaxDimension));
+  tiles_x_ = (width + kTileSize - 1) / kTileSize;
+  tiles_y_ = (height + kTileSize - 1) / kTileSize;
+  color_.assign(static_cast<std::size_t>(width) * height, 0);
+  depth_.assign(static_cast<std::size_t>(width) * height, 1.0f);
+  tile_needs_clear_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y_, 0);
+}
+
+std::vector<std::uint8_t> Framebuffer::rgba8() const {
+  std::vector<std::uint8_t> bytes(color_.size() * 4);
+  for (std::size_t i = 0; i < color_.size(); ++i)
+    for (int c = 0; c < 4; ++c) bytes[i * 4 + c] = static_cast<std::uint8_t>(color_[i] >> (8 * c));
+  return bytes;
+}
+
+void Framebuffer::request_clear(glm::vec4 color, float depth, bool clear_color, bool clear_depth) {
+  // A clear of other channels than the pending one cannot be merged into it: apply the old one first.
+  const bool any_pending = std::find(tile_needs_clear_.begin(), tile_needs_clear_.end(), 1) != tile_needs_clear_.end();
+  if (any_pending && (pending_.color != clear_color || pending_.depth != clear_depth)) resolve_all_clears();
+  pending_ = {clear_color, clear_depth, pack_rgba8(color), depth};
+  std::fill(tile_needs_clear_.begin(), tile_needs_clear_.end(), std::uint8_t{1});
+}
+
+void Framebuffer::resolve_clear(int tile_index) {
+  if (!tile_needs_clear_[tile_index]) return;
+  tile_needs_clear_[tile_index] = 0;
+  const int x0 = (tile_index % tiles_x_) * kTileSize, y0 = (tile_index / tiles_x_) * kTileSize;
+  const int x1 = std::min(x0 + kTileSize, width_), y1 = std::min(y0 + kTileSize, height_);
+  for (int y = y0; y < y1; ++y) {
+    const std::size_t row = static_cast<std::size_t>(y) * width_;
+    if (pending_.color) std::fill(color_.begin() + row + x0, color_.begin() + row + x1, pending_.color_value);
+    if (pending_.depth) std::fill(depth_.begin() + row + x0, depth_.begin() + row + x1, pending_.depth_value);
+  }
+}
+
+void Framebuffer::resolve_all_clears() {
+  for (int t = 0; t < tiles_x_ * tiles_y_; ++t) resolve_clear(t);
+  pending_ = {};
+}
+
+}  // namespace facet
