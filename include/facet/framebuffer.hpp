@@ -12,9 +12,17 @@ namespace facet {
 inline constexpr int kTileSize = 64;  // pixels; one thread owns a tile while it is rasterized
 inline constexpr int kMaxDimension = 16384;
 
-// Packs a colour in [0, 1] as little-endian RGBA8: r in the low byte. Values are rounded and clamped.
-std::uint32_t pack_rgba8(glm::vec4 color);
-glm::vec4 unpack_rgba8(std::uint32_t rgba);
+// Packs a colour in [0, 1] as little-endian RGBA8: r in the low byte, rounded to nearest. NaN becomes 0.
+inline std::uint32_t pack_channel(float c) {
+  const float clamped = c > 0.0f ? (c < 1.0f ? c : 1.0f) : 0.0f;
+  return static_cast<std::uint32_t>(clamped * 255.0f + 0.5f);
+}
+inline std::uint32_t pack_rgba8(glm::vec4 color) {
+  return pack_channel(color.r) | pack_channel(color.g) << 8 | pack_channel(color.b) << 16 | pack_channel(color.a) << 24;
+}
+inline glm::vec4 unpack_rgba8(std::uint32_t rgba) {
+  return glm::vec4(rgba & 0xff, (rgba >> 8) & 0xff, (rgba >> 16) & 0xff, rgba >> 24) / 255.0f;
+}
 
 class Framebuffer {
  public:

@@ -8,19 +8,6 @@
 
 namespace facet {
 
-std::uint32_t pack_rgba8(glm::vec4 color) {
-  auto channel = [](float c) -> std::uint32_t {
-    // NaN compares false both ways and lands on 0 rather than being undefined in the conversion.
-    float clamped = c > 0.0f ? (c < 1.0f ? c : 1.0f) : 0.0f;
-    return static_cast<std::uint32_t>(clamped * 255.0f + 0.5f);
-  };
-  return channel(color.r) | channel(color.g) << 8 | channel(color.b) << 16 | channel(color.a) << 24;
-}
-
-glm::vec4 unpack_rgba8(std::uint32_t rgba) {
-  return glm::vec4(rgba & 0xff, (rgba >> 8) & 0xff, (rgba >> 16) & 0xff, rgba >> 24) / 255.0f;
-}
-
 Framebuffer::Framebuffer(int width, int height) : width_(width), height_(height) {
   if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
     throw std::invalid_argument("framebuffer size " + std::to_string(width) + "x" + std::to_string(height) +

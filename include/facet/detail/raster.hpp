@@ -1,0 +1,182 @@
+// raster.hpp - rasterization of one tile: block coverage (tile -> 8x8 block -> pixel), 2x2 quad shading, depth.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+#include "facet/framebuffer.hpp"
+#include "facet/render_state.hpp"
+#include "facet/shader.hpp"
+#include "facet/detail/binning.hpp"
+#include "facet/detail/triangle_setup.hpp"
+
+namespace facet::detail {
+
+inline constexpr int kBlockSize = 8;  // one 64-bit coverage mask per block, bit j * 8 + i for pixel (i, j)
+
+template <Shader S>
+struct ShadeContext {
+  const S* shader;
+  const float* varyings;  // float_count_v<Varyings> floats per source vertex
+  const RenderState* state;
+};
+
+inline bool depth_passes(DepthFunc func, float fragment, float stored) {
+  switch (func) {
+    case DepthFunc::never: return false;
+    case DepthFunc::less: return fragment < stored;
+    case DepthFunc::equal: return fragment == stored;
+    case DepthFunc::lequal: return fragment <= stored;
+    case DepthFunc::greater: return fragment > stored;
+    case DepthFunc::notequal: return fragment != stored;
+    case DepthFunc::gequal: return fragment >= stored;
+    case DepthFunc::always: return true;
+  }
+  return false;
+}
+
+// Pixels of the 8x8 block at (bx, by) whose centres are inside all three edges. Whole-block accept and reject
+// use 64-bit values; a block an edge crosses is tested per pixel in 32 bits (see Edge).
+inline std::uint64_t raster_block_coverage(const TriangleSetup& tri, int bx, int by) {
+  std::uint64_t mask = ~std::uint64_t{0};
+  for (const Edge& e : tri.edge) {
+    const std::int64_t at_corner = std::int64_t{e.a} * bx + std::int64_t{e.b} * by + e.q;
+    const std::int64_t step_a = std::int64_t{e.a} * (kBlockSize - 1), step_b = std::int64_t{e.b} * (kBlockSize - 1);
+    const std::int64_t lowest = at_corner + std::min<std::int64_t>(0, step_a) + std::min<std::int64_t>(0, step_b);
+    const std::int64_t highest = at_corner + std::max<std::int64_t>(0, step_a) + std::max<std::int64_t>(0, step_b);
+    if (highest < 0) return 0;
+    if (lowest >= 0) continue;
+    const std::int32_t base = static_cast<std::int32_t>(at_corner);
+    std::uint64_t edge_mask = 0;
+    for (int j = 0; j < kBlockSize; ++j) {
+      const std::int32_t row = base + j * e.b;
+      std::uint32_t bits = 0;
+      for (int i = 0; i < kBlockSize; ++i) bits |= static_cast<std::uint32_t>(row + i * e.a >= 0) << i;
+      edge_mask |= std::uint64_t{bits} << (j * kBlockSize);
+    }
+    mask &= edge_mask;
+  }
+  return mask;
+}
+
+// Pixels of the block at (bx, by) inside the inclusive pixel rectangle [x0, x1] x [y0, y1].
+inline std::uint64_t raster_rect_mask(int bx, int by, int x0, int y0, int x1, int y1) {
+  const int lo = std::max(x0 - bx, 0), hi = std::min(x1 - bx, kBlockSize - 1);
+  if (lo > hi) return 0;
+  const std::uint64_t row = ((std::uint64_t{1} << (hi + 1)) - 1) & ~((std::uint64_t{1} << lo) - 1);
+  std::uint64_t mask = 0;
+  for (int j = std::max(y0 - by, 0); j <= std::min(y1 - by, kBlockSize - 1); ++j) mask |= row << (j * kBlockSize);
+  return mask;
+}
+
+template <Shader S>
+void shade_quad(const ShadeContext<S>& ctx, const TriangleSetup& tri, const TileWork& work, int px, int py,
+                unsigned covered) {
+  using Varyings = typename S::Varyings;
+  constexpr std::size_t kFloats = float_count_v<Varyings>;
+  constexpr bool kDerivatives = needs_derivatives<S>();
+  const RenderState& state = *ctx.state;
+  const bool early_depth = !S::may_discard && state.depth_test;
+
+  float z[4];
+  std::size_t index[4];
+  for (int k = 0; k < 4; ++k) {
+    const float dx = static_cast<float>(px + (k & 1)) + 0.5f - tri.origin_x;
+    const float dy = static_cast<float>(py + (k >> 1)) + 0.5f - tri.origin_y;
+    z[k] = std::clamp(evaluate(tri.depth, dx, dy) + state.depth_offset, 0.0f, 1.0f);
+    index[k] = static_cast<std::size_t>(py + (k >> 1)) * work.stride + (px + (k & 1));
+  }
+  if (early_depth) {
+    for (int k = 0; k < 4; ++k) {
+      if (!(covered & (1u << k))) continue;
+      if (!depth_passes(state.depth_func, z[k], work.depth[index[k]])) covered &= ~(1u << k);
+      else if (state.depth_write) work.depth[index[k]] = z[k];
+    }
+    if (!covered) return;
+  }
+
+  // Perspective-correct weights of the source vertices: b/w and 1/w are linear in screen space.
+  FloatArray<Varyings> value[4];
+  const float* v0 = ctx.varyings + std::size_t{tri.vertex[0]} * kFloats;
+  const float* v1 = ctx.varyings + std::size_t{tri.vertex[1]} * kFloats;
+  const float* v2 = ctx.varyings + std::size_t{tri.vertex[2]} * kFloats;
+  for (int k = 0; k < 4; ++k) {
+    if (!kDerivatives && !(covered & (1u << k))) continue;
+    const float dx = static_cast<float>(px + (k & 1)) + 0.5f - tri.origin_x;
+    const float dy = static_cast<float>(py + (k >> 1)) + 0.5f - tri.origin_y;
+    const float w = 1.0f / evaluate(tri.inv_w, dx, dy);
+    const float b1 = evaluate(tri.b1_over_w, dx, dy) * w, b2 = evaluate(tri.b2_over_w, dx, dy) * w;
+    for (std::size_t f = 0; f < kFloats; ++f) value[k][f] = v0[f] + b1 * (v1[f] - v0[f]) + b2 * (v2[f] - v0[f]);
+  }
+
+  Fragment<Varyings> fragment;
+  fragment.primitive = tri.primitive;
+  fragment.front_facing = tri.front_facing;
+  if constexpr (kDerivatives) {
+    FloatArray<Varyings> ddx, ddy;
+    for (std::size_t f = 0; f < kFloats; ++f) {
+      ddx[f] = value[1][f] - value[0][f];
+      ddy[f] = value[2][f] - value[0][f];
+    }
+    fragment.ddx = from_floats<Varyings>(ddx);
+    fragment.ddy = from_floats<Varyings>(ddy);
+  }
+  for (int k = 0; k < 4; ++k) {
+    if (!(covered & (1u << k))) continue;
+    fragment.varyings = from_floats<Varyings>(value[k]);
+    fragment.screen = glm::vec3(static_cast<float>(px + (k & 1)) + 0.5f, static_cast<float>(py + (k >> 1)) + 0.5f,
+                                z[k]);
+    glm::vec4 color;
+    if constexpr (S::may_discard) {
+      const auto result = ctx.shader->fragment(fragment);
+      if (!result) continue;
+      color = *result;
+      if (state.depth_test) {
+        if (!depth_passes(state.depth_func, z[k], work.depth[index[k]])) continue;
+        if (state.depth_write) work.depth[index[k]] = z[k];
+      }
+    } else {
+      color = ctx.shader->fragment(fragment);
+    }
+    if (!state.color_write) continue;
+    if (state.blend == BlendMode::alpha) {
+      const float a = std::clamp(color.a, 0.0f, 1.0f);
+      color = color * a + unpack_rgba8(work.color[index[k]]) * (1.0f - a);
+    }
+    work.color[index[k]] = pack_rgba8(color);
+  }
+}
+
+template <Shader S>
+void raster_triangle(const ShadeContext<S>& ctx, const TriangleSetup& tri, const TileWork& work) {
+  const int x0 = std::max<int>(tri.min_x, work.x0), x1 = std::min<int>(tri.max_x, work.x1 - 1);
+  const int y0 = std::max<int>(tri.min_y, work.y0), y1 = std::min<int>(tri.max_y, work.y1 - 1);
+  if (x0 > x1 || y0 > y1) return;
+  for (int by = y0 & ~(kBlockSize - 1); by <= y1; by += kBlockSize) {
+    for (int bx = x0 & ~(kBlockSize - 1); bx <= x1; bx += kBlockSize) {
+      const std::uint64_t mask = raster_rect_mask(bx, by, x0, y0, x1, y1) & raster_block_coverage(tri, bx, by);
+      if (!mask) continue;
+      for (int qy = 0; qy < kBlockSize; qy += 2) {
+        const std::uint64_t rows = mask >> (qy * kBlockSize);
+        if (!(rows & 0xffff)) continue;
+        for (int qx = 0; qx < kBlockSize; qx += 2) {
+          const unsigned quad = static_cast<unsigned>((rows >> qx) & 3) |
+                                static_cast<unsigned>((rows >> (kBlockSize + qx)) & 3) << 2;
+          if (quad) shade_quad(ctx, tri, work, bx + qx, by + qy, quad);
+        }
+      }
+    }
+  }
+}
+
+template <Shader S>
+void raster_tile(const void* draw, const TileWork& work) {
+  const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
+  for (std::size_t c = 0; c < work.chunk_count; ++c) {
+    const SetupChunk& chunk = work.chunks[c];
+    for (const std::uint32_t t : chunk.bins[work.tile]) raster_triangle(ctx, chunk.triangles[t], work);
+  }
+}
+
+}  // namespace facet::detail

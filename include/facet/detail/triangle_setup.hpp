@@ -1,0 +1,42 @@
+// triangle_setup.hpp - what setup hands to rasterization: fixed-point edges, bounds and interpolation planes.
+#pragma once
+
+#include <cstdint>
+
+namespace facet::detail {
+
+inline constexpr int kSubpixelBits = 8;  // 1/256 pixel; coordinates up to 16384 px need 22 bits
+inline constexpr int kSubpixelScale = 1 << kSubpixelBits;
+
+// A plane value(x, y) = at_origin + ddx * (x - origin_x) + ddy * (y - origin_y) in screen space, where
+// (origin_x, origin_y) is the triangle's first vertex; keeping the origin on the triangle avoids cancellation.
+struct Plane {
+  float at_origin, ddx, ddy;
+};
+
+// Coverage of pixel (i, j) by one edge is `a * i + b * j + q >= 0`, exact in integers. The edge function at the
+// pixel centre in 1/256-pixel units is 256 * (a * i + b * j) + k, with k holding the +0.5 centre offset and the
+// top-left bias; because the first term is a multiple of 256, the test reduces to the above with
+// q = floor(k / 256). Inside a partially covered 8x8 block |a * i + b * j + q| stays below 2^26, so the per-pixel
+// work fits 32-bit lanes while whole-block decisions use 64 bits.
+struct Edge {
+  std::int32_t a, b;
+  std::int64_t q;
+};
+
+struct TriangleSetup {
+  Edge edge[3];
+  std::int16_t min_x, min_y, max_x, max_y;  // inclusive pixel bounds, clipped to the target
+  float origin_x, origin_y;
+  Plane depth;       // window z, linear in screen space
+  Plane inv_w;       // 1/w
+  Plane b1_over_w;   // barycentric weight of source vertex 1, over w
+  Plane b2_over_w;   // ... and of source vertex 2; weight 0 is 1 - b1 - b2 after the perspective divide
+  std::uint32_t vertex[3];  // source vertices whose varyings are blended
+  std::uint32_t primitive;
+  bool front_facing;
+};
+
+inline float evaluate(const Plane& p, float dx, float dy) { return p.at_origin + p.ddx * dx + p.ddy * dy; }
+
+}  // namespace facet::detail

@@ -1,0 +1,261 @@
+// setup.cpp - from clip-space primitives to fixed-point edges, interpolation planes and tile bins.
+#include "setup/setup.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <utility>
+
+#include "facet/framebuffer.hpp"
+#include "facet/detail/clip.hpp"
+
+namespace facet::detail {
+namespace {
+
+// A vertex after the w-divide and the viewport transform. Screen space has y pointing down and pixel centres at
+// +0.5; b1_w and b2_w are the source barycentric weights over w, which stay linear in screen space.
+struct ScreenVertex {
+  float x, y, z, inv_w, b1_w, b2_w;
+};
+
+std::int64_t floor_div(std::int64_t a, std::int64_t b) {
+  const std::int64_t q = a / b;
+  return (a % b != 0 && (a < 0) != (b < 0)) ? q - 1 : q;
+}
+
+ScreenVertex to_screen(const glm::vec4& clip, const glm::vec3& weights, int width, int height) {
+  const float inv_w = 1.0f / clip.w;
+  const glm::vec3 ndc = glm::vec3(clip) * inv_w;
+  return {(ndc.x + 1.0f) * 0.5f * static_cast<float>(width), (1.0f - ndc.y) * 0.5f * static_cast<float>(height),
+          (ndc.z + 1.0f) * 0.5f, inv_w, weights.y * inv_w, weights.z * inv_w};
+}
+
+// Keeps snapped coordinates within the fixed-point budget even when clipping rounds a vertex a hair outside.
+std::int32_t snap(float v, int extent) {
+  const float limit = static_cast<float>(extent + 1);
+  return static_cast<std::int32_t>(std::lrint(std::clamp(v, -1.0f, limit) * kSubpixelScale));
+}
+
+Plane make_plane(float f0, float f1, float f2, double dx1, double dy1, double dx2, double dy2, double det) {
+  const double d1 = double{f1} - f0, d2 = double{f2} - f0;
+  return {f0, static_cast<float>((d1 * dy2 - d2 * dy1) / det), static_cast<float>((d2 * dx1 - d1 * dx2) / det)};
+}
+
+class Binner {
+ public:
+  Binner(const SetupInput& in, SetupChunk& out) : in_(in), out_(out) {}
+
+  // Sets up one screen triangle given in the source winding. `facing` is +1 (front), -1 (back) when the caller
+  // knows it from the whole clipped polygon, or 0 to take it from this triangle.
+  void triangle(ScreenVertex v[3], const std::uint32_t source[3], std::uint32_t primitive, int facing, bool cull) {
+    std::int32_t X[3], Y[3];
+    for (int k = 0; k < 3; ++k) {
+      X[k] = snap(v[k].x, in_.width);
+      Y[k] = snap(v[k].y, in_.height);
+    }
+    // Twice the signed area in 1/256-pixel units; with y down, counter-clockwise in window space is negative.
+    std::int64_t area = std::int64_t{X[1] - X[0]} * (Y[2] - Y[0]) - std::int64_t{X[2] - X[0]} * (Y[1] - Y[0]);
+    if (area == 0) {
+      ++out_.culled;
+      return;
+    }
+    const bool front = facing != 0 ? facing > 0 : area < 0;
+    if (facing != 0 && (area < 0) != front) {  // a sliver of a clipped polygon flipped by snapping
+      ++out_.culled;
+      return;
+    }
+    if (cull && ((in_.cull == CullMode::back && !front) || (in_.cull == CullMode::front && front))) {
+      ++out_.culled;
+      return;
+    }
+    if (area < 0) {  // rasterize every triangle clockwise on screen, so inside is positive for all edges
+      std::swap(v[1], v[2]);
+      std::swap(X[1], X[2]);
+      std::swap(Y[1], Y[2]);
+      area = -area;
+    }
+
+    TriangleSetup t;
+    std::int32_t min_x = X[0], max_x = X[0], min_y = Y[0], max_y = Y[0];
+    for (int k = 0; k < 3; ++k) {
+      const int a = k, b = (k + 1) % 3;
+      const std::int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
+      // Top-left rule, clockwise on screen with y down: a top edge is horizontal going right, a left edge goes up.
+      const bool top_left = (dy == 0 && dx > 0) || dy < 0;
+      const std::int64_t c = dy * X[a] - dx * Y[a];
+      const std::int64_t k_centre = (kSubpixelScale / 2) * (-dy + dx) + c + (top_left ? 0 : -1);
+      t.edge[k] = {static_cast<std::int32_t>(-dy), static_cast<std::int32_t>(dx), floor_div(k_centre, kSubpixelScale)};
+      min_x = std::min(min_x, X[k]);
+      max_x = std::max(max_x, X[k]);
+      min_y = std::min(min_y, Y[k]);
+      max_y = std::max(max_y, Y[k]);
+    }
+    // Pixels whose centres (i + 0.5) * 256 lie within the snapped bounds.
+    const int half = kSubpixelScale / 2;
+    const int px0 = std::max<int>(0, static_cast<int>(floor_div(min_x - half + kSubpixelScale - 1, kSubpixelScale)));
+    const int py0 = std::max<int>(0, static_cast<int>(floor_div(min_y - half + kSubpixelScale - 1, kSubpixelScale)));
+    const int px1 = std::min<int>(in_.width - 1, static_cast<int>(floor_div(max_x - half, kSubpixelScale)));
+    const int py1 = std::min<int>(in_.height - 1, static_cast<int>(floor_div(max_y - half, kSubpixelScale)));
+    if (px0 > px1 || py0 > py1) {
+      ++out_.culled;
+      return;
+    }
+    t.min_x = static_cast<std::int16_t>(px0);
+    t.min_y = static_cast<std::int16_t>(py0);
+    t.max_x = static_cast<std::int16_t>(px1);
+    t.max_y = static_cast<std::int16_t>(py1);
+
+    // Interpolation planes from the snapped positions, so that they agree with coverage.
+    const double scale = 1.0 / kSubpixelScale;
+    const double dx1 = (X[1] - X[0]) * scale, dy1 = (Y[1] - Y[0]) * scale;
+    const double dx2 = (X[2] - X[0]) * scale, dy2 = (Y[2] - Y[0]) * scale;
+    const double det = dx1 * dy2 - dx2 * dy1;
+    t.origin_x = static_cast<float>(X[0] * scale);
+    t.origin_y = static_cast<float>(Y[0] * scale);
+    t.depth = make_plane(v[0].z, v[1].z, v[2].z, dx1, dy1, dx2, dy2, det);
+    t.inv_w = make_plane(v[0].inv_w, v[1].inv_w, v[2].inv_w, dx1, dy1, dx2, dy2, det);
+    t.b1_over_w = make_plane(v[0].b1_w, v[1].b1_w, v[2].b1_w, dx1, dy1, dx2, dy2, det);
+    t.b2_over_w = make_plane(v[0].b2_w, v[1].b2_w, v[2].b2_w, dx1, dy1, dx2, dy2, det);
+    for (int k = 0; k < 3; ++k) t.vertex[k] = source[k];
+    t.primitive = primitive;
+    t.front_facing = front;
+    bin(t);
+  }
+
+ private:
+  void bin(const TriangleSetup& t) {
+    const auto index = static_cast<std::uint32_t>(out_.triangles.size());
+    out_.triangles.push_back(t);
+    const int tx0 = t.min_x / kTileSize, tx1 = t.max_x / kTileSize;
+    const int ty0 = t.min_y / kTileSize, ty1 = t.max_y / kTileSize;
+    const bool single = tx0 == tx1 && ty0 == ty1;
+    for (int ty = ty0; ty <= ty1; ++ty)
+      for (int tx = tx0; tx <= tx1; ++tx)
+        if (single || touches_tile(t, tx * kTileSize, ty * kTileSize))
+          out_.bins[static_cast<std::size_t>(ty) * in_.tiles_x + tx].push_back(index);
+  }
+
+  // False when one edge has every pixel centre of the tile outside: large triangles skip the tiles their
+  // bounding box covers but they do not.
+  static bool touches_tile(const TriangleSetup& t, int x, int y) {
+    for (const Edge& e : t.edge) {
+      const std::int64_t corner = std::int64_t{e.a} * x + std::int64_t{e.b} * y + e.q;
+      const std::int64_t reach = std::max<std::int64_t>(0, std::int64_t{e.a} * (kTileSize - 1)) +
+                                 std::max<std::int64_t>(0, std::int64_t{e.b} * (kTileSize - 1));
+      if (corner + reach < 0) return false;
+    }
+    return true;
+  }
+
+  const SetupInput& in_;
+  SetupChunk& out_;
+};
+
+}  // namespace
+
+void setup_triangles(const SetupInput& in, SetupChunk& out) {
+  Binner binner(in, out);
+  const bool culling = in.cull != CullMode::none;
+  for (std::size_t p = in.first; p < in.first + in.count; ++p) {
+    const std::size_t tri = in.order ? in.order[p] : p;
+    const std::uint32_t source[3] = {in.indices[3 * tri], in.indices[3 * tri + 1], in.indices[3 * tri + 2]};
+    if (source[0] >= in.vertex_count || source[1] >= in.vertex_count || source[2] >= in.vertex_count) {
+      ++out.invalid;
+      continue;
+    }
+    const glm::vec4 clip[3] = {in.clip[source[0]], in.clip[source[1]], in.clip[source[2]]};
+    const std::uint32_t codes[3] = {outcode(clip[0]), outcode(clip[1]), outcode(clip[2])};
+    const auto primitive = static_cast<std::uint32_t>(tri);
+    if ((codes[0] | codes[1] | codes[2]) == 0) {
+      ScreenVertex v[3];
+      for (int k = 0; k < 3; ++k) v[k] = to_screen(clip[k], glm::vec3(k == 0, k == 1, k == 2), in.width, in.height);
+      binner.triangle(v, source, primitive, 0, culling);
+      continue;
+    }
+    if (codes[0] & codes[1] & codes[2]) {
+      ++out.culled;
+      continue;
+    }
+    ClipVertex polygon[kMaxClipVertices];
+    const int n = clip_triangle(clip, polygon);
+    ++out.clipped;
+    if (n < 3) continue;
+    ScreenVertex v[kMaxClipVertices];
+    double area = 0.0;
+    for (int k = 0; k < n; ++k) v[k] = to_screen(polygon[k].position, polygon[k].weights, in.width, in.height);
+    for (int k = 1; k + 1 < n; ++k)
+      area += double{v[k].x - v[0].x} * (v[k + 1].y - v[0].y) - double{v[k + 1].x - v[0].x} * (v[k].y - v[0].y);
+    if (area == 0.0) {
+      ++out.culled;
+      continue;
+    }
+    const int facing = area < 0.0 ? 1 : -1;
+    if (culling && ((in.cull == CullMode::back && facing < 0) || (in.cull == CullMode::front && facing > 0))) {
+      ++out.culled;
+      continue;
+    }
+    for (int k = 1; k + 1 < n; ++k) {
+      ScreenVertex fan[3] = {v[0], v[k], v[k + 1]};
+      binner.triangle(fan, source, primitive, facing, false);
+    }
+  }
+}
+
+void setup_lines(const SetupInput& in, SetupChunk& out) {
+  Binner binner(in, out);
+  const float half_width = std::max(in.line_width, 0.01f) * 0.5f;
+  for (std::size_t p = in.first; p < in.first + in.count; ++p) {
+    const std::uint32_t a = in.indices[2 * p], b = in.indices[2 * p + 1];
+    if (a >= in.vertex_count || b >= in.vertex_count) {
+      ++out.invalid;
+      continue;
+    }
+    float t0, t1;
+    if (!clip_line(in.clip[a], in.clip[b], t0, t1)) {
+      ++out.culled;
+      continue;
+    }
+    const glm::vec4 delta = in.clip[b] - in.clip[a];
+    const ScreenVertex s0 = to_screen(in.clip[a] + t0 * delta, glm::vec3(1.0f - t0, t0, 0.0f), in.width, in.height);
+    const ScreenVertex s1 = to_screen(in.clip[a] + t1 * delta, glm::vec3(1.0f - t1, t1, 0.0f), in.width, in.height);
+    // A line is a screen-aligned rectangle half_width to each side and beyond each end (square caps), drawn as two
+    // triangles that share their diagonal, so the fill rule covers each pixel once.
+    float dx = s1.x - s0.x, dy = s1.y - s0.y;
+    const float length = std::sqrt(dx * dx + dy * dy);
+    if (!(length > 0.0f)) {
+      dx = 1.0f;
+      dy = 0.0f;
+    } else {
+      dx /= length;
+      dy /= length;
+    }
+    const float ax = dx * half_width, ay = dy * half_width;  // along the line
+    const float nx = -ay, ny = ax;                            // across it
+    auto corner = [](ScreenVertex s, float ox, float oy) {
+      s.x += ox;
+      s.y += oy;
+      return s;
+    };
+    const std::uint32_t source[3] = {a, b, b};
+    const auto primitive = static_cast<std::uint32_t>(p);
+    ScreenVertex first[3] = {corner(s0, -ax + nx, -ay + ny), corner(s1, ax + nx, ay + ny), corner(s1, ax - nx, ay - ny)};
+    ScreenVertex second[3] = {corner(s0, -ax + nx, -ay + ny), corner(s1, ax - nx, ay - ny), corner(s0, -ax - nx, -ay - ny)};
+    binner.triangle(first, source, primitive, 0, false);
+    binner.triangle(second, source, primitive, 0, false);
+  }
+}
+
+void setup_depth_keys(const glm::vec4* clip, std::size_t vertex_count, std::span<const std::uint32_t> indices,
+                      std::span<float> keys) {
+  for (std::size_t t = 0; t < keys.size(); ++t) {
+    float sum = 0.0f;
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t i = indices[3 * t + k];
+      if (i >= vertex_count) continue;
+      const glm::vec4& c = clip[i];
+      sum += c.w > kMinW ? c.z / c.w : 1.0f;  // corners at or behind the eye sort as far as possible
+    }
+    keys[t] = std::isfinite(sum) ? sum : 3.0f;
+  }
+}
+
+}  // namespace facet::detail
