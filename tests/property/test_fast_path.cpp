@@ -1,0 +1,100 @@
+// test_fast_path.cpp - the tiled, threaded rasterizer against the scalar reference, and against itself per thread count.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include "support/draw_helpers.hpp"
+
+namespace facet::test {
+namespace {
+
+struct Difference {
+  std::size_t pixels_over = 0;  // pixels whose largest channel difference exceeds the tolerance
+  int max_channel = 0;
+};
+
+Difference compare(const Framebuffer& a, const Framebuffer& b, int tolerance) {
+  Difference d;
+  for (std::size_t i = 0; i < a.color().size(); ++i) {
+    int worst = 0;
+    for (int c = 0; c < 4; ++c)
+      worst = std::max(worst, std::abs(int((a.color()[i] >> (8 * c)) & 0xff) - int((b.color()[i] >> (8 * c)) & 0xff)));
+    d.max_channel = std::max(d.max_channel, worst);
+    d.pixels_over += worst > tolerance;
+  }
+  return d;
+}
+
+ClipMesh perspective_sphere(int width, int height, int stacks, int slices) {
+  const glm::mat4 clip_from_object = glm::perspective(glm::radians(45.0f), float(width) / height, 0.1f, 10.0f) *
+                                     glm::lookAt(glm::vec3(0.3f, 0.5f, 2.2f), glm::vec3(0), glm::vec3(0, 1, 0));
+  return closed_sphere(stacks, slices, clip_from_object);
+}
+
+// Coverage is exact integer arithmetic in both rasterizers, so the pixels each triangle covers must be identical.
+TEST(FastPath, CoverageEqualsReferenceExactly) {
+  const RenderState state = no_depth_no_cull();
+  const ClipMesh scenes[] = {triangle_soup(300, 5), jittered_grid(11, 7, 3, true),
+                             perspective_sphere(173, 97, 17, 29)};
+  for (const ClipMesh& scene : scenes) {
+    const std::vector<int> fast = coverage_counts(scene, 173, 97, state, 2, false);
+    const std::vector<int> slow = coverage_counts(scene, 173, 97, state, 1, true);
+    ASSERT_EQ(fast, slow);
+  }
+}
+
+// Colours come from different (plane vs barycentric) float evaluations, so allow one level of rounding; with the
+// depth test on, a handful of pixels where two surfaces meet may also pick the other surface.
+TEST(FastPath, ImageEqualsReferenceWithinTolerance) {
+  RenderState culled;  // back-face culling, depth LESS
+  RenderState depth_no_cull;
+  depth_no_cull.cull = CullMode::none;
+  const struct {
+    ClipMesh mesh;
+    RenderState state;
+  } scenes[] = {{triangle_soup(400, 11), depth_no_cull},
+                {perspective_sphere(211, 143, 31, 47), culled},
+                {perspective_sphere(211, 143, 9, 13), depth_no_cull},
+                {jittered_grid(9, 6, 8, true), no_depth_no_cull()}};
+  for (const auto& scene : scenes) {
+    const Framebuffer fast = render_colors(scene.mesh, 211, 143, scene.state, 3);
+    const Framebuffer slow = render_colors(scene.mesh, 211, 143, scene.state, 1, true);
+    const Difference d = compare(fast, slow, 1);
+    EXPECT_LE(d.pixels_over, 211u * 143u / 1000u) << "max channel difference " << d.max_channel;
+  }
+}
+
+TEST(FastPath, IdenticalAtAnyThreadCount) {
+  // Enough triangles for several setup chunks and a target of many tiles, so both are actually split.
+  RenderState depth_no_cull;
+  depth_no_cull.cull = CullMode::none;
+  const ClipMesh sphere = perspective_sphere(517, 301, 90, 130);
+  ClipMesh soup = triangle_soup(6000, 17);
+  const Framebuffer one = render_colors(sphere, 517, 301, RenderState{}, 1);
+  const Framebuffer soup_one = render_colors(soup, 517, 301, depth_no_cull, 1);
+  for (const int threads : {2, 3, 8}) {
+    const Framebuffer many = render_colors(sphere, 517, 301, RenderState{}, threads);
+    EXPECT_TRUE(std::equal(one.color().begin(), one.color().end(), many.color().begin())) << threads << " threads";
+    EXPECT_TRUE(std::equal(one.depth().begin(), one.depth().end(), many.depth().begin())) << threads << " threads";
+    const Framebuffer soup_many = render_colors(soup, 517, 301, depth_no_cull, threads);
+    EXPECT_TRUE(std::equal(soup_one.color().begin(), soup_one.color().end(), soup_many.color().begin()))
+        << threads << " threads";
+  }
+}
+
+TEST(FastPath, OutOfRangeIndicesSkipTheirTriangle) {
+  ClipMesh m = jittered_grid(2, 2, 1, false);
+  const std::size_t good = m.indices.size() / 3;
+  m.indices.insert(m.indices.end(), {0u, 1u, 999u});
+  Renderer renderer(2);
+  Framebuffer fb(16, 16);
+  const std::vector<ColorShader::Vertex> vertices = color_vertices(m);
+  renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(vertices), m.indices, no_depth_no_cull());
+  EXPECT_EQ(renderer.last_stats().invalid, 1u);
+  EXPECT_EQ(renderer.last_stats().primitives, good + 1);
+}
+
+}  // namespace
+}  // namespace facet::test
