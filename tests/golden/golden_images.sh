@@ -1,0 +1,60 @@
+#!/usr/bin/env bash
+# golden_images.sh - renders the golden scenes with the CLI and compares them with tests/golden/images.
+# Usage: golden_images.sh FACET SCRATCH. FACET_UPDATE_GOLDENS=1 rewrites the goldens instead (commit them apart).
+# Tolerance: a pixel differs when a channel is off by more than 24 levels; at most 0.5% of pixels may differ
+# (edge pixels move with float rounding across compilers and CPUs). A failure leaves NAME.actual.png and
+# NAME.diff.png (red = differing pixel) in SCRATCH.
+set -uo pipefail
+facet=$1
+scratch=$2
+here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
+models=/usr/share/assimp/models/OBJ
+mkdir -p "$scratch"
+size=(--resolution 240,180)
+
+cases=(
+  "demo_cube|demo cube ${size[*]}"
+  "demo_torus|demo torus ${size[*]}"
+  "demo_two_cubes|demo two-cubes ${size[*]}"
+  "demo_pentagon|demo pentagon ${size[*]}"
+  "textured_obj|render $models/spider.obj ${size[*]}"
+  "wireframe|render $models/WusonOBJ.obj --wireframe ${size[*]}"
+  "edges|render $models/box.obj --edges ${size[*]}"
+)
+for p in perspective orthographic frustum oblique isometric dimetric trimetric front top side; do
+  cases+=("projection_$p|render $models/WusonOBJ.obj --projection $p ${size[*]}")
+done
+
+passed=0 failed=0
+for entry in "${cases[@]}"; do
+  name=${entry%%|*}
+  read -r -a args <<<"${entry#*|}"
+  actual=$scratch/$name.actual.png
+  rm -f "$actual" "$scratch/$name.diff.png"
+  if ! "$facet" "${args[@]}" --output "$actual" 2>"$scratch/$name.log"; then
+    echo "FAIL $name: facet ${args[*]} failed: $(head -n 3 "$scratch/$name.log")"
+    failed=$((failed + 1))
+    continue
+  fi
+  golden=$here/images/$name.png
+  if [ "${FACET_UPDATE_GOLDENS:-0}" = 1 ]; then
+    cp "$actual" "$golden"
+    echo "updated $name"
+    passed=$((passed + 1))
+    continue
+  fi
+  if [ ! -f "$golden" ]; then
+    echo "FAIL $name: no golden image $golden (render it with FACET_UPDATE_GOLDENS=1)"
+    failed=$((failed + 1))
+    continue
+  fi
+  if result=$(python3 "$here/imagecmp.py" "$golden" "$actual" "$scratch/$name.diff.png" 24 0.005); then
+    echo "ok   $name: $result"
+    passed=$((passed + 1))
+  else
+    echo "FAIL $name: $result (actual $actual, diff $scratch/$name.diff.png)"
+    failed=$((failed + 1))
+  fi
+done
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]
