@@ -1,0 +1,95 @@
+// scene.hpp - instances of meshes under one camera, drawn with the stock shaders and drawing modes.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "facet/framebuffer.hpp"
+#include "facet/mesh.hpp"
+#include "facet/render_state.hpp"
+#include "facet/renderer.hpp"
+#include "facet/texture.hpp"
+
+namespace facet {
+
+enum class Shading {
+  automatic,    // the model's own look: Blinn-Phong lit with its materials, textures and vertex colours
+  unlit,        // vertex colour, else face colour, else material colour; no lighting
+  flat,         // one lit colour per face (face normal)
+  gouraud,      // lit per vertex, colour interpolated
+  phong,        // lit per pixel, Phong specular
+  blinn_phong,  // lit per pixel, Blinn-Phong specular
+  normals,      // world-space normal as colour (n * 0.5 + 0.5)
+  depth,        // linear eye-space depth as grey, near = white, far = black
+};
+
+struct Light {
+  enum class Kind { directional, point } kind = Kind::directional;
+  glm::vec3 vector{0.4f, 0.7f, 0.6f};  // directional: direction towards the light; point: world position
+  glm::vec3 color{1.0f};
+  float intensity = 1.0f;
+};
+
+struct SceneOptions {
+  Shading shading = Shading::automatic;
+  std::vector<Light> lights = {Light{}};  // at most kMaxLights are used
+  glm::vec3 ambient{0.15f};
+  std::optional<glm::vec4> color;  // overrides every material's diffuse colour (--color)
+  CullMode cull = CullMode::back;
+  bool depth_test = true;
+  bool painter = false;     // sort triangles back to front, no depth buffer
+  bool wireframe = false;   // draw only the edges
+  bool edges = false;       // draw the surfaces, then each edge once on top (depth-tested with a small offset)
+  glm::vec4 edge_color{0.05f, 0.05f, 0.05f, 1.0f};
+  float line_width = 1.0f;
+  Sampler sampler{};
+};
+
+inline constexpr int kMaxLights = 4;
+
+struct Instance {
+  std::shared_ptr<const Mesh> mesh;
+  glm::mat4 world_from_object{1.0f};
+};
+
+struct View {
+  glm::mat4 view_from_world{1.0f};
+  glm::mat4 clip_from_view{1.0f};
+  float near = 0.1f, far = 100.0f;  // for the depth shading and the depth output
+};
+
+// Holds the per-mesh data the stock shaders read (vertex arrays, face normals and colours, edge lists, textures
+// loaded from the materials) so repeated frames do not rebuild it.
+class Scene {
+ public:
+  Scene();
+  ~Scene();
+  Scene(Scene&&) noexcept;
+  Scene& operator=(Scene&&) noexcept;
+
+  void add(Instance instance);
+  std::size_t size() const;
+  const std::vector<Instance>& instances() const;
+
+  // Draws every instance whose bounding sphere meets the view frustum; the others are rejected before any vertex
+  // work. Returns how many instances were drawn. Does not clear or finish the framebuffer.
+  std::size_t render(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options);
+
+ private:
+  struct Impl;
+  std::unique_ptr<Impl> impl_;
+};
+
+// True when a sphere (world space) lies at least partly inside the frustum of clip_from_world.
+bool sphere_in_frustum(const glm::mat4& clip_from_world, glm::vec3 center, float radius);
+
+// Linear eye-space depth (distance along -Z) per pixel, 0 where nothing was drawn (depth buffer at 1), top row
+// first: what --output-depth writes. Works for perspective and orthographic projections.
+std::vector<float> linear_depth(const Framebuffer& target, const glm::mat4& clip_from_view);
+
+}  // namespace facet
