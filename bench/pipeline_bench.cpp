@@ -23,6 +23,12 @@ test::ClipMesh sphere(int n) {
   return test::closed_sphere(n, n, clip_from_object);
 }
 
+std::vector<detail::ProjectedVertex> project(const test::ClipMesh& mesh) {
+  std::vector<detail::ProjectedVertex> projected;
+  for (const glm::vec4& c : mesh.clip) projected.push_back(detail::project_vertex(c, kWidth, kHeight));
+  return projected;
+}
+
 void BM_ClipCrossingTriangle(benchmark::State& state) {
   const glm::vec4 tri[3] = {{0, 0, 0.3f, 0.5f}, {2.2f, 0, -0.7f, -0.5f}, {0, 0.2f, 0.9f, 1.5f}};
   detail::ClipVertex out[detail::kMaxClipVertices];
@@ -33,12 +39,13 @@ BENCHMARK(BM_ClipCrossingTriangle);
 // Setup and binning of one chunk of a 1M-triangle sphere at 1080p, single thread.
 void BM_SetupChunk(benchmark::State& state) {
   const test::ClipMesh mesh = sphere(707);
+  const std::vector<detail::ProjectedVertex> projected = project(mesh);
   const Framebuffer fb(kWidth, kHeight);
   detail::SetupChunk chunk;
   const std::size_t tiles = static_cast<std::size_t>(fb.tiles_x()) * fb.tiles_y();
   for (auto _ : state) {
     chunk.reset(tiles);
-    const detail::SetupInput input{mesh.clip.data(), mesh.clip.size(), mesh.indices, nullptr, 200000,
+    const detail::SetupInput input{mesh.clip.data(), projected.data(), mesh.clip.size(), mesh.indices, nullptr, 200000,
                                    detail::kSetupChunk, kWidth, kHeight, fb.tiles_x(), CullMode::back, 1.0f};
     detail::setup_triangles(input, chunk);
     benchmark::DoNotOptimize(chunk.triangles.data());
@@ -52,7 +59,8 @@ void BM_BlockCoverage(benchmark::State& state) {
   const Framebuffer fb(kWidth, kHeight);
   detail::SetupChunk chunk;
   chunk.reset(static_cast<std::size_t>(fb.tiles_x()) * fb.tiles_y());
-  detail::setup_triangles({mesh.clip.data(), mesh.clip.size(), mesh.indices, nullptr, 0, mesh.indices.size() / 3,
+  const std::vector<detail::ProjectedVertex> projected = project(mesh);
+  detail::setup_triangles({mesh.clip.data(), projected.data(), mesh.clip.size(), mesh.indices, nullptr, 0, mesh.indices.size() / 3,
                            kWidth, kHeight, fb.tiles_x(), CullMode::back, 1.0f},
                           chunk);
   std::size_t blocks = 0;

@@ -14,6 +14,7 @@
 #include "facet/shader.hpp"
 #include "facet/detail/binning.hpp"
 #include "facet/detail/thread_pool.hpp"
+#include "facet/detail/triangle_setup.hpp"
 
 namespace facet {
 
@@ -32,6 +33,7 @@ using TileRasterFn = void (*)(const void* draw, const TileWork& work);
 struct DrawRequest {
   PrimitiveKind kind;
   const glm::vec4* clip;
+  const ProjectedVertex* projected;
   std::size_t vertex_count;
   std::span<const std::uint32_t> indices;
   const RenderState* state;
@@ -78,6 +80,7 @@ class Renderer {
 
   detail::ThreadPool pool_;
   std::vector<glm::vec4> clip_;     // post-transform positions, one per vertex of the current draw
+  std::vector<detail::ProjectedVertex> projected_;  // the same after the divide, viewport and snapping
   std::vector<float> varyings_;     // post-transform varyings, float_count floats per vertex
   std::vector<detail::SetupChunk> chunks_;
   std::vector<std::uint32_t> order_;  // painter's order
@@ -111,26 +114,33 @@ void Renderer::draw_primitives(detail::PrimitiveKind kind, Framebuffer& target, 
   using Varyings = typename S::Varyings;
   constexpr std::size_t floats = float_count_v<Varyings>;
   const std::size_t n = vertices.size();
-  if (clip_.size() < n) clip_.resize(n);
+  if (clip_.size() < n) {
+    clip_.resize(n);
+    projected_.resize(n);
+  }
   if (varyings_.size() < n * floats) varyings_.resize(n * floats);
 
   // Vertex stage: every vertex once, in parallel. Shading the whole span is a post-transform cache that never
   // misses, which suits indexed meshes whose vertices are all referenced.
   constexpr std::size_t kVertexChunk = 2048;
   glm::vec4* clip = clip_.data();
+  detail::ProjectedVertex* projected = projected_.data();
   float* varyings = varyings_.data();
+  const int width = target.width(), height = target.height();
+  const bool project = kind == detail::PrimitiveKind::triangles;
   pool_.parallel_for((n + kVertexChunk - 1) / kVertexChunk, [&](std::size_t chunk, int) {
     const std::size_t end = std::min(n, (chunk + 1) * kVertexChunk);
     for (std::size_t i = chunk * kVertexChunk; i < end; ++i) {
       const VertexOut<Varyings> out = shader.vertex(vertices[i]);
       clip[i] = out.clip;
+      if (project) projected[i] = detail::project_vertex(out.clip, width, height);
       const FloatArray<Varyings> f = to_floats(out.varyings);
       std::copy(f.begin(), f.end(), varyings + i * floats);
     }
   });
 
   const detail::ShadeContext<S> context{&shader, varyings, &state};
-  execute(target, {kind, clip, n, indices, &state, &detail::raster_tile<S>, &context});
+  execute(target, {kind, clip, projected, n, indices, &state, &detail::raster_tile<S>, &context});
 }
 
 }  // namespace facet

@@ -27,14 +27,6 @@ bool finite(const glm::vec4& v) {
 
 }  // namespace
 
-std::uint32_t outcode(const glm::vec4& clip) {
-  if (!finite(clip)) return (1u << kClipPlanes) - 1;
-  std::uint32_t code = 0;
-  for (int p = 0; p < kClipPlanes; ++p)
-    if (distance(clip, p) < 0.0f) code |= 1u << p;
-  return code;
-}
-
 int clip_triangle(const glm::vec4 (&clip)[3], ClipVertex (&out)[kMaxClipVertices]) {
   std::uint32_t any_outside = 0, all_outside = ~0u;
   for (const glm::vec4& v : clip) {
@@ -42,7 +34,7 @@ int clip_triangle(const glm::vec4 (&clip)[3], ClipVertex (&out)[kMaxClipVertices
     any_outside |= code;
     all_outside &= code;
   }
-  if (all_outside) return 0;
+  if (all_outside || (any_outside & kNonFinite)) return 0;
 
   ClipVertex buffer[kMaxClipVertices];
   ClipVertex* in = out;

@@ -11,33 +11,35 @@
 namespace facet::detail {
 namespace {
 
-// A vertex after the w-divide and the viewport transform. Screen space has y pointing down and pixel centres at
-// +0.5; b1_w and b2_w are the source barycentric weights over w, which stay linear in screen space.
+// A vertex after the w-divide and the viewport transform, before snapping. b1_w and b2_w are the source
+// barycentric weights over w, which stay linear in screen space.
 struct ScreenVertex {
   float x, y, z, inv_w, b1_w, b2_w;
 };
 
-std::int64_t floor_div(std::int64_t a, std::int64_t b) {
-  const std::int64_t q = a / b;
-  return (a % b != 0 && (a < 0) != (b < 0)) ? q - 1 : q;
-}
+// The same after snapping: what a set-up triangle is built from.
+struct SnappedVertex {
+  std::int32_t x, y;
+  float z, inv_w, b1_w, b2_w;
+};
+
+// Division by the sub-pixel scale rounding towards minus infinity: C++20 defines >> on negative values as an
+// arithmetic shift, which is exactly that.
+std::int64_t floor_div_subpixel(std::int64_t a) { return a >> kSubpixelBits; }
 
 ScreenVertex to_screen(const glm::vec4& clip, const glm::vec3& weights, int width, int height) {
   const float inv_w = 1.0f / clip.w;
-  const glm::vec3 ndc = glm::vec3(clip) * inv_w;
-  return {(ndc.x + 1.0f) * 0.5f * static_cast<float>(width), (1.0f - ndc.y) * 0.5f * static_cast<float>(height),
-          (ndc.z + 1.0f) * 0.5f, inv_w, weights.y * inv_w, weights.z * inv_w};
+  const glm::vec3 screen = screen_from_clip(clip, inv_w, width, height);
+  return {screen.x, screen.y, screen.z, inv_w, weights.y * inv_w, weights.z * inv_w};
 }
 
-// Keeps snapped coordinates within the fixed-point budget even when clipping rounds a vertex a hair outside.
-std::int32_t snap(float v, int extent) {
-  const float limit = static_cast<float>(extent + 1);
-  return static_cast<std::int32_t>(std::lrint(std::clamp(v, -1.0f, limit) * kSubpixelScale));
+SnappedVertex snap(const ScreenVertex& v, int width, int height) {
+  return {snap_to_subpixel(v.x, width), snap_to_subpixel(v.y, height), v.z, v.inv_w, v.b1_w, v.b2_w};
 }
 
-Plane make_plane(float f0, float f1, float f2, double dx1, double dy1, double dx2, double dy2, double det) {
+Plane make_plane(float f0, float f1, float f2, double dx1, double dy1, double dx2, double dy2, double inv_det) {
   const double d1 = double{f1} - f0, d2 = double{f2} - f0;
-  return {f0, static_cast<float>((d1 * dy2 - d2 * dy1) / det), static_cast<float>((d2 * dx1 - d1 * dx2) / det)};
+  return {f0, static_cast<float>((d1 * dy2 - d2 * dy1) * inv_det), static_cast<float>((d2 * dx1 - d1 * dx2) * inv_det)};
 }
 
 class Binner {
@@ -46,12 +48,8 @@ class Binner {
 
   // Sets up one screen triangle given in the source winding. `facing` is +1 (front), -1 (back) when the caller
   // knows it from the whole clipped polygon, or 0 to take it from this triangle.
-  void triangle(ScreenVertex v[3], const std::uint32_t source[3], std::uint32_t primitive, int facing, bool cull) {
-    std::int32_t X[3], Y[3];
-    for (int k = 0; k < 3; ++k) {
-      X[k] = snap(v[k].x, in_.width);
-      Y[k] = snap(v[k].y, in_.height);
-    }
+  void triangle(SnappedVertex v[3], const std::uint32_t source[3], std::uint32_t primitive, int facing, bool cull) {
+    std::int32_t X[3] = {v[0].x, v[1].x, v[2].x}, Y[3] = {v[0].y, v[1].y, v[2].y};
     // Twice the signed area in 1/256-pixel units; with y down, counter-clockwise in window space is negative.
     std::int64_t area = std::int64_t{X[1] - X[0]} * (Y[2] - Y[0]) - std::int64_t{X[2] - X[0]} * (Y[1] - Y[0]);
     if (area == 0) {
@@ -83,7 +81,7 @@ class Binner {
       const bool top_left = (dy == 0 && dx > 0) || dy < 0;
       const std::int64_t c = dy * X[a] - dx * Y[a];
       const std::int64_t k_centre = (kSubpixelScale / 2) * (-dy + dx) + c + (top_left ? 0 : -1);
-      t.edge[k] = {static_cast<std::int32_t>(-dy), static_cast<std::int32_t>(dx), floor_div(k_centre, kSubpixelScale)};
+      t.edge[k] = {static_cast<std::int32_t>(-dy), static_cast<std::int32_t>(dx), floor_div_subpixel(k_centre)};
       min_x = std::min(min_x, X[k]);
       max_x = std::max(max_x, X[k]);
       min_y = std::min(min_y, Y[k]);
@@ -91,10 +89,10 @@ class Binner {
     }
     // Pixels whose centres (i + 0.5) * 256 lie within the snapped bounds.
     const int half = kSubpixelScale / 2;
-    const int px0 = std::max<int>(0, static_cast<int>(floor_div(min_x - half + kSubpixelScale - 1, kSubpixelScale)));
-    const int py0 = std::max<int>(0, static_cast<int>(floor_div(min_y - half + kSubpixelScale - 1, kSubpixelScale)));
-    const int px1 = std::min<int>(in_.width - 1, static_cast<int>(floor_div(max_x - half, kSubpixelScale)));
-    const int py1 = std::min<int>(in_.height - 1, static_cast<int>(floor_div(max_y - half, kSubpixelScale)));
+    const int px0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_x - half + kSubpixelScale - 1)));
+    const int py0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_y - half + kSubpixelScale - 1)));
+    const int px1 = std::min<int>(in_.width - 1, static_cast<int>(floor_div_subpixel(max_x - half)));
+    const int py1 = std::min<int>(in_.height - 1, static_cast<int>(floor_div_subpixel(max_y - half)));
     if (px0 > px1 || py0 > py1) {
       ++out_.culled;
       return;
@@ -108,13 +106,13 @@ class Binner {
     const double scale = 1.0 / kSubpixelScale;
     const double dx1 = (X[1] - X[0]) * scale, dy1 = (Y[1] - Y[0]) * scale;
     const double dx2 = (X[2] - X[0]) * scale, dy2 = (Y[2] - Y[0]) * scale;
-    const double det = dx1 * dy2 - dx2 * dy1;
+    const double inv_det = 1.0 / (dx1 * dy2 - dx2 * dy1);
     t.origin_x = static_cast<float>(X[0] * scale);
     t.origin_y = static_cast<float>(Y[0] * scale);
-    t.depth = make_plane(v[0].z, v[1].z, v[2].z, dx1, dy1, dx2, dy2, det);
-    t.inv_w = make_plane(v[0].inv_w, v[1].inv_w, v[2].inv_w, dx1, dy1, dx2, dy2, det);
-    t.b1_over_w = make_plane(v[0].b1_w, v[1].b1_w, v[2].b1_w, dx1, dy1, dx2, dy2, det);
-    t.b2_over_w = make_plane(v[0].b2_w, v[1].b2_w, v[2].b2_w, dx1, dy1, dx2, dy2, det);
+    t.depth = make_plane(v[0].z, v[1].z, v[2].z, dx1, dy1, dx2, dy2, inv_det);
+    t.inv_w = make_plane(v[0].inv_w, v[1].inv_w, v[2].inv_w, dx1, dy1, dx2, dy2, inv_det);
+    t.b1_over_w = make_plane(v[0].b1_w, v[1].b1_w, v[2].b1_w, dx1, dy1, dx2, dy2, inv_det);
+    t.b2_over_w = make_plane(v[0].b2_w, v[1].b2_w, v[2].b2_w, dx1, dy1, dx2, dy2, inv_det);
     for (int k = 0; k < 3; ++k) t.vertex[k] = source[k];
     t.primitive = primitive;
     t.front_facing = front;
@@ -155,26 +153,28 @@ class Binner {
 void setup_triangles(const SetupInput& in, SetupChunk& out) {
   Binner binner(in, out);
   const bool culling = in.cull != CullMode::none;
-  for (std::size_t p = in.first; p < in.first + in.count; ++p) {
-    const std::size_t tri = in.order ? in.order[p] : p;
+  for (std::size_t i = in.first; i < in.first + in.count; ++i) {
+    const std::size_t tri = in.order ? in.order[i] : i;
     const std::uint32_t source[3] = {in.indices[3 * tri], in.indices[3 * tri + 1], in.indices[3 * tri + 2]};
     if (source[0] >= in.vertex_count || source[1] >= in.vertex_count || source[2] >= in.vertex_count) {
       ++out.invalid;
       continue;
     }
-    const glm::vec4 clip[3] = {in.clip[source[0]], in.clip[source[1]], in.clip[source[2]]};
-    const std::uint32_t codes[3] = {outcode(clip[0]), outcode(clip[1]), outcode(clip[2])};
+    const ProjectedVertex* corner[3] = {&in.projected[source[0]], &in.projected[source[1]], &in.projected[source[2]]};
     const auto primitive = static_cast<std::uint32_t>(tri);
-    if ((codes[0] | codes[1] | codes[2]) == 0) {
-      ScreenVertex v[3];
-      for (int k = 0; k < 3; ++k) v[k] = to_screen(clip[k], glm::vec3(k == 0, k == 1, k == 2), in.width, in.height);
+    const std::uint32_t any_outside = corner[0]->outcode | corner[1]->outcode | corner[2]->outcode;
+    if (any_outside == 0) {
+      SnappedVertex v[3];
+      for (int k = 0; k < 3; ++k)
+        v[k] = {corner[k]->x, corner[k]->y, corner[k]->z, corner[k]->inv_w, k == 1 ? corner[k]->inv_w : 0.0f, k == 2 ? corner[k]->inv_w : 0.0f};
       binner.triangle(v, source, primitive, 0, culling);
       continue;
     }
-    if (codes[0] & codes[1] & codes[2]) {
+    if ((corner[0]->outcode & corner[1]->outcode & corner[2]->outcode) || (any_outside & kNonFinite)) {
       ++out.culled;
       continue;
     }
+    const glm::vec4 clip[3] = {in.clip[source[0]], in.clip[source[1]], in.clip[source[2]]};
     ClipVertex polygon[kMaxClipVertices];
     const int n = clip_triangle(clip, polygon);
     ++out.clipped;
@@ -194,7 +194,8 @@ void setup_triangles(const SetupInput& in, SetupChunk& out) {
       continue;
     }
     for (int k = 1; k + 1 < n; ++k) {
-      ScreenVertex fan[3] = {v[0], v[k], v[k + 1]};
+      SnappedVertex fan[3] = {snap(v[0], in.width, in.height), snap(v[k], in.width, in.height),
+                              snap(v[k + 1], in.width, in.height)};
       binner.triangle(fan, source, primitive, facing, false);
     }
   }
@@ -239,8 +240,11 @@ void setup_lines(const SetupInput& in, SetupChunk& out) {
     const auto primitive = static_cast<std::uint32_t>(p);
     ScreenVertex first[3] = {corner(s0, -ax + nx, -ay + ny), corner(s1, ax + nx, ay + ny), corner(s1, ax - nx, ay - ny)};
     ScreenVertex second[3] = {corner(s0, -ax + nx, -ay + ny), corner(s1, ax - nx, ay - ny), corner(s0, -ax - nx, -ay - ny)};
-    binner.triangle(first, source, primitive, 0, false);
-    binner.triangle(second, source, primitive, 0, false);
+    for (ScreenVertex* quad_half : {first, second}) {
+      SnappedVertex snapped[3] = {snap(quad_half[0], in.width, in.height), snap(quad_half[1], in.width, in.height),
+                                  snap(quad_half[2], in.width, in.height)};
+      binner.triangle(snapped, source, primitive, 0, false);
+    }
   }
 }
 

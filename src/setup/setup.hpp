@@ -9,11 +9,13 @@
 
 #include "facet/render_state.hpp"
 #include "facet/detail/binning.hpp"
+#include "facet/detail/triangle_setup.hpp"
 
 namespace facet::detail {
 
 struct SetupInput {
-  const glm::vec4* clip;  // post-transform positions
+  const glm::vec4* clip;                  // post-transform positions
+  const ProjectedVertex* projected;       // the same, projected and snapped (triangles only)
   std::size_t vertex_count;
   std::span<const std::uint32_t> indices;  // 3 per triangle or 2 per line
   const std::uint32_t* order;              // primitive permutation (painter's algorithm) or nullptr

@@ -1,6 +1,7 @@
 // clip.hpp - homogeneous clipping of triangles and lines against the view frustum, positions only.
 #pragma once
 
+#include <cmath>
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -19,8 +20,18 @@ inline constexpr int kClipPlanes = 7;
 inline constexpr int kMaxClipVertices = 3 + kClipPlanes;  // each plane adds at most one vertex
 inline constexpr float kMinW = 1e-5f;
 
-// Bit p is set when the point is outside plane p. NaN coordinates are reported outside every plane.
-std::uint32_t outcode(const glm::vec4& clip);
+// Bit p is set when the point is outside plane p. A point with a NaN or infinite coordinate gets every bit plus
+// kNonFinite, and any primitive touching it is dropped whole.
+inline constexpr std::uint32_t kNonFinite = 1u << kClipPlanes;
+
+inline std::uint32_t outcode(const glm::vec4& c) {
+  if (!(std::isfinite(c.x) && std::isfinite(c.y) && std::isfinite(c.z) && std::isfinite(c.w)))
+    return kNonFinite | (kNonFinite - 1);
+  return static_cast<std::uint32_t>(c.w + c.x < 0.0f) | static_cast<std::uint32_t>(c.w - c.x < 0.0f) << 1 |
+         static_cast<std::uint32_t>(c.w + c.y < 0.0f) << 2 | static_cast<std::uint32_t>(c.w - c.y < 0.0f) << 3 |
+         static_cast<std::uint32_t>(c.w + c.z < 0.0f) << 4 | static_cast<std::uint32_t>(c.w - c.z < 0.0f) << 5 |
+         static_cast<std::uint32_t>(c.w - kMinW < 0.0f) << 6;
+}
 
 // Clips a triangle; returns the vertex count of the visible convex polygon (0 when nothing is visible), written to
 // `out` in the source winding. Triangles with every outcode zero should not be passed here (fast path).
