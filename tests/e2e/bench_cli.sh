@@ -1,0 +1,169 @@
+#!/usr/bin/env bash
+# bench_cli.sh - end-to-end test of `facet bench` (SCENES.md): result line, images, scenes and argument errors.
+# Usage: bash tests/e2e/bench_cli.sh <path-to-facet> <scratch-dir>
+set -u
+
+facet=${1:?usage: bench_cli.sh <path-to-facet> <scratch-dir>}
+scratch=${2:?usage: bench_cli.sh <path-to-facet> <scratch-dir>}
+wuson=/usr/share/assimp/models/OBJ/WusonOBJ.obj
+rm -rf "$scratch"
+mkdir -p "$scratch"
+passed=0 failed=0
+
+pass() { passed=$((passed + 1)); echo "ok   $1"; }
+fail() { failed=$((failed + 1)); echo "FAIL $1${2:+: $2}"; }
+
+# json_check JSON KEY=VALUE...: every KEY has exactly VALUE (numbers and strings compared as text); prints problems.
+json_check() {
+  python3 - "$@" <<'EOF'
+import json, sys
+try:
+    obj = json.loads(sys.argv[1])
+except ValueError as e:
+    print(f"not JSON: {e}"); sys.exit(1)
+problems = []
+for want in sys.argv[2:]:
+    key, value = want.split("=", 1)
+    if key not in obj:
+        problems.append(f"missing key {key}")
+    elif str(obj[key]) != value:
+        problems.append(f"{key} is {obj[key]!r}, expected {value}")
+for key in ("renderer", "threads", "median_ms", "min_ms", "max_ms"):
+    if key not in obj:
+        problems.append(f"missing key {key}")
+for key in ("median_ms", "min_ms", "max_ms"):
+    if key in obj and not (isinstance(obj[key], (int, float)) and obj[key] >= 0):
+        problems.append(f"{key} is not a non-negative number")
+if all(k in obj for k in ("min_ms", "median_ms", "max_ms")) and not obj["min_ms"] <= obj["median_ms"] <= obj["max_ms"]:
+    problems.append("expected min_ms <= median_ms <= max_ms")
+print("; ".join(problems))
+sys.exit(1 if problems else 0)
+EOF
+}
+
+# png_size FILE: prints "W H" from the IHDR chunk.
+png_size() {
+  python3 - "$1" <<'EOF'
+import struct, sys
+data = open(sys.argv[1], "rb").read(24)
+assert data[:8] == b"\x89PNG\r\n\x1a\n" and data[12:16] == b"IHDR", "not a PNG"
+print(*struct.unpack(">II", data[16:24]))
+EOF
+}
+
+# npy_check FILE W H: version 1.0 '<f4' (H, W) C order, all values in [0, 1], some < 1 and the corner at 1.0.
+npy_check() {
+  python3 - "$@" <<'EOF'
+import ast, struct, sys
+path, w, h = sys.argv[1], int(sys.argv[2]), int(sys.argv[3])
+data = open(path, "rb").read()
+assert data[:8] == b"\x93NUMPY\x01\x00", "bad magic"
+n = struct.unpack("<H", data[8:10])[0]
+header = ast.literal_eval(data[10:10 + n].decode("latin1"))
+assert header == {"descr": "<f4", "fortran_order": False, "shape": (h, w)}, f"header {header}"
+assert (10 + n) % 64 == 0, "data does not start at a multiple of 64"
+values = struct.unpack(f"<{w * h}f", data[10 + n:])
+assert all(0.0 <= v <= 1.0 for v in values), "depth outside [0, 1]"
+assert values[0] == 1.0, "top-left corner should be empty (1.0)"
+assert any(v < 1.0 for v in values), "nothing drawn"
+EOF
+}
+
+# run_ok NAME JSON_CHECKS... -- ARGS...: runs `facet bench ARGS --json`, expects status 0 and one '{' line.
+run_ok() {
+  local name=$1 checks=() out status lines problems
+  shift
+  while [ "$1" != "--" ]; do checks+=("$1"); shift; done
+  shift
+  out=$("$facet" bench "$@" --json 2>"$scratch/stderr.txt")
+  status=$?
+  if [ $status -ne 0 ]; then fail "$name" "exit status $status: $(head -n 3 "$scratch/stderr.txt")"; return 1; fi
+  lines=$(grep -c '^{' <<<"$out")
+  if [ "$lines" -ne 1 ]; then fail "$name" "expected one result line starting with '{', got $lines"; return 1; fi
+  if problems=$(json_check "$(grep '^{' <<<"$out")" "${checks[@]}"); then pass "$name"
+  else fail "$name" "$problems"; return 1; fi
+}
+
+# run_bad NAME ARGS...: expects status 2, exactly one stderr line 'facet: error: ...', no result line and no files.
+# The image flags go first, so ARGS may end in a flag that lacks its value.
+run_bad() {
+  local name=$1 dir out status
+  shift
+  dir=$scratch/bad-$passed-$failed
+  mkdir -p "$dir"
+  out=$("$facet" bench --json --png "$dir/out.png" --depth "$dir/out.npy" "$@" 2>"$dir/stderr.txt")
+  status=$?
+  local err_lines
+  err_lines=$(wc -l <"$dir/stderr.txt")
+  if [ $status -ne 2 ]; then fail "$name" "exit status $status, expected 2"
+  elif [ "$err_lines" -ne 1 ]; then fail "$name" "expected one stderr line, got $err_lines"
+  elif ! grep -q '^facet: error: ' "$dir/stderr.txt"; then fail "$name" "stderr: $(cat "$dir/stderr.txt")"
+  elif grep -q '^{' <<<"$out"; then fail "$name" "printed a result line"
+  elif [ -e "$dir/out.png" ] || [ -e "$dir/out.npy" ]; then fail "$name" "wrote a file"
+  else pass "$name"; fi
+}
+
+# --- the sphere, with both image outputs ---
+png=$scratch/sphere16.png npy=$scratch/sphere16.npy
+if run_ok "sphere:16 result line" scene=sphere:16 triangles=480 width=64 height=48 warmup=1 frames=2 threads=2 -- \
+  --sphere 16 --resolution 64,48 --frames 2 --warmup 1 --threads 2 --png "$png" --depth "$npy"; then
+  size=$(png_size "$png" 2>&1)
+  if [ "$size" = "64 48" ]; then pass "sphere:16 png is 64x48"; else fail "sphere:16 png" "size '$size'"; fi
+  if err=$(npy_check "$npy" 64 48 2>&1); then pass "sphere:16 depth .npy"; else fail "sphere:16 depth .npy" "$err"; fi
+fi
+# The image must not depend on the thread count (tiles see their triangles in draw order).
+run_ok "sphere:16 single-threaded" threads=0 -- --sphere 16 --resolution 64,48 --frames 1 --warmup 0 --threads 0 \
+  --png "$scratch/sphere16-t0.png" &&
+  { cmp -s "$png" "$scratch/sphere16-t0.png" && pass "sphere:16 same image with --threads 0" ||
+    fail "sphere:16 same image with --threads 0"; }
+# A repeated flag takes its last value (compare.sh appends its own --warmup/--frames).
+run_ok "repeated flags take the last value" frames=3 warmup=0 width=32 height=20 -- \
+  --sphere 8 --frames 1 --resolution 64,48 --warmup 2 --frames 3 --warmup 0 --resolution 32,20
+
+# --- the quads: both orders draw the same picture ---
+if run_ok "quads:4:b2f result line" scene=quads:4:b2f triangles=8 width=96 height=54 -- \
+     --quads 4 --resolution 96,54 --frames 1 --warmup 0 --png "$scratch/quads-b2f.png" &&
+   run_ok "quads:4:f2b result line" scene=quads:4:f2b triangles=8 -- \
+     --quads 4 --order f2b --resolution 96,54 --frames 1 --warmup 0 --png "$scratch/quads-f2b.png"; then
+  if cmp -s "$scratch/quads-b2f.png" "$scratch/quads-f2b.png"; then pass "quads b2f and f2b images are equal"
+  else fail "quads b2f and f2b images are equal"; fi
+fi
+
+# --- a mesh (assimp-testmodels) ---
+if [ -f "$wuson" ]; then
+  run_ok "mesh:WusonOBJ.obj result line" scene=mesh:WusonOBJ.obj triangles=3732 width=80 height=60 -- \
+    --mesh "$wuson" --resolution 80,60 --frames 1 --warmup 0 --png "$scratch/wuson.png" &&
+    { [ "$(png_size "$scratch/wuson.png" 2>&1)" = "80 60" ] && pass "mesh png is 80x60" || fail "mesh png is 80x60"; }
+else
+  echo "skip mesh:WusonOBJ.obj ($wuson not installed; apt-get install assimp-testmodels)"
+fi
+
+# --- human-readable output and --help ---
+out=$("$facet" bench --sphere 4 --resolution 16,16 --frames 1 --warmup 0 2>/dev/null)
+if [ $? -eq 0 ] && [ -n "$out" ] && ! grep -q '^{' <<<"$out"; then pass "without --json: a text line"
+else fail "without --json: a text line" "'$out'"; fi
+if "$facet" bench --help | grep -q -- '--sphere'; then pass "--help lists the flags"; else fail "--help lists the flags"; fi
+
+# --- bad arguments: status 2, one line on stderr, nothing written ---
+run_bad "unknown flag" --sphere 16 --frobnicate
+run_bad "--order without --quads" --sphere 16 --order f2b
+run_bad "two scenes" --sphere 16 --quads 4
+run_bad "no scene" --resolution 64,48
+run_bad "--sphere 2 is out of range" --sphere 2
+run_bad "--sphere not a number" --sphere 1x
+run_bad "--resolution 0,5" --sphere 16 --resolution 0,5
+run_bad "--resolution without a comma" --sphere 16 --resolution 64
+run_bad "--frames 0" --sphere 16 --frames 0
+run_bad "--warmup -1" --sphere 16 --warmup -1
+run_bad "--threads -1" --sphere 16 --threads -1
+run_bad "--scale 0" --sphere 16 --scale 0
+run_bad "--order sideways" --quads 4 --order sideways
+run_bad "missing value" --sphere
+run_bad "missing mesh file" --mesh "$scratch/no-such-mesh.obj"
+printf 'v 0 0 0\nv 1 0 0\n' >"$scratch/no-faces.obj"
+run_bad "mesh without triangles" --mesh "$scratch/no-faces.obj"
+printf 'v 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\n' >"$scratch/coincident.obj"
+run_bad "mesh whose vertices all coincide" --mesh "$scratch/coincident.obj"
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,81 @@
+// bench_shader.hpp - the `facet bench` shader: SCENES.md section 7 (textured Lambert + Phong) as a facet Shader.
+#pragma once
+
+#include <cmath>
+
+#include <glm/glm.hpp>
+
+#include "facet/shader.hpp"
+#include "facet/texture.hpp"
+
+namespace facet::bench {
+
+// One vertex as the reference uploads it: position, normal and uv, 32-bit floats.
+struct BenchVertex {
+  glm::vec3 pos;
+  glm::vec3 normal;
+  glm::vec2 uv;
+};
+
+// Direction to the light, normalised in float32 exactly as glref does before it sets the uniform.
+inline glm::vec3 bench_light_direction() {
+  const float len = std::sqrt(0.4f * 0.4f + 0.7f * 0.7f + 0.6f * 0.6f);
+  return {0.4f / len, 0.7f / len, 0.6f / len};
+}
+
+struct BenchShader {
+  using Vertex = BenchVertex;
+  struct Varyings {
+    glm::vec3 world_pos;
+    glm::vec3 world_normal;  // not normalised per vertex: the fragment stage normalises the interpolated value
+    glm::vec2 uv;
+  };
+  // No discard, so the pipeline tests depth before shading and hidden fragments cost no texture lookups.
+  static constexpr bool may_discard = false;
+
+  // Uniforms. clip_from_world = P * V, formed once, like GLSL's `uProj * uView * pw` which multiplies the two
+  // matrices before the vector.
+  glm::mat4 world_from_object{1.0f};
+  glm::mat3 normal_matrix{1.0f};  // upper-left 3x3 of world_from_object (rotation times uniform scale)
+  glm::mat4 clip_from_world{1.0f};
+  glm::vec3 light_dir = bench_light_direction();
+  glm::vec3 eye{0.0f, 0.0f, 3.0f};
+  const Texture* texture = nullptr;
+  Sampler sampler{Filter::bilinear, Wrap::repeat, Wrap::repeat};
+
+  // Per frame: M(f) and the normal matrix derived from it (outside the per-vertex loop).
+  void set_model(const glm::mat4& model) {
+    world_from_object = model;
+    normal_matrix = glm::mat3(model);
+  }
+
+  VertexOut<Varyings> vertex(const Vertex& v) const {
+    const glm::vec4 world = world_from_object * glm::vec4(v.pos, 1.0f);
+    return {clip_from_world * world, {glm::vec3(world), normal_matrix * v.normal, v.uv}};
+  }
+
+  glm::vec4 fragment(const Fragment<Varyings>& f) const {
+    const Varyings& in = f.varyings;
+    const glm::vec3 n = in.world_normal * (1.0f / std::sqrt(glm::dot(in.world_normal, in.world_normal)));
+    const glm::vec3 to_eye = eye - in.world_pos;
+    const glm::vec3 v = to_eye * (1.0f / std::sqrt(glm::dot(to_eye, to_eye)));
+    const float n_dot_l = glm::dot(n, light_dir);
+    const glm::vec3 r = 2.0f * n_dot_l * n - light_dir;  // reflect(-L, N)
+    const glm::vec3 albedo = glm::vec3(texture->sample(in.uv, sampler));
+    const float diffuse = n_dot_l > 0.0f ? n_dot_l : 0.0f;
+    // pow(x, 32) as five squarings: exact enough (a few ulps) and far cheaper than exp2(32 * log2(x)).
+    float spec = glm::dot(r, v);
+    spec = spec > 0.0f ? spec : 0.0f;
+    spec *= spec;
+    spec *= spec;
+    spec *= spec;
+    spec *= spec;
+    spec *= spec;
+    const glm::vec3 color = 0.15f * albedo + diffuse * albedo + glm::vec3(0.4f * spec);
+    return {color, 1.0f};
+  }
+};
+
+static_assert(Shader<BenchShader>);
+
+}  // namespace facet::bench
