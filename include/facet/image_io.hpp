@@ -1,0 +1,28 @@
+// image_io.hpp - writing rendered images (PNG) and depth buffers (NumPy .npy); reading PNGs back for tests.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <span>
+#include <vector>
+
+namespace facet {
+
+class Framebuffer;
+
+// Writes an 8-bit PNG from rgba (R, G, B, A bytes per pixel, top row first); RGB only when keep_alpha is false.
+// The file is written under a temporary name in the same folder and renamed into place, so a failure never leaves
+// a partial file at path. Throws std::invalid_argument for a bad size, std::runtime_error("<path>: <reason>") when
+// the file cannot be written.
+void write_png(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba,
+               bool keep_alpha = true);
+void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha = true);
+
+// Reads a PNG (or any format load_texture accepts) as RGBA bytes, top row first. Throws InputError naming the file.
+std::vector<std::uint8_t> read_png(const std::filesystem::path& path, int& width, int& height);
+
+// Writes values (width*height floats, top row first) as a NumPy .npy file: version 1.0, dtype '<f4', shape
+// (height, width), C order, data starting at byte 64 * k. Written atomically and with the errors of write_png.
+void write_npy(const std::filesystem::path& path, int width, int height, std::span<const float> values);
+
+}  // namespace facet

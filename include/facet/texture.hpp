@@ -1,0 +1,189 @@
+// texture.hpp - RGBA8 textures with OpenGL-style sampling (nearest, bilinear, trilinear), wrap modes and mipmaps.
+#pragma once
+
+#include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <filesystem>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+// FACET_NO_SIMD selects the portable scalar code (for testing that both agree); define it for the whole build.
+#if defined(__SSE2__) && defined(__x86_64__) && !defined(FACET_NO_SIMD)
+#define FACET_TEXTURE_SSE2 1
+#include <emmintrin.h>
+#endif
+
+namespace facet {
+
+inline constexpr int kMaxTextureSize = 16384;  // texels per side; 2^14, so at most 15 mip levels
+inline constexpr int kMaxTextureLevels = 15;
+
+// Filter::nearest = GL_NEAREST, bilinear = GL_LINEAR (neither uses mipmaps), trilinear = GL_LINEAR_MIPMAP_LINEAR
+// for minification and GL_LINEAR for magnification.
+enum class Filter { nearest, bilinear, trilinear };
+// repeat = GL_REPEAT, clamp = GL_CLAMP_TO_EDGE, mirror = GL_MIRRORED_REPEAT.
+enum class Wrap { repeat, clamp, mirror };
+
+struct Sampler {
+  Filter filter = Filter::trilinear;
+  Wrap wrap_u = Wrap::repeat, wrap_v = Wrap::repeat;
+};
+
+class Texture {
+ public:
+  Texture() = default;
+  // rgba holds width*height little-endian RGBA8 texels (r in the low byte), row 0 at v = 0, column 0 at u = 0.
+  // Throws std::invalid_argument unless 1 <= width, height <= kMaxTextureSize and the size matches.
+  Texture(int width, int height, std::vector<std::uint32_t> rgba);
+
+  int width() const { return levels_[0].width; }
+  int height() const { return levels_[0].height; }
+  int levels() const { return level_count_; }  // 1 until generate_mipmaps(), 0 when empty
+  bool empty() const { return level_count_ == 0; }
+  int level_width(int level) const { return levels_[static_cast<std::size_t>(level)].width; }
+  int level_height(int level) const { return levels_[static_cast<std::size_t>(level)].height; }
+
+  // Builds the full chain down to 1x1; each level is max(1, floor(previous / 2)) per side, as in OpenGL, and each
+  // texel is the area-weighted average of the texels of the previous level it covers (a 2x2 box for even sizes).
+  void generate_mipmaps();
+
+  // Texel (x, y) of a level as floats in [0, 1]; no wrapping, the indices must be in range.
+  glm::vec4 texel(int level, int x, int y) const;
+
+  // Level 0 only: nearest or bilinear (trilinear has no derivatives here, so it behaves like bilinear).
+  glm::vec4 sample(glm::vec2 uv, const Sampler& sampler) const {
+    // The benchmark's case (bilinear, repeat, power-of-two size) stays inline and branch-light.
+    if (pow2_ && sampler.filter != Filter::nearest && sampler.wrap_u == Wrap::repeat &&
+        sampler.wrap_v == Wrap::repeat)
+      return bilinear_repeat_pow2(uv);
+    return sample_level0(uv, sampler);
+  }
+
+  // With the uv derivatives across one pixel in x and y: trilinear picks the level of detail
+  // lod = log2(max(|duv_dx * size|, |duv_dy * size|)) and blends the two nearest levels; lod <= 0 (magnification)
+  // samples level 0 bilinearly. nearest and bilinear ignore the derivatives, as in OpenGL.
+  glm::vec4 sample(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, const Sampler& sampler) const;
+
+ private:
+  // Each level is stored with one extra column and one extra row, copies of column 0 and row 0: with repeat
+  // wrapping the texel right of (or above) the last one is then simply the next in memory, so the hot path reads
+  // each pair of neighbours with one 8-byte load. Other wrap modes index explicitly and never read the padding.
+  struct Level {
+    int width = 0, height = 0;
+    int stride = 0;                       // texels per stored row: width + 1
+    float fwidth = 0.0f, fheight = 0.0f;  // the size as floats, so sampling does not convert per call
+    std::size_t offset = 0;              // of texel (0, 0) in texels_
+  };
+
+  // For s and t: floor as an int and the fraction s - floor(s), the texel index and weight of the bilinear
+  // formula. The clamp keeps the conversion defined for huge, infinite or NaN coordinates (NaN goes to -2^30 with
+  // weight 0); +-2^30 are multiples of every power-of-two size, so repeat wrapping of large values is unaffected.
+  // Exact: a non-integer float is below 2^23 in magnitude, where i - 1 and float(i) are exact.
+  struct Split {
+    int i, j;
+    float alpha, beta;
+  };
+  static Split split_floor(float s, float t) {
+    constexpr float lo = -1073741824.0f, hi = 1073741824.0f;
+#if defined(FACET_TEXTURE_SSE2)
+    __m128 st = _mm_setr_ps(s, t, 0.0f, 0.0f);
+    st = _mm_min_ps(_mm_max_ps(st, _mm_set1_ps(lo)), _mm_set1_ps(hi));  // maxps returns lo for NaN
+    __m128i ij = _mm_cvttps_epi32(st);                                 // truncates toward zero
+    ij = _mm_add_epi32(ij, _mm_castps_si128(_mm_cmplt_ps(st, _mm_cvtepi32_ps(ij))));  // -1 where that rounded up
+    const __m128 fraction = _mm_sub_ps(st, _mm_cvtepi32_ps(ij));
+    return Split{_mm_cvtsi128_si32(ij), _mm_cvtsi128_si32(_mm_shuffle_epi32(ij, 1)), _mm_cvtss_f32(fraction),
+                 _mm_cvtss_f32(_mm_shuffle_ps(fraction, fraction, 1))};
+#else
+    auto one = [](float v, float& fraction) {
+      v = lo < v ? v : lo;
+      v = v < hi ? v : hi;
+      int i = static_cast<int>(v);
+      i -= v < static_cast<float>(i) ? 1 : 0;
+      fraction = v - static_cast<float>(i);
+      return i;
+    };
+    Split r{};
+    r.i = one(s, r.alpha);
+    r.j = one(t, r.beta);
+    return r;
+#endif
+  }
+
+  // A texel's channels as floats in 0..255: the bilinear formula interpolates these and divides by 255 last.
+  static glm::vec4 unpack_bytes(std::uint32_t p) {
+    return glm::vec4(static_cast<float>(p & 0xffu), static_cast<float>((p >> 8) & 0xffu),
+                     static_cast<float>((p >> 16) & 0xffu), static_cast<float>(p >> 24));
+  }
+
+  // lerp(lerp(T00, T10, alpha), lerp(T01, T11, alpha), beta) / 255 with lerp(a, b, w) = a + (b - a) * w, given
+  // the pairs (T00 | T10 << 32) and (T01 | T11 << 32). The SSE2 version does the same IEEE operations per lane as
+  // the scalar one, so both give identical results; it exists because this is the per-pixel hot path.
+  static glm::vec4 blend(std::uint64_t bottom_pair, std::uint64_t top_pair, float alpha, float beta) {
+#if defined(FACET_TEXTURE_SSE2)
+    const __m128i zero = _mm_setzero_si128();
+    // bytes -> 16-bit -> 32-bit lanes, one texel per half of the 16-bit vector.
+    const __m128i b16 = _mm_unpacklo_epi8(_mm_cvtsi64_si128(static_cast<long long>(bottom_pair)), zero);
+    const __m128i t16 = _mm_unpacklo_epi8(_mm_cvtsi64_si128(static_cast<long long>(top_pair)), zero);
+    const __m128 t00 = _mm_cvtepi32_ps(_mm_unpacklo_epi16(b16, zero));
+    const __m128 t10 = _mm_cvtepi32_ps(_mm_unpackhi_epi16(b16, zero));
+    const __m128 t01 = _mm_cvtepi32_ps(_mm_unpacklo_epi16(t16, zero));
+    const __m128 t11 = _mm_cvtepi32_ps(_mm_unpackhi_epi16(t16, zero));
+    const __m128 a = _mm_set1_ps(alpha);
+    const __m128 bottom = _mm_add_ps(t00, _mm_mul_ps(_mm_sub_ps(t10, t00), a));
+    const __m128 top = _mm_add_ps(t01, _mm_mul_ps(_mm_sub_ps(t11, t01), a));
+    const __m128 mixed = _mm_add_ps(bottom, _mm_mul_ps(_mm_sub_ps(top, bottom), _mm_set1_ps(beta)));
+    glm::vec4 result;
+    _mm_storeu_ps(&result.x, _mm_div_ps(mixed, _mm_set1_ps(255.0f)));
+    return result;
+#else
+    const glm::vec4 t00 = unpack_bytes(static_cast<std::uint32_t>(bottom_pair));
+    const glm::vec4 t10 = unpack_bytes(static_cast<std::uint32_t>(bottom_pair >> 32));
+    const glm::vec4 t01 = unpack_bytes(static_cast<std::uint32_t>(top_pair));
+    const glm::vec4 t11 = unpack_bytes(static_cast<std::uint32_t>(top_pair >> 32));
+    const glm::vec4 bottom = t00 + (t10 - t00) * alpha;
+    const glm::vec4 top = t01 + (t11 - t01) * alpha;
+    return (bottom + (top - bottom) * beta) / 255.0f;
+#endif
+  }
+
+  // SCENES.md section 7: s = u*W - 0.5, i = floor(s), alpha = s - i, indices wrapped by a mask; thanks to the
+  // padding, texels i+1 and j+1 are the next ones in memory even at the last column and row.
+  glm::vec4 bilinear_repeat_pow2(glm::vec2 uv) const {
+    const Level& l = levels_[0];
+    const Split p = split_floor(uv.x * l.fwidth - 0.5f, uv.y * l.fheight - 0.5f);
+    const std::uint32_t* t00 =
+        texels_.data() + static_cast<std::size_t>(p.j & (l.height - 1)) * l.stride + (p.i & (l.width - 1));
+    std::uint64_t bottom, top;
+    std::memcpy(&bottom, t00, sizeof bottom);
+    std::memcpy(&top, t00 + l.stride, sizeof top);
+    if constexpr (std::endian::native == std::endian::big) {  // keep the left texel in the low half
+      bottom = bottom << 32 | bottom >> 32;
+      top = top << 32 | top >> 32;
+    }
+    return blend(bottom, top, p.alpha, p.beta);
+  }
+
+  void pad_level(int level);  // fills the extra column and row of a level from column 0 and row 0
+  glm::vec4 sample_level0(glm::vec2 uv, const Sampler& sampler) const;
+  glm::vec4 sample_nearest(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const;
+  glm::vec4 sample_bilinear(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const;
+
+  std::array<Level, kMaxTextureLevels> levels_{};
+  int level_count_ = 0;
+  bool pow2_ = false;  // level 0 has power-of-two sides: the inline fast path applies
+  std::vector<std::uint32_t> texels_;  // all levels, level 0 first, each padded and row-major, row 0 at v = 0
+};
+
+// Loads a PNG, JPEG, TGA or BMP file as RGBA (missing channels filled as stb_image does: grey to RGB, alpha 255),
+// flipped so that row 0 (the image's bottom row) is at v = 0, with mipmaps. Throws InputError naming the file.
+Texture load_texture(const std::filesystem::path& path);
+
+// The benchmark texture of SCENES.md section 7 (size x size, 128-texel cells, row 0 at v = 0), without mipmaps
+// (the benchmark samples with GL_LINEAR). Throws std::invalid_argument unless 1 <= size <= kMaxTextureSize.
+Texture make_checker_texture(int size = 1024);
+
+}  // namespace facet

@@ -1,0 +1,172 @@
+// image_io.cpp - atomic PNG (stb_image_write) and .npy writers, and a PNG reader for tests.
+#include "facet/image_io.hpp"
+
+#include <atomic>
+#include <bit>
+#include <cerrno>
+#include <climits>
+#include <cstdio>
+#include <cstring>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include <unistd.h>
+
+#include "facet/error.hpp"
+#include "facet/framebuffer.hpp"
+
+// The one stb_image_write implementation in facet. stb_image's implementation lives in src/texture/texture.cpp;
+// here only its declarations are needed.
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wall"
+#pragma GCC diagnostic ignored "-Wextra"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
+#include <stb_image_write.h>
+#include <stb_image.h>
+#pragma GCC diagnostic pop
+
+namespace facet {
+
+namespace {
+
+[[noreturn]] void write_failed(const std::filesystem::path& path, const std::string& reason) {
+  throw std::runtime_error(path.string() + ": " + reason);
+}
+
+std::string errno_text(int err) { return std::generic_category().message(err); }
+
+// A name in the same folder as path (so the final rename cannot cross file systems), unique per process and call,
+// hidden so that a crash mid-write leaves nothing that looks like the real output.
+std::filesystem::path temporary_name(const std::filesystem::path& path) {
+  static std::atomic<unsigned> counter{0};
+  // Appended piecewise: GCC 12 reports a false -Wrestrict for "." + std::string.
+  std::string name(1, '.');
+  name += path.filename().string();
+  name += '.';
+  name += std::to_string(::getpid());
+  name += '.';
+  name += std::to_string(counter.fetch_add(1));
+  name += ".tmp";
+  return path.parent_path() / name;
+}
+
+// Writes bytes to a temporary file and renames it over path: readers see either the old file or the whole new one.
+void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+  if (path.empty() || !path.has_filename()) write_failed(path, "not a file name");
+  const std::filesystem::path temp = temporary_name(path);
+  // "x": never reuse an existing file, should a stale temporary with this name exist.
+  std::FILE* file = std::fopen(temp.c_str(), "wbx");
+  if (!file) write_failed(path, "cannot create file: " + errno_text(errno));
+  bool ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
+  int err = ok ? 0 : errno;
+  if (std::fclose(file) != 0 && ok) {  // the buffered tail is written here, so this can fail too (disk full)
+    ok = false;
+    err = errno;
+  }
+  std::error_code ec;
+  if (!ok) {
+    std::filesystem::remove(temp, ec);
+    write_failed(path, "cannot write file: " + errno_text(err));
+  }
+  std::filesystem::rename(temp, path, ec);
+  if (ec) {
+    std::error_code ignored;
+    std::filesystem::remove(temp, ignored);
+    write_failed(path, "cannot replace file: " + ec.message());
+  }
+}
+
+void check_size(int width, int height, std::size_t count, std::size_t per_pixel, const char* what) {
+  if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
+    throw std::invalid_argument(std::string(what) + " size " + std::to_string(width) + "x" + std::to_string(height) +
+                                " is outside 1.." + std::to_string(kMaxDimension));
+  if (count != static_cast<std::size_t>(width) * height * per_pixel)
+    throw std::invalid_argument(std::string(what) + " of " + std::to_string(width) + "x" + std::to_string(height) +
+                                " given " + std::to_string(count) + " values");
+}
+
+void append_to_vector(void* context, void* data, int size) {
+  auto* out = static_cast<std::vector<std::uint8_t>*>(context);
+  const auto* bytes = static_cast<const std::uint8_t*>(data);
+  out->insert(out->end(), bytes, bytes + size);
+}
+
+}  // namespace
+
+void write_png(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba,
+               bool keep_alpha) {
+  check_size(width, height, rgba.size(), 4, "PNG");
+  const std::uint8_t* pixels = rgba.data();
+  std::vector<std::uint8_t> rgb;
+  if (!keep_alpha) {
+    rgb.resize(static_cast<std::size_t>(width) * height * 3);
+    for (std::size_t i = 0, n = static_cast<std::size_t>(width) * height; i < n; ++i)
+      std::memcpy(&rgb[i * 3], &rgba[i * 4], 3);
+    pixels = rgb.data();
+  }
+  const int channels = keep_alpha ? 4 : 3;
+  std::vector<std::uint8_t> encoded;
+  if (!stbi_write_png_to_func(&append_to_vector, &encoded, width, height, channels, pixels, width * channels))
+    write_failed(path, "PNG encoding failed");
+  write_file_atomically(path, encoded);
+}
+
+void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha) {
+  const std::vector<std::uint8_t> rgba = framebuffer.rgba8();
+  write_png(path, framebuffer.width(), framebuffer.height(), rgba, keep_alpha);
+}
+
+std::vector<std::uint8_t> read_png(const std::filesystem::path& path, int& width, int& height) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path.string(), "is a directory, not an image file");
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file) throw InputError(path.string(), "cannot open: " + errno_text(errno));
+  std::vector<unsigned char> bytes;
+  unsigned char chunk[1 << 16];
+  std::size_t n = 0;
+  while ((n = std::fread(chunk, 1, sizeof chunk, file.get())) > 0) {
+    bytes.insert(bytes.end(), chunk, chunk + n);
+    if (bytes.size() > static_cast<std::size_t>(INT_MAX)) throw InputError(path.string(), "file is too large");
+  }
+  if (std::ferror(file.get())) throw InputError(path.string(), "cannot read: " + errno_text(errno));
+  if (bytes.empty()) throw InputError(path.string(), "file is empty");
+
+  int channels = 0;
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+      stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width, &height, &channels, 4),
+      &stbi_image_free);
+  if (!pixels)
+    throw InputError(path.string(), std::string("cannot decode image (stb_image: ") + stbi_failure_reason() + ")");
+  return std::vector<std::uint8_t>(pixels.get(), pixels.get() + static_cast<std::size_t>(width) * height * 4);
+}
+
+void write_npy(const std::filesystem::path& path, int width, int height, std::span<const float> values) {
+  check_size(width, height, values.size(), 1, "npy array");
+  std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(height) + ", " +
+                       std::to_string(width) + "), }";
+  // 10 bytes of magic, version and length precede the header; pad with spaces so the data starts at a multiple of
+  // 64 bytes (what NumPy itself writes), ending the header with a newline.
+  header.append(63 - (10 + header.size()) % 64, ' ');
+  header += '\n';
+  std::vector<std::uint8_t> bytes;
+  bytes.reserve(10 + header.size() + values.size() * 4);
+  const char magic[] = "\x93NUMPY\x01\x00";
+  bytes.insert(bytes.end(), magic, magic + 8);
+  bytes.push_back(static_cast<std::uint8_t>(header.size() & 0xff));
+  bytes.push_back(static_cast<std::uint8_t>(header.size() >> 8));
+  bytes.insert(bytes.end(), header.begin(), header.end());
+  for (const float v : values) {
+    const auto bits = std::bit_cast<std::uint32_t>(v);
+    for (int b = 0; b < 4; ++b) bytes.push_back(static_cast<std::uint8_t>(bits >> (8 * b)));  // little-endian
+  }
+  write_file_atomically(path, bytes);
+}
+
+}  // namespace facet

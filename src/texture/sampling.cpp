@@ -1,0 +1,80 @@
+// sampling.cpp - the general texture sampling paths: every wrap mode, any size, nearest and trilinear filtering.
+#include <algorithm>
+#include <cmath>
+
+#include "facet/texture.hpp"
+
+namespace facet {
+
+namespace {
+
+// Wraps a texel index into 0..n-1 as OpenGL does (GL 4.6 table 8.20), applied to integer indices for both nearest
+// and linear filtering.
+inline int wrap_index(int i, int n, Wrap wrap) {
+  switch (wrap) {
+    case Wrap::repeat: {
+      if ((n & (n - 1)) == 0) return i & (n - 1);  // every level of a power-of-two texture: no division
+      const int m = i % n;
+      return m < 0 ? m + n : m;
+    }
+    case Wrap::clamp:
+      return std::clamp(i, 0, n - 1);
+    case Wrap::mirror: {
+      // Period 2n: the first n texels forward, the next n backward.
+      const int period = 2 * n;
+      int m = i % period;
+      if (m < 0) m += period;
+      return m < n ? m : period - 1 - m;
+    }
+  }
+  return 0;
+}
+
+}  // namespace
+
+glm::vec4 Texture::sample_level0(glm::vec2 uv, const Sampler& sampler) const {
+  if (empty()) return glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);  // what OpenGL returns for an incomplete texture
+  if (sampler.filter == Filter::nearest) return sample_nearest(0, uv, sampler.wrap_u, sampler.wrap_v);
+  return sample_bilinear(0, uv, sampler.wrap_u, sampler.wrap_v);
+}
+
+glm::vec4 Texture::sample_nearest(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const {
+  const Level& l = levels_[static_cast<std::size_t>(level)];
+  const Split p = split_floor(uv.x * l.fwidth, uv.y * l.fheight);
+  const int i = wrap_index(p.i, l.width, wrap_u), j = wrap_index(p.j, l.height, wrap_v);
+  return unpack_bytes(texels_[l.offset + static_cast<std::size_t>(j) * l.stride + i]) / 255.0f;
+}
+
+// The same arithmetic as bilinear_repeat_pow2 (SCENES.md section 7), with general wrapping.
+glm::vec4 Texture::sample_bilinear(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const {
+  const Level& l = levels_[static_cast<std::size_t>(level)];
+  const Split p = split_floor(uv.x * l.fwidth - 0.5f, uv.y * l.fheight - 0.5f);
+  const int i0 = wrap_index(p.i, l.width, wrap_u), i1 = wrap_index(p.i + 1, l.width, wrap_u);
+  const int j0 = wrap_index(p.j, l.height, wrap_v), j1 = wrap_index(p.j + 1, l.height, wrap_v);
+  const std::uint32_t* row0 = texels_.data() + l.offset + static_cast<std::size_t>(j0) * l.stride;
+  const std::uint32_t* row1 = texels_.data() + l.offset + static_cast<std::size_t>(j1) * l.stride;
+  return blend(row0[i0] | std::uint64_t{row0[i1]} << 32, row1[i0] | std::uint64_t{row1[i1]} << 32, p.alpha, p.beta);
+}
+
+glm::vec4 Texture::sample(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, const Sampler& sampler) const {
+  // GL_NEAREST and GL_LINEAR never use mipmaps; without a chain trilinear has only level 0 to use.
+  if (sampler.filter != Filter::trilinear || level_count_ <= 1) return sample(uv, sampler);
+
+  // OpenGL's scale factor rho: the longer of the two pixel steps, measured in level-0 texels.
+  const glm::vec2 size(levels_[0].fwidth, levels_[0].fheight);
+  const float rho = std::max(glm::length(duv_dx * size), glm::length(duv_dy * size));
+  float lod = std::log2(rho);
+  // Magnification (GL_LINEAR, threshold 0 for this filter pair), zero derivatives (-inf) and NaN all go to level 0.
+  if (!(lod > 0.0f)) return sample(uv, sampler);
+
+  const float max_level = static_cast<float>(level_count_ - 1);
+  if (lod >= max_level) return sample_bilinear(level_count_ - 1, uv, sampler.wrap_u, sampler.wrap_v);
+  const int d = static_cast<int>(lod);
+  const float f = lod - static_cast<float>(d);
+  const glm::vec4 a = sample_bilinear(d, uv, sampler.wrap_u, sampler.wrap_v);
+  if (f == 0.0f) return a;
+  const glm::vec4 b = sample_bilinear(d + 1, uv, sampler.wrap_u, sampler.wrap_v);
+  return a + (b - a) * f;
+}
+
+}  // namespace facet

@@ -1,0 +1,220 @@
+// texture.cpp - texture storage, the mipmap chain, image-file loading (stb_image) and the benchmark checker.
+#include "facet/texture.hpp"
+
+#include <algorithm>
+#include <cerrno>
+#include <climits>
+#include <cstdio>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <system_error>
+
+#include "facet/error.hpp"
+
+// The one stb_image implementation in facet (image_io.cpp uses it too). Only the formats facet promises are
+// compiled in, which also keeps the decoder's attack surface small; the dimension cap rejects absurd files early.
+#define STB_IMAGE_IMPLEMENTATION
+#define STBI_ONLY_PNG
+#define STBI_ONLY_JPEG
+#define STBI_ONLY_TGA
+#define STBI_ONLY_BMP
+#define STBI_MAX_DIMENSIONS 16384
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wall"
+#pragma GCC diagnostic ignored "-Wextra"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wsign-compare"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#pragma GCC diagnostic ignored "-Wunused-parameter"
+#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
+#include <stb_image.h>
+#pragma GCC diagnostic pop
+
+namespace facet {
+
+static_assert(kMaxTextureSize == STBI_MAX_DIMENSIONS);
+
+Texture::Texture(int width, int height, std::vector<std::uint32_t> rgba) {
+  if (width < 1 || height < 1 || width > kMaxTextureSize || height > kMaxTextureSize)
+    throw std::invalid_argument("texture size " + std::to_string(width) + "x" + std::to_string(height) +
+                                " is outside 1.." + std::to_string(kMaxTextureSize));
+  if (rgba.size() != static_cast<std::size_t>(width) * height)
+    throw std::invalid_argument("texture of " + std::to_string(width) + "x" + std::to_string(height) + " given " +
+                                std::to_string(rgba.size()) + " texels");
+  levels_[0] = Level{width, height, width + 1, static_cast<float>(width), static_cast<float>(height), 0};
+  level_count_ = 1;
+  pow2_ = (width & (width - 1)) == 0 && (height & (height - 1)) == 0;
+  texels_.resize(static_cast<std::size_t>(width + 1) * (height + 1));
+  for (int y = 0; y < height; ++y)
+    std::copy_n(rgba.begin() + static_cast<std::ptrdiff_t>(y) * width, width,
+                texels_.begin() + static_cast<std::ptrdiff_t>(y) * (width + 1));
+  pad_level(0);
+}
+
+void Texture::pad_level(int level) {
+  const Level& l = levels_[static_cast<std::size_t>(level)];
+  std::uint32_t* base = texels_.data() + l.offset;
+  for (int y = 0; y < l.height; ++y) {
+    std::uint32_t* row = base + static_cast<std::size_t>(y) * l.stride;
+    row[l.width] = row[0];
+  }
+  std::copy_n(base, l.stride, base + static_cast<std::size_t>(l.height) * l.stride);
+}
+
+glm::vec4 Texture::texel(int level, int x, int y) const {
+  const Level& l = levels_[static_cast<std::size_t>(level)];
+  return unpack_bytes(texels_[l.offset + static_cast<std::size_t>(y) * l.stride + x]) / 255.0f;
+}
+
+namespace {
+
+// How the texels of one axis of a level reduce to the next: destination texel d covers the source interval
+// [d*ratio, (d+1)*ratio) with ratio = src/dst <= 3, so it touches at most 3 source texels; each is weighted by its
+// overlap with that interval divided by ratio. For even sizes that is (1/2, 1/2).
+struct AxisTaps {
+  int first = 0, count = 0;
+  float weight[3] = {0.0f, 0.0f, 0.0f};
+};
+
+std::vector<AxisTaps> axis_taps(int src, int dst) {
+  std::vector<AxisTaps> taps(static_cast<std::size_t>(dst));
+  const double ratio = static_cast<double>(src) / dst;
+  for (int d = 0; d < dst; ++d) {
+    const double lo = d * ratio, hi = (d + 1) * ratio;
+    AxisTaps& t = taps[static_cast<std::size_t>(d)];
+    t.first = static_cast<int>(lo);
+    for (int s = t.first; s < src && s < hi && t.count < 3; ++s) {
+      const double overlap = std::min<double>(s + 1, hi) - std::max<double>(s, lo);
+      t.weight[t.count++] = static_cast<float>(overlap / ratio);
+    }
+  }
+  return taps;
+}
+
+}  // namespace
+
+void Texture::generate_mipmaps() {
+  if (empty()) return;
+  // Recompute from level 0, so calling this twice (or after changing nothing) gives the same chain.
+  level_count_ = 1;
+  std::size_t total = 0;
+  {
+    int w = width(), h = height();
+    for (;;) {
+      total += static_cast<std::size_t>(w + 1) * (h + 1);
+      if (w == 1 && h == 1) break;
+      w = std::max(1, w / 2);
+      h = std::max(1, h / 2);
+    }
+  }
+  texels_.resize(total);
+
+  std::vector<glm::vec4> row_sums;  // one source level reduced horizontally, for one destination row
+  while (levels_[level_count_ - 1].width > 1 || levels_[level_count_ - 1].height > 1) {
+    const Level& src = levels_[level_count_ - 1];
+    const int w = std::max(1, src.width / 2), h = std::max(1, src.height / 2);
+    const Level dst{w, h, w + 1, static_cast<float>(w), static_cast<float>(h),
+                    src.offset + static_cast<std::size_t>(src.stride) * (src.height + 1)};
+    const std::vector<AxisTaps> tx = axis_taps(src.width, w), ty = axis_taps(src.height, h);
+    row_sums.assign(static_cast<std::size_t>(w), glm::vec4(0.0f));
+    for (int y = 0; y < h; ++y) {
+      const AxisTaps& vy = ty[static_cast<std::size_t>(y)];
+      std::fill(row_sums.begin(), row_sums.end(), glm::vec4(0.0f));
+      for (int k = 0; k < vy.count; ++k) {
+        const std::uint32_t* row = texels_.data() + src.offset + static_cast<std::size_t>(vy.first + k) * src.stride;
+        for (int x = 0; x < w; ++x) {
+          const AxisTaps& vx = tx[static_cast<std::size_t>(x)];
+          glm::vec4 sum(0.0f);
+          for (int m = 0; m < vx.count; ++m) sum += unpack_bytes(row[vx.first + m]) * vx.weight[m];
+          row_sums[static_cast<std::size_t>(x)] += sum * vy.weight[k];
+        }
+      }
+      std::uint32_t* out = texels_.data() + dst.offset + static_cast<std::size_t>(y) * dst.stride;
+      for (int x = 0; x < w; ++x) {
+        // Round to nearest; the clamp guards against weights summing a hair above 1.
+        const glm::vec4 c = glm::clamp(glm::floor(row_sums[static_cast<std::size_t>(x)] + 0.5f), 0.0f, 255.0f);
+        out[x] = static_cast<std::uint32_t>(c.x) | static_cast<std::uint32_t>(c.y) << 8 |
+                 static_cast<std::uint32_t>(c.z) << 16 | static_cast<std::uint32_t>(c.w) << 24;
+      }
+    }
+    levels_[level_count_] = dst;
+    pad_level(level_count_++);
+  }
+}
+
+namespace {
+
+[[noreturn]] void fail(const std::filesystem::path& path, const std::string& problem) {
+  throw InputError(path.string(), problem);
+}
+
+std::string errno_text(int err) { return std::generic_category().message(err); }
+
+// Reads the whole file, with the system's reason on failure (stb_image's own fopen only says "can't fopen").
+std::vector<unsigned char> read_whole_file(const std::filesystem::path& path) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not an image file");
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
+  if (!file) fail(path, "cannot open: " + errno_text(errno));
+  std::vector<unsigned char> bytes;
+  unsigned char chunk[1 << 16];
+  for (;;) {
+    const std::size_t n = std::fread(chunk, 1, sizeof chunk, file.get());
+    bytes.insert(bytes.end(), chunk, chunk + n);
+    if (bytes.size() > static_cast<std::size_t>(INT_MAX)) fail(path, "file is too large for an image (over 2 GiB)");
+    if (n < sizeof chunk) break;
+  }
+  if (std::ferror(file.get())) fail(path, "cannot read: " + errno_text(errno));
+  if (bytes.empty()) fail(path, "file is empty");
+  return bytes;
+}
+
+}  // namespace
+
+Texture load_texture(const std::filesystem::path& path) {
+  const std::vector<unsigned char> bytes = read_whole_file(path);
+  const int length = static_cast<int>(bytes.size());
+  int w = 0, h = 0, channels = 0;
+  if (!stbi_info_from_memory(bytes.data(), length, &w, &h, &channels))
+    fail(path, std::string("not a readable PNG, JPEG, TGA or BMP image (stb_image: ") + stbi_failure_reason() + ")");
+  if (w < 1 || h < 1 || w > kMaxTextureSize || h > kMaxTextureSize)
+    fail(path, "image is " + std::to_string(w) + "x" + std::to_string(h) + " texels; the limit is 1.." +
+                   std::to_string(kMaxTextureSize) + " per side");
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(bytes.data(), length, &w, &h, &channels, 4),
+                                                   &stbi_image_free);
+  if (!pixels) fail(path, std::string("cannot decode image (stb_image: ") + stbi_failure_reason() + ")");
+
+  // Image files store the top row first; texture row 0 is v = 0, the bottom (OpenGL's convention).
+  std::vector<std::uint32_t> texels(static_cast<std::size_t>(w) * h);
+  for (int y = 0; y < h; ++y) {
+    const stbi_uc* src = pixels.get() + static_cast<std::size_t>(h - 1 - y) * w * 4;
+    std::uint32_t* dst = texels.data() + static_cast<std::size_t>(y) * w;
+    for (int x = 0; x < w; ++x, src += 4)
+      dst[x] = std::uint32_t{src[0]} | std::uint32_t{src[1]} << 8 | std::uint32_t{src[2]} << 16 |
+               std::uint32_t{src[3]} << 24;
+  }
+  Texture texture(w, h, std::move(texels));
+  texture.generate_mipmaps();
+  return texture;
+}
+
+Texture make_checker_texture(int size) {
+  if (size < 1 || size > kMaxTextureSize)
+    throw std::invalid_argument("checker texture size " + std::to_string(size) + " is outside 1.." +
+                                std::to_string(kMaxTextureSize));
+  // Exactly the reference's generator (glref.cpp make_checker), constants included; beyond 1727 texels the
+  // gradient channels wrap modulo 256 there too, since they are stored as bytes.
+  std::vector<std::uint32_t> texels(static_cast<std::size_t>(size) * size);
+  for (int y = 0; y < size; ++y)
+    for (int x = 0; x < size; ++x) {
+      const bool light = (((x / 128) ^ (y / 128)) & 1) != 0;
+      const std::uint32_t r = light ? 230u : static_cast<std::uint32_t>(40 + x / 8) & 0xffu;
+      const std::uint32_t g = light ? 230u : 60u;
+      const std::uint32_t b = light ? 230u : static_cast<std::uint32_t>(40 + y / 8) & 0xffu;
+      texels[static_cast<std::size_t>(y) * size + x] = r | g << 8 | b << 16 | 0xffu << 24;
+    }
+  return Texture(size, size, std::move(texels));
+}
+
+}  // namespace facet
