@@ -44,11 +44,12 @@ void BM_SetupChunk(benchmark::State& state) {
   detail::SetupChunk chunk;
   const std::size_t tiles = static_cast<std::size_t>(fb.tiles_x()) * fb.tiles_y();
   for (auto _ : state) {
-    chunk.reset(tiles);
+    chunk.reset();
     const detail::SetupInput input{mesh.clip.data(), projected.data(), mesh.clip.size(), mesh.indices, nullptr, 200000,
                                    detail::kSetupChunk, kWidth, kHeight, fb.tiles_x(), CullMode::back, 1.0f};
     detail::setup_triangles(input, chunk);
-    benchmark::DoNotOptimize(chunk.triangles.data());
+    chunk.sort_by_tile(tiles);
+    benchmark::DoNotOptimize(chunk.binned.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(detail::kSetupChunk));
 }
@@ -58,7 +59,7 @@ void BM_BlockCoverage(benchmark::State& state) {
   const test::ClipMesh mesh = sphere(64);
   const Framebuffer fb(kWidth, kHeight);
   detail::SetupChunk chunk;
-  chunk.reset(static_cast<std::size_t>(fb.tiles_x()) * fb.tiles_y());
+  chunk.reset();
   const std::vector<detail::ProjectedVertex> projected = project(mesh);
   detail::setup_triangles({mesh.clip.data(), projected.data(), mesh.clip.size(), mesh.indices, nullptr, 0, mesh.indices.size() / 3,
                            kWidth, kHeight, fb.tiles_x(), CullMode::back, 1.0f},

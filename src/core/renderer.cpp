@@ -42,10 +42,13 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   if (triangles && state.order == DrawOrder::back_to_front) {
     sort_keys_.resize(count);
     setup_depth_keys(request.clip, request.vertex_count, request.indices, sort_keys_);
+    // Farthest first; equal depths keep index order. A total order lets std::sort (which, unlike stable_sort,
+    // needs no buffer) give the same result every time.
     order_.resize(count);
     std::iota(order_.begin(), order_.end(), 0u);
-    std::stable_sort(order_.begin(), order_.end(),
-                     [&](std::uint32_t a, std::uint32_t b) { return sort_keys_[a] > sort_keys_[b]; });
+    std::sort(order_.begin(), order_.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return sort_keys_[a] != sort_keys_[b] ? sort_keys_[a] > sort_keys_[b] : a < b;
+    });
     order = order_.data();
   }
 
@@ -58,19 +61,20 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
 
     pool_.parallel_for(chunk_count, [&](std::size_t c, int) {
       SetupChunk& chunk = chunks_[c];
-      chunk.reset(tiles);
+      chunk.reset();
       const std::size_t first = batch_first + c * kSetupChunk;
       const SetupInput input{request.clip, request.projected, request.vertex_count, request.indices, order, first,
                              std::min(kSetupChunk, batch_first + batch_count - first), target.width(), target.height(),
                              target.tiles_x(), state.cull, state.line_width};
       if (triangles) setup_triangles(input, chunk);
       else setup_lines(input, chunk);
+      chunk.sort_by_tile(tiles);
     });
 
     active_tiles_.clear();
     for (std::size_t t = 0; t < tiles; ++t)
       for (std::size_t c = 0; c < chunk_count; ++c)
-        if (!chunks_[c].bins[t].empty()) {
+        if (chunks_[c].has(t)) {
           active_tiles_.push_back(static_cast<int>(t));
           break;
         }

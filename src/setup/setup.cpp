@@ -129,7 +129,7 @@ class Binner {
     for (int ty = ty0; ty <= ty1; ++ty)
       for (int tx = tx0; tx <= tx1; ++tx)
         if (single || touches_tile(t, tx * kTileSize, ty * kTileSize))
-          out_.bins[static_cast<std::size_t>(ty) * in_.tiles_x + tx].push_back(index);
+          out_.add(static_cast<std::uint32_t>(ty * in_.tiles_x + tx), index);
   }
 
   // False when one edge has every pixel centre of the tile outside: large triangles skip the tiles their

@@ -1,6 +1,7 @@
 // binning.hpp - the frame's work between setup and rasterization: set-up primitives and per-tile bins.
 #pragma once
 
+#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 #include <vector>
@@ -15,17 +16,46 @@ namespace facet::detail {
 inline constexpr std::size_t kSetupChunk = 4096;     // primitives per setup task
 inline constexpr std::size_t kChunksPerBatch = 64;   // setup memory is bounded by one batch at a time
 
+// A chunk's bins are one flat array sorted by tile (a counting sort after setup): tile t's triangles are
+// binned[first[t]] .. binned[first[t + 1] - 1], in draw order. Flat arrays only grow with the number of
+// (triangle, tile) pairs, so steady-state frames reuse their memory instead of allocating.
 struct SetupChunk {
   std::vector<TriangleSetup> triangles;
-  std::vector<std::vector<std::uint32_t>> bins;  // per tile: indices into `triangles`
+  std::vector<std::uint32_t> pair_tile, pair_triangle;  // (tile, triangle) pairs in the order setup emits them
+  std::vector<std::uint32_t> first;                      // per tile, plus one end marker
+  std::vector<std::uint32_t> binned;
   std::size_t culled = 0, clipped = 0, invalid = 0;
 
-  void reset(std::size_t tiles) {
+  void reset() {
+    // Room for a full chunk of small triangles up front, so the counts that wobble from frame to frame as a
+    // model turns do not trigger a string of small reallocations.
+    if (pair_tile.capacity() < 2 * kSetupChunk) {
+      pair_tile.reserve(2 * kSetupChunk);
+      pair_triangle.reserve(2 * kSetupChunk);
+      binned.reserve(2 * kSetupChunk);
+      triangles.reserve(kSetupChunk);
+    }
     triangles.clear();
-    if (bins.size() != tiles) bins.resize(tiles);
-    for (auto& bin : bins) bin.clear();
+    pair_tile.clear();
+    pair_triangle.clear();
     culled = clipped = invalid = 0;
   }
+  void add(std::uint32_t tile, std::uint32_t triangle) {
+    pair_tile.push_back(tile);
+    pair_triangle.push_back(triangle);
+  }
+  void sort_by_tile(std::size_t tiles) {
+    first.assign(tiles + 1, 0);
+    for (const std::uint32_t t : pair_tile) ++first[t + 1];
+    for (std::size_t t = 0; t < tiles; ++t) first[t + 1] += first[t];
+    if (binned.capacity() < pair_tile.size()) binned.reserve(std::max(pair_tile.size(), 2 * binned.capacity()));
+    binned.resize(pair_tile.size());
+    for (std::size_t i = 0; i < pair_tile.size(); ++i) binned[first[pair_tile[i]]++] = pair_triangle[i];
+    // The scatter advanced each start to the next tile's start; shift back.
+    for (std::size_t t = tiles; t > 0; --t) first[t] = first[t - 1];
+    first[0] = 0;
+  }
+  bool has(std::size_t tile) const { return first[tile] != first[tile + 1]; }
 };
 
 // One tile's share of a batch, handed to the shader-specific rasterizer.

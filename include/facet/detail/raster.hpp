@@ -175,7 +175,8 @@ void raster_tile(const void* draw, const TileWork& work) {
   const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
   for (std::size_t c = 0; c < work.chunk_count; ++c) {
     const SetupChunk& chunk = work.chunks[c];
-    for (const std::uint32_t t : chunk.bins[work.tile]) raster_triangle(ctx, chunk.triangles[t], work);
+    for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i)
+      raster_triangle(ctx, chunk.triangles[chunk.binned[i]], work);
   }
 }
 
