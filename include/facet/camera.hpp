@@ -1,0 +1,59 @@
+// camera.hpp - an orbit camera, a VTK-style camera (position / focal point / view up) and sphere framing.
+#pragma once
+
+#include <glm/mat4x4.hpp>
+#include <glm/vec3.hpp>
+
+namespace facet {
+
+// A camera on a sphere around `target`. At azimuth = elevation = 0 the eye is on +Z of the target (the OpenGL
+// default view down -Z). Azimuth turns the eye about world +Y towards +X (right-handed), elevation lifts it
+// towards +Y: eye = target + distance * (cos(el) sin(az), sin(el), cos(el) cos(az)).
+// `up` is the view-up hint handed to look_at; where it is parallel to the view direction (the poles when
+// up = +Y) view() uses the orbit's own up instead of throwing. eye() and view() throw std::invalid_argument
+// when distance is not positive or anything is non-finite.
+struct OrbitCamera {
+  glm::vec3 target{0.0f};
+  float distance = 3.0f;
+  float azimuth = 0.0f;    // radians, around +Y
+  float elevation = 0.0f;  // radians
+  glm::vec3 up{0.0f, 1.0f, 0.0f};
+
+  glm::vec3 eye() const;
+  glm::mat4 view() const;  // eye space from world space
+};
+
+// The camera of VTK / f3d: where it is, what it looks at, which way is up, and its vertical field of view and
+// clipping distances (the VTK defaults).
+struct Camera {
+  glm::vec3 position{0.0f, 0.0f, 1.0f};
+  glm::vec3 focal_point{0.0f};
+  glm::vec3 view_up{0.0f, 1.0f, 0.0f};
+  float view_angle_degrees = 30.0f;  // vertical field of view
+  float near = 0.01f, far = 1000.01f;
+};
+
+// look_at(position, focal_point, view_up); throws like look_at.
+glm::mat4 view_from_world(const Camera& camera);
+
+// perspective(view_angle, aspect, near, far); throws like perspective.
+glm::mat4 clip_from_view(const Camera& camera, float aspect);
+
+// A camera looking at `center` from `direction` (centre to eye, any length) with `up` as view up, far enough
+// that the sphere fits both the vertical view angle and the horizontal one implied by `aspect`, with an 8%
+// margin on the tighter of the two. near/far hug the sphere: near = max(d - 1.05 r, 1e-3 d), far = d + 1.05 r.
+// view_up is returned orthogonalised against the view direction. Throws std::invalid_argument on a radius that
+// is not positive, aspect <= 0, a view angle outside (0, 180), a zero direction, `up` parallel to `direction`,
+// or anything non-finite.
+Camera frame_sphere(glm::vec3 center, float radius, float aspect, float view_angle_degrees, glm::vec3 direction,
+                    glm::vec3 up);
+
+// VTK's Azimuth(azimuth_deg) then Elevation(elevation_deg), as f3d applies them: azimuth turns the position
+// about view_up through the focal point (positive moves the camera to its right); elevation turns it about the
+// camera's right axis through the focal point (positive moves the camera up, looking down on the scene). Like
+// f3d (which calls OrthogonalizeViewUp afterwards), view_up is carried along by the elevation and
+// re-orthogonalised, so elevating through the pole does not leave a degenerate camera. The focal point and
+// distance are unchanged. Throws std::invalid_argument on non-finite angles or a degenerate camera.
+void apply_azimuth_elevation(Camera& camera, float azimuth_deg, float elevation_deg);
+
+}  // namespace facet
