@@ -36,23 +36,27 @@ inline bool depth_passes(DepthFunc func, float fragment, float stored) {
   return false;
 }
 
-// Pixels of the 8x8 block at (bx, by) whose centres are inside all three edges. Whole-block accept and reject
-// use 64-bit values; a block an edge crosses is tested per pixel in 32 bits (see Edge).
-inline std::uint64_t raster_block_coverage(const TriangleSetup& tri, int bx, int by) {
-  std::uint64_t mask = ~std::uint64_t{0};
+// Pixels (bx + i, by + j), i in [i0, i1], j in [j0, j1] (a rectangle inside one 8x8 block), whose centres are
+// inside all three edges. Whole-rectangle accept and reject use 64-bit values; an edge that crosses the rectangle
+// is tested per pixel in 32 bits (see Edge). Restricting the work to the triangle's bounds keeps the many tiny
+// triangles of dense meshes from paying for whole blocks.
+inline std::uint64_t raster_block_coverage(const TriangleSetup& tri, int bx, int by, int i0, int i1, int j0, int j1) {
+  const std::uint64_t row_bits = ((std::uint64_t{1} << (i1 + 1)) - 1) & ~((std::uint64_t{1} << i0) - 1);
+  std::uint64_t mask = 0;
+  for (int j = j0; j <= j1; ++j) mask |= row_bits << (j * kBlockSize);
   for (const Edge& e : tri.edge) {
-    const std::int64_t at_corner = std::int64_t{e.a} * bx + std::int64_t{e.b} * by + e.q;
-    const std::int64_t step_a = std::int64_t{e.a} * (kBlockSize - 1), step_b = std::int64_t{e.b} * (kBlockSize - 1);
+    const std::int64_t at_corner = std::int64_t{e.a} * (bx + i0) + std::int64_t{e.b} * (by + j0) + e.q;
+    const std::int64_t step_a = std::int64_t{e.a} * (i1 - i0), step_b = std::int64_t{e.b} * (j1 - j0);
     const std::int64_t lowest = at_corner + std::min<std::int64_t>(0, step_a) + std::min<std::int64_t>(0, step_b);
     const std::int64_t highest = at_corner + std::max<std::int64_t>(0, step_a) + std::max<std::int64_t>(0, step_b);
     if (highest < 0) return 0;
     if (lowest >= 0) continue;
     const std::int32_t base = static_cast<std::int32_t>(at_corner);
     std::uint64_t edge_mask = 0;
-    for (int j = 0; j < kBlockSize; ++j) {
-      const std::int32_t row = base + j * e.b;
+    for (int j = j0; j <= j1; ++j) {
+      const std::int32_t row = base + (j - j0) * e.b;
       std::uint32_t bits = 0;
-      for (int i = 0; i < kBlockSize; ++i) bits |= static_cast<std::uint32_t>(row + i * e.a >= 0) << i;
+      for (int i = i0; i <= i1; ++i) bits |= static_cast<std::uint32_t>(row + (i - i0) * e.a >= 0) << i;
       edge_mask |= std::uint64_t{bits} << (j * kBlockSize);
     }
     mask &= edge_mask;
@@ -60,14 +64,8 @@ inline std::uint64_t raster_block_coverage(const TriangleSetup& tri, int bx, int
   return mask;
 }
 
-// Pixels of the block at (bx, by) inside the inclusive pixel rectangle [x0, x1] x [y0, y1].
-inline std::uint64_t raster_rect_mask(int bx, int by, int x0, int y0, int x1, int y1) {
-  const int lo = std::max(x0 - bx, 0), hi = std::min(x1 - bx, kBlockSize - 1);
-  if (lo > hi) return 0;
-  const std::uint64_t row = ((std::uint64_t{1} << (hi + 1)) - 1) & ~((std::uint64_t{1} << lo) - 1);
-  std::uint64_t mask = 0;
-  for (int j = std::max(y0 - by, 0); j <= std::min(y1 - by, kBlockSize - 1); ++j) mask |= row << (j * kBlockSize);
-  return mask;
+inline std::uint64_t raster_block_coverage(const TriangleSetup& tri, int bx, int by) {
+  return raster_block_coverage(tri, bx, by, 0, kBlockSize - 1, 0, kBlockSize - 1);
 }
 
 template <Shader S>
@@ -155,7 +153,9 @@ void raster_triangle(const ShadeContext<S>& ctx, const TriangleSetup& tri, const
   if (x0 > x1 || y0 > y1) return;
   for (int by = y0 & ~(kBlockSize - 1); by <= y1; by += kBlockSize) {
     for (int bx = x0 & ~(kBlockSize - 1); bx <= x1; bx += kBlockSize) {
-      const std::uint64_t mask = raster_rect_mask(bx, by, x0, y0, x1, y1) & raster_block_coverage(tri, bx, by);
+      const std::uint64_t mask =
+          raster_block_coverage(tri, bx, by, std::max(x0 - bx, 0), std::min(x1 - bx, kBlockSize - 1),
+                                std::max(y0 - by, 0), std::min(y1 - by, kBlockSize - 1));
       if (!mask) continue;
       for (int qy = 0; qy < kBlockSize; qy += 2) {
         const std::uint64_t rows = mask >> (qy * kBlockSize);
