@@ -1,0 +1,112 @@
+// mesh.hpp - indexed triangle meshes: validation, bounds, edges, smooth normals, strips, fans, polygons, buffers.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <limits>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+namespace facet {
+
+struct Material {
+  std::string name;
+  glm::vec4 diffuse{1, 1, 1, 1};  // OBJ: Kd and, as alpha, the dissolve d
+  glm::vec3 specular{0};          // OBJ: Ks
+  float shininess = 32;           // OBJ: Ns
+  std::string diffuse_texture;    // absolute or relative-to-the-model path, empty if none
+};
+
+struct Mesh {
+  std::vector<glm::vec3> positions;
+  // Each optional per-vertex attribute is either empty or has exactly one entry per position.
+  std::vector<glm::vec3> normals;
+  std::vector<glm::vec2> uvs;
+  std::vector<glm::vec4> colors;
+  std::vector<std::uint32_t> indices;        // 3 per triangle, counter-clockwise seen from the front
+  std::vector<glm::vec4> face_colors;        // empty or one per triangle
+  std::vector<std::int32_t> face_materials;  // empty or one per triangle; -1 = no material, else into materials
+  std::vector<Material> materials;
+
+  std::size_t vertex_count() const { return positions.size(); }
+  std::size_t triangle_count() const { return indices.size() / 3; }
+};
+
+// Throws InputError(source, problem) for the first inconsistency found: an attribute or per-triangle array of the
+// wrong size, an index count that is not a multiple of 3, an index out of range (naming its position and value), a
+// face material out of range, or a non-finite position.
+void validate(const Mesh& mesh, const std::string& source);
+
+// Axis-aligned box. A default-constructed Bounds is empty (min = +inf, max = -inf).
+struct Bounds {
+  glm::vec3 min{std::numeric_limits<float>::infinity()};
+  glm::vec3 max{-std::numeric_limits<float>::infinity()};
+
+  glm::vec3 center() const { return empty() ? glm::vec3(0) : (min + max) * 0.5f; }
+  // Radius of the sphere around center() that encloses the whole box (half its diagonal); 0 when empty.
+  float radius() const { return empty() ? 0.0f : glm::length(max - min) * 0.5f; }
+  bool empty() const { return !(min.x <= max.x && min.y <= max.y && min.z <= max.z); }
+};
+
+// Bounds over ALL positions, referenced by a triangle or not (so a mesh and its bounds do not change together when
+// triangles are culled or reordered). Non-finite positions are skipped.
+Bounds bounds(const Mesh& mesh);
+
+// Each undirected edge {a, b} (a < b) of the triangles once, sorted ascending; edges of repeated indices (a == b)
+// are skipped. Edges are by index, so vertices duplicated at a seam give separate edges.
+std::vector<std::array<std::uint32_t, 2>> unique_edges(const Mesh& mesh);
+
+// Replaces mesh.normals with area-weighted smooth normals (SCENES.md 8.3): every triangle contributes its
+// unnormalised face normal (p1 - p0) x (p2 - p0) once per corner to the group of vertices at exactly that corner's
+// position (equal coordinate values, so seams and split vertices get one shared normal); each vertex gets its
+// group's normalised sum, or (0, 0, 1) when the sum is zero.
+void compute_smooth_normals(Mesh& mesh);
+
+// OpenGL GL_TRIANGLE_STRIP: triangle i uses strip[i], strip[i+1], strip[i+2], with the first two swapped for odd i
+// so every triangle keeps the strip's front-face winding. Triangles with a repeated index (the degenerate ones used
+// to join strips) are dropped; the rest keep their order.
+std::vector<std::uint32_t> triangles_from_strip(std::span<const std::uint32_t> strip);
+// OpenGL GL_TRIANGLE_FAN: (fan[0], fan[i], fan[i+1]); triangles with a repeated index are dropped.
+std::vector<std::uint32_t> triangles_from_fan(std::span<const std::uint32_t> fan);
+
+// Triangulates one planar polygon given as indices into positions, appending 3 indices per triangle to out. A convex
+// polygon becomes the fan (c0 c1 c2), (c0 c2 c3), ...; a concave one is ear-clipped in the plane of its Newell
+// normal, keeping its winding. Always emits n - 2 triangles for n >= 3 corners (none for fewer). Indices must be in
+// range (not checked here).
+void triangulate_polygon(std::span<const glm::vec3> positions, std::span<const std::uint32_t> polygon,
+                         std::vector<std::uint32_t>& out);
+
+// Geometry (positions) plus topology (polygons as corner lists, counter-clockwise seen from the front).
+struct PolygonMesh {
+  std::vector<glm::vec3> positions;
+  std::vector<std::vector<std::uint32_t>> polygons;
+};
+
+// One triangle list for all polygons (see triangulate_polygon), polygon order kept. Throws InputError("polygon mesh",
+// ...) for a polygon with fewer than 3 corners or an index out of range.
+Mesh triangulate(const PolygonMesh& polygons);
+// The polygons' own edge list: each undirected boundary edge once, sorted (no triangulation diagonals).
+std::vector<std::array<std::uint32_t, 2>> unique_edges(const PolygonMesh& polygons);
+
+// Where each attribute lives inside one vertex record of an interleaved buffer of 32-bit floats (like
+// glVertexAttribPointer with GL_FLOAT): position 3 floats, normal 3, uv 2, colour color_components (3 or 4).
+struct VertexLayout {
+  std::size_t stride = 0;  // bytes from one vertex to the next
+  std::size_t position_offset = 0;
+  std::optional<std::size_t> color_offset, normal_offset, uv_offset;
+  int color_components = 3;  // 3 = rgb with alpha 1, or 4 = rgba
+};
+
+// Reads data.size() / stride vertices (the size must be a whole number of records). With empty indices the draw
+// is non-indexed (drawArrays): vertex k is index k and the vertex count must be a multiple of 3. Every attribute
+// must fit inside the stride; floats are copied with memcpy, so the buffer needs no alignment. Throws
+// InputError("interleaved buffer", ...) for any inconsistency and validates the result.
+Mesh mesh_from_interleaved(std::span<const std::byte> data, const VertexLayout& layout,
+                           std::span<const std::uint32_t> indices = {});
+
+}  // namespace facet
