@@ -13,13 +13,14 @@
 #include "facet/mesh.hpp"
 #include "facet/render_state.hpp"
 #include "facet/renderer.hpp"
+#include "facet/shaders/lighting.hpp"
 #include "facet/texture.hpp"
 
 namespace facet {
 
 enum class Shading {
   automatic,    // the model's own look: Blinn-Phong lit with its materials, textures and vertex colours
-  unlit,        // vertex colour, else face colour, else material colour; no lighting
+  unlit,        // material colour x (vertex colour, else face colour) x texture; no lighting
   flat,         // one lit colour per face (face normal)
   gouraud,      // lit per vertex, colour interpolated
   phong,        // lit per pixel, Phong specular
@@ -37,13 +38,17 @@ struct Light {
 
 struct SceneOptions {
   Shading shading = Shading::automatic;
-  std::vector<Light> lights = {Light{}};  // at most kMaxLights are used
+  // One default light; built with (1) rather than {Light{}} because GCC 12 warns (maybe-uninitialized) about the
+  // initializer_list copy at -O2.
+  std::vector<Light> lights = std::vector<Light>(1);  // at most kMaxLights are used
   glm::vec3 ambient{0.15f};
   std::optional<glm::vec4> color;  // overrides every material's diffuse colour (--color)
   CullMode cull = CullMode::back;
+  // With depth_test off or painter on, surfaces pass the depth test unconditionally (DepthFunc::always) but still
+  // write depth, so edges and linear_depth() see the surface that ended up visible.
   bool depth_test = true;
-  bool painter = false;     // sort triangles back to front, no depth buffer
-  bool wireframe = false;   // draw only the edges
+  bool painter = false;     // sort triangles (and instances) back to front instead of depth-testing them
+  bool wireframe = false;   // draw only the edges, in `color` (white if unset), depth-tested among themselves
   bool edges = false;       // draw the surfaces, then each edge once on top (depth-tested with a small offset)
   glm::vec4 edge_color{0.05f, 0.05f, 0.05f, 1.0f};
   float line_width = 1.0f;
@@ -51,6 +56,10 @@ struct SceneOptions {
 };
 
 inline constexpr int kMaxLights = 4;
+static_assert(kMaxLights <= kLightSlots);
+
+// The first kMaxLights of options.lights (colour times intensity, directions normalized) and the ambient term.
+LightBlock make_light_block(const SceneOptions& options);
 
 struct Instance {
   std::shared_ptr<const Mesh> mesh;

@@ -1,0 +1,33 @@
+// depth.hpp - DepthShader: linear eye-space depth as grey, white at `near`, black at `far`.
+#pragma once
+
+#include <algorithm>
+
+#include "facet/shader.hpp"
+#include "facet/shaders/mesh_vertex.hpp"
+
+namespace facet {
+
+struct DepthShader {
+  using Vertex = MeshVertex;
+  struct Varyings {
+    float eye_depth;  // linear in eye space, so perspective-correct interpolation keeps it exact
+  };
+  static constexpr bool may_discard = false;
+
+  glm::mat4 clip_from_object{1.0f};
+  glm::mat4 view_from_object{1.0f};
+  float near = 0.1f, far = 100.0f;
+
+  VertexOut<Varyings> vertex(const Vertex& v) const {
+    const glm::vec4 p(v.position, 1.0f);
+    return {clip_from_object * p, {-(view_from_object * p).z}};
+  }
+  glm::vec4 fragment(const Fragment<Varyings>& f) const {
+    const float t = far > near ? (f.varyings.eye_depth - near) / (far - near) : 0.0f;
+    const float grey = 1.0f - std::clamp(t, 0.0f, 1.0f);
+    return glm::vec4(grey, grey, grey, 1.0f);
+  }
+};
+
+}  // namespace facet

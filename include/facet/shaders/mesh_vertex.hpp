@@ -1,0 +1,29 @@
+// mesh_vertex.hpp - the vertex record the stock mesh shaders read, and the per-object matrices they share.
+#pragma once
+
+#include <glm/glm.hpp>
+
+namespace facet {
+
+// One vertex of a prepared mesh: every attribute is present (the Scene fills missing ones with defaults).
+struct MeshVertex {
+  glm::vec3 position{0};
+  glm::vec3 normal{0, 0, 1};
+  glm::vec2 uv{0};
+  glm::vec4 color{1};
+};
+
+// The matrices a mesh shader needs for one instance, computed once per draw rather than per vertex.
+struct ObjectTransforms {
+  glm::mat4 clip_from_object{1.0f};
+  glm::mat4 world_from_object{1.0f};
+  glm::mat3 normal_from_object{1.0f};  // inverse transpose of world_from_object's 3x3: keeps normals
+                                       // perpendicular to surfaces under non-uniform scale
+
+  static ObjectTransforms make(const glm::mat4& clip_from_world, const glm::mat4& world_from_object) {
+    return {clip_from_world * world_from_object, world_from_object,
+            glm::transpose(glm::inverse(glm::mat3(world_from_object)))};
+  }
+};
+
+}  // namespace facet

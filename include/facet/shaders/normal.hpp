@@ -1,0 +1,26 @@
+// normal.hpp - NormalShader: the world-space normal as a colour, n * 0.5 + 0.5.
+#pragma once
+
+#include "facet/shader.hpp"
+#include "facet/shaders/mesh_vertex.hpp"
+
+namespace facet {
+
+struct NormalShader {
+  using Vertex = MeshVertex;
+  struct Varyings {
+    glm::vec3 normal;
+  };
+  static constexpr bool may_discard = false;
+
+  ObjectTransforms transforms{};
+
+  VertexOut<Varyings> vertex(const Vertex& v) const {
+    return {transforms.clip_from_object * glm::vec4(v.position, 1.0f), {transforms.normal_from_object * v.normal}};
+  }
+  glm::vec4 fragment(const Fragment<Varyings>& f) const {
+    return glm::vec4(glm::normalize(f.varyings.normal) * 0.5f + 0.5f, 1.0f);
+  }
+};
+
+}  // namespace facet

@@ -1,0 +1,13 @@
+// stock.hpp - every stock shader in one include.
+#pragma once
+
+#include "facet/shaders/depth.hpp"
+#include "facet/shaders/flat.hpp"
+#include "facet/shaders/gouraud.hpp"
+#include "facet/shaders/lighting.hpp"
+#include "facet/shaders/line.hpp"
+#include "facet/shaders/mesh_vertex.hpp"
+#include "facet/shaders/normal.hpp"
+#include "facet/shaders/surface.hpp"
+#include "facet/shaders/surface_color.hpp"
+#include "facet/shaders/unlit.hpp"

@@ -1,0 +1,30 @@
+// unlit.hpp - UnlitShader: albedo only (material x vertex colour x face colour x texture), no lighting.
+#pragma once
+
+#include "facet/shader.hpp"
+#include "facet/shaders/mesh_vertex.hpp"
+#include "facet/shaders/surface_color.hpp"
+
+namespace facet {
+
+struct UnlitShader {
+  using Vertex = MeshVertex;
+  struct Varyings {
+    glm::vec4 color;
+    glm::vec2 uv;
+  };
+  static constexpr bool may_discard = false;
+  static constexpr bool needs_derivatives = true;  // texture level of detail
+
+  glm::mat4 clip_from_object{1.0f};
+  SurfaceColor surface{};
+
+  VertexOut<Varyings> vertex(const Vertex& v) const {
+    return {clip_from_object * glm::vec4(v.position, 1.0f), {v.color, v.uv}};
+  }
+  glm::vec4 fragment(const Fragment<Varyings>& f) const {
+    return surface.albedo(f.varyings.color, f.primitive, f.varyings.uv, f.ddx.uv, f.ddy.uv);
+  }
+};
+
+}  // namespace facet

@@ -1,0 +1,32 @@
+// draw.hpp - drawing one prepared instance with the stock shaders, given the frame's view, options and lights.
+#pragma once
+
+#include <algorithm>
+
+#include "facet/scene.hpp"
+#include "scene/prepared_mesh.hpp"
+
+namespace facet::detail {
+
+struct FrameContext {
+  const View* view;
+  const SceneOptions* options;
+  glm::mat4 clip_from_world;
+  glm::vec3 eye;  // world space
+  LightBlock lights;
+};
+
+// The largest factor by which world_from_object stretches a length: scales a bounding sphere's radius.
+inline float max_scale(const glm::mat4& m) {
+  return std::max({glm::length(glm::vec3(m[0])), glm::length(glm::vec3(m[1])), glm::length(glm::vec3(m[2]))});
+}
+
+void draw_instance(Renderer& renderer, Framebuffer& target, const FrameContext& frame, const Instance& instance,
+                   const PreparedMesh& prepared);
+
+// The window-depth offset that pulls edge lines in front of the surface they lie on: about two line widths of
+// pixel footprint in eye space at the instance's distance, converted through the projection. Negative.
+float edge_depth_offset(const glm::mat4& clip_from_view, float distance, float near, float line_width,
+                        int target_height, float radius);
+
+}  // namespace facet::detail

@@ -1,0 +1,48 @@
+// prepared_mesh.hpp - what the Scene caches per mesh: the vertex array, per-material triangle groups, edges, textures.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "facet/mesh.hpp"
+#include "facet/shaders/mesh_vertex.hpp"
+#include "facet/texture.hpp"
+
+namespace facet::detail {
+
+// The triangles of one material, drawn with one draw call. Per-face data is reordered to match, because
+// Fragment::primitive counts triangles within the draw.
+struct TriangleGroup {
+  std::int32_t material = -1;  // -1: the default material
+  std::vector<std::uint32_t> indices;
+  std::vector<glm::vec3> face_normals;  // object space, unit length
+  std::vector<glm::vec4> face_colors;   // empty when the mesh has none (or has vertex colours, which win)
+};
+
+struct PreparedMesh {
+  std::vector<MeshVertex> vertices;
+  std::vector<TriangleGroup> groups;
+  std::vector<std::uint32_t> edge_indices;  // 2 per unique edge
+  std::vector<const Texture*> textures;     // per material; nullptr = none or failed to load
+  glm::vec3 center{0.0f};                   // bounding sphere, object space
+  float radius = 0.0f;
+};
+
+// Textures by path, loaded once per Scene; a path that failed maps to an empty texture and is not retried.
+class TextureCache {
+ public:
+  // nullptr (after a one-line warning on stderr the first time) when the file cannot be loaded.
+  const Texture* get(const std::string& path);
+
+ private:
+  std::map<std::string, std::unique_ptr<Texture>> textures_;
+};
+
+PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures);
+
+}  // namespace facet::detail

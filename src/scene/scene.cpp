@@ -1,0 +1,120 @@
+// scene.cpp - the Scene: mesh preparation cache, frustum rejection, painter's instance order; plus linear depth.
+#include "facet/scene.hpp"
+
+#include <algorithm>
+#include <stdexcept>
+#include <unordered_map>
+
+#include "scene/draw.hpp"
+#include "scene/prepared_mesh.hpp"
+
+namespace facet {
+
+struct Scene::Impl {
+  std::vector<Instance> instances;
+  // Keyed by address: the instances hold the meshes alive, so an address cannot be reused while it is a key.
+  std::unordered_map<const Mesh*, detail::PreparedMesh> prepared;
+  detail::TextureCache textures;
+};
+
+Scene::Scene() : impl_(std::make_unique<Impl>()) {}
+Scene::~Scene() = default;
+Scene::Scene(Scene&&) noexcept = default;
+Scene& Scene::operator=(Scene&&) noexcept = default;
+
+void Scene::add(Instance instance) {
+  if (!instance.mesh) throw std::invalid_argument("Scene::add: instance without a mesh");
+  const Mesh* mesh = instance.mesh.get();
+  if (!impl_->prepared.contains(mesh)) impl_->prepared.emplace(mesh, detail::prepare_mesh(*mesh, impl_->textures));
+  impl_->instances.push_back(std::move(instance));
+}
+
+std::size_t Scene::size() const { return impl_->instances.size(); }
+
+const std::vector<Instance>& Scene::instances() const { return impl_->instances; }
+
+LightBlock make_light_block(const SceneOptions& options) {
+  LightBlock block;
+  block.ambient = options.ambient;
+  for (const Light& light : options.lights) {
+    if (block.count >= kMaxLights) break;
+    const glm::vec3 color = light.color * light.intensity;
+    if (light.kind == Light::Kind::directional) {
+      // A zero direction would normalize to NaN and blacken every pixel; such a light is skipped instead.
+      if (glm::dot(light.vector, light.vector) > 0.0f) block.add_directional(light.vector, color);
+    } else {
+      block.add_point(light.vector, color);
+    }
+  }
+  return block;
+}
+
+std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options) {
+  detail::FrameContext frame{&view, &options, view.clip_from_view * view.view_from_world,
+                             glm::vec3(glm::inverse(view.view_from_world)[3]), make_light_block(options)};
+
+  struct Visible {
+    std::size_t instance;
+    float view_z;  // of the bounding sphere's centre; more negative is farther
+  };
+  std::vector<Visible> visible;
+  for (std::size_t i = 0; i < impl_->instances.size(); ++i) {
+    const Instance& instance = impl_->instances[i];
+    const detail::PreparedMesh& prepared = impl_->prepared.at(instance.mesh.get());
+    if (prepared.vertices.empty() || (prepared.groups.empty() && prepared.edge_indices.empty())) continue;
+    const glm::vec4 center = instance.world_from_object * glm::vec4(prepared.center, 1.0f);
+    const float radius = prepared.radius * detail::max_scale(instance.world_from_object);
+    if (!sphere_in_frustum(frame.clip_from_world, glm::vec3(center), radius)) continue;
+    visible.push_back({i, (view.view_from_world * center).z});
+  }
+  // The painter's algorithm sorts triangles within a draw; sorting the instances too extends it across draws.
+  // Ties keep the order of addition; std::sort with that tie-break needs no temporary buffer, unlike stable_sort.
+  if (options.painter)
+    std::sort(visible.begin(), visible.end(), [](const Visible& a, const Visible& b) {
+      return a.view_z < b.view_z || (a.view_z == b.view_z && a.instance < b.instance);
+    });
+
+  for (const Visible& v : visible) {
+    const Instance& instance = impl_->instances[v.instance];
+    detail::draw_instance(renderer, target, frame, instance, impl_->prepared.at(instance.mesh.get()));
+  }
+  return visible.size();
+}
+
+bool sphere_in_frustum(const glm::mat4& clip_from_world, glm::vec3 center, float radius) {
+  // Gribb-Hartmann: each frustum plane is the sum or difference of the matrix's last row and one other row.
+  const auto row = [&](int r) {
+    return glm::vec4(clip_from_world[0][r], clip_from_world[1][r], clip_from_world[2][r], clip_from_world[3][r]);
+  };
+  const glm::vec4 w = row(3);
+  for (int axis = 0; axis < 3; ++axis) {
+    for (const float sign : {1.0f, -1.0f}) {
+      const glm::vec4 plane = w + sign * row(axis);
+      const float length = glm::length(glm::vec3(plane));
+      if (!(length > 0.0f)) continue;  // degenerate plane (e.g. an infinite far plane): rejects nothing
+      if ((glm::dot(glm::vec3(plane), center) + plane.w) / length < -radius) return false;
+    }
+  }
+  return true;
+}
+
+std::vector<float> linear_depth(const Framebuffer& target, const glm::mat4& clip_from_view) {
+  const int width = target.width(), height = target.height();
+  const glm::mat4 view_from_clip = glm::inverse(clip_from_view);
+  std::vector<float> out(static_cast<std::size_t>(width) * height, 0.0f);
+  for (int y = 0; y < height; ++y) {
+    // Row 0 is the top of the image, ndc y = +1.
+    const float ndc_y = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
+    for (int x = 0; x < width; ++x) {
+      const float d = target.depth_at(x, y);
+      if (!(d < 1.0f)) continue;
+      const float ndc_x = 2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(width) - 1.0f;
+      // The pixel's own x and y make this exact for off-centre projections too.
+      const glm::vec4 view = view_from_clip * glm::vec4(ndc_x, ndc_y, 2.0f * d - 1.0f, 1.0f);
+      out[static_cast<std::size_t>(y) * width + x] = -view.z / view.w;
+    }
+  }
+  return out;
+}
+
+}  // namespace facet
