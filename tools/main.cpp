@@ -1,7 +1,82 @@
-// main.cpp - entry point of the facet command-line tool.
+// main.cpp - entry point of the facet command-line tool: subcommand dispatch and the one-line error contract.
 #include <cstdio>
+#include <exception>
+#include <new>
+#include <stdexcept>
+#include <string>
+#include <string_view>
 
-int main() {
-  std::fputs("facet: the command-line tool is being assembled\n", stderr);
-  return 2;
+#include <CLI/CLI.hpp>
+
+#include "cli_options.hpp"
+#include "demo_command.hpp"
+#include "facet/error.hpp"
+#include "info_command.hpp"
+#include "render_command.hpp"
+
+#ifndef FACET_VERSION
+#define FACET_VERSION "unknown"
+#endif
+
+namespace {
+
+// Exit statuses: 1 for bad input (a model that cannot be used, an output that cannot be written), 2 for bad usage.
+constexpr int kInputError = 1;
+constexpr int kUsageError = 2;
+
+// Prints "facet: error: <message>" as exactly one line, whatever the message holds.
+int fail(std::string message, int status) {
+  for (char& c : message)
+    if (c == '\n' || c == '\r') c = ' ';
+  while (!message.empty() && message.back() == ' ') message.pop_back();
+  std::fprintf(stderr, "facet: error: %s\n", message.c_str());
+  return status;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{"facet: a CPU 3D rendering pipeline", "facet"};
+  app.set_version_flag("--version", std::string("facet ") + FACET_VERSION);
+  facet::cli::RenderArgs render_args;
+  facet::cli::DemoArgs demo_args;
+  facet::cli::InfoArgs info_args;
+  CLI::App* render = facet::cli::add_render_command(app, render_args);
+  CLI::App* demo = facet::cli::add_demo_command(app, demo_args);
+  CLI::App* info = facet::cli::add_info_command(app, info_args);
+
+  // CLI11 would list every argument as unexpected; name the command instead.
+  if (const std::string_view command = argc >= 2 ? argv[1] : "-";
+      (command.empty() || command[0] != '-') && command != "render" && command != "demo" && command != "info")
+    return fail(std::string("unknown command '") + argv[1] + "': use render, demo or info", kUsageError);
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    return fail(e.what(), kUsageError);
+  }
+
+  try {
+    if (render->parsed()) return facet::cli::run_render(render_args);
+    if (demo->parsed()) return facet::cli::run_demo(demo_args);
+    if (info->parsed()) return facet::cli::run_info(info_args);
+    return fail("no command given: use render, demo or info (see facet --help)", kUsageError);
+  } catch (const facet::InputError& e) {
+    return fail(e.what(), kInputError);
+  } catch (const facet::cli::UsageError& e) {
+    return fail(e.what(), kUsageError);
+  } catch (const std::invalid_argument& e) {
+    // The camera and projection functions refuse degenerate parameters (eye == target, near >= far, ...).
+    return fail(e.what(), kUsageError);
+  } catch (const std::bad_alloc&) {
+    return fail("out of memory", kInputError);
+  } catch (const std::exception& e) {
+    // Writing the outputs: write_png / write_npy say "<path>: <reason>".
+    return fail(e.what(), kInputError);
+  }
 }

@@ -1,0 +1,119 @@
+#!/usr/bin/env bash
+# errors_cli.sh - bad input and bad usage: one "facet: error:" line on stderr, exit 1 (input) or 2 (usage), no output.
+# Usage: errors_cli.sh FACET SCRATCH. Prints one line per case and a closing "N passed, M failed".
+set -uo pipefail
+facet=$1
+scratch=$2
+models=/usr/share/assimp/models/OBJ
+box=$models/box.obj
+mkdir -p "$scratch"
+rm -rf "${scratch:?}"/*
+
+# Bad model files.
+: >"$scratch/empty.obj"
+head -c 4096 /dev/urandom >"$scratch/garbage.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n' >"$scratch/out_of_range.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 -9\n' >"$scratch/negative_index.obj"
+printf 'v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n' >"$scratch/nan.obj"
+printf 'v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n' >"$scratch/inf.obj"
+printf 'v 0 0 0\nv 3e38 0 0\nv -3e38 1 0\nf 1 2 3\n' >"$scratch/huge.obj"
+printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\n' >"$scratch/no_faces.obj"
+printf 'solid x\nendsolid x\n' >"$scratch/model.stl"
+mkdir -p "$scratch/folder.obj"
+
+passed=0 failed=0
+
+# expect NAME STATUS [-n] FACET-ARGS...: runs facet writing to $scratch/NAME.png (unless the args name an output or
+# -n asks for none) and checks the exit status, that stderr is exactly one "facet: error: " line, and that no output file appeared.
+expect() {
+  local name=$1 want=$2 auto_output=1
+  shift 2
+  if [ "${1:-}" = -n ]; then auto_output=0; shift; fi
+  local out=$scratch/$name.png
+  rm -f "$out" "$scratch/$name.npy"
+  local args=("$@")
+  if [[ $auto_output = 1 && " $* " != *" --output "* && $1 != info ]]; then args+=(--output "$out"); fi
+  "$facet" "${args[@]}" >"$scratch/$name.stdout" 2>"$scratch/$name.stderr"
+  local status=$?
+  local lines
+  lines=$(wc -l <"$scratch/$name.stderr")
+  local first
+  first=$(head -n 1 "$scratch/$name.stderr")
+  local problem=""
+  [ "$status" -eq "$want" ] || problem="exit status $status, expected $want"
+  [ "$lines" -eq 1 ] || problem="$problem; $lines stderr lines"
+  [[ $first == "facet: error: "* ]] || problem="$problem; stderr does not start with 'facet: error: '"
+  if [ -e "$out" ] || [ -e "$scratch/$name.npy" ] || compgen -G "$scratch/.*.tmp*" >/dev/null; then
+    problem="$problem; an output file was left behind"
+  fi
+  if [ -z "$problem" ]; then
+    echo "ok   $name ($status): $first"
+    passed=$((passed + 1))
+  else
+    echo "FAIL $name: ${problem#; } -- $(tr '\n' '|' <"$scratch/$name.stderr")"
+    failed=$((failed + 1))
+  fi
+}
+
+# Bad input: exit 1.
+expect missing_file 1 render "$scratch/does_not_exist.obj"
+expect empty_file 1 render "$scratch/empty.obj"
+expect garbage 1 render "$scratch/garbage.obj"
+expect out_of_range_index 1 render "$scratch/out_of_range.obj"
+expect negative_index 1 render "$scratch/negative_index.obj"
+expect nan_vertex 1 render "$scratch/nan.obj"
+expect inf_vertex 1 render "$scratch/inf.obj"
+expect huge_coordinates 1 render "$scratch/huge.obj"
+expect no_faces 1 render "$scratch/no_faces.obj"
+expect unsupported_format 1 render "$scratch/model.stl"
+expect directory_model 1 render "$scratch/folder.obj"
+expect unwritable_output 1 render "$box" --output "$scratch/no/such/folder/out.png"
+expect output_is_directory 1 render "$box" --output "$scratch/folder.obj"
+expect unwritable_depth 1 render "$box" --output "$scratch/unwritable_depth.png" \
+  --output-depth "$scratch/no/such/folder/depth.npy"
+expect info_missing 1 info "$scratch/does_not_exist.obj"
+expect info_garbage 1 info "$scratch/garbage.obj"
+expect demo_unwritable 1 demo cube --output "$scratch/no/such/folder/cube.png"
+
+# Bad usage: exit 2.
+expect no_command 2 -n
+expect unknown_command 2 -n paint "$box"
+expect unknown_flag 2 render "$box" --bogus
+expect missing_model 2 render
+expect missing_output 2 -n render "$box" --output-depth "$scratch/missing_output.npy"
+expect resolution_zero 2 render "$box" --resolution 0,10
+expect resolution_text 2 render "$box" --resolution abc
+expect resolution_one_number 2 render "$box" --resolution 640
+expect resolution_too_big 2 render "$box" --resolution 100000,10
+expect resolution_negative 2 render "$box" --resolution=-5,10
+expect resolution_fraction 2 render "$box" --resolution 64.5,48
+expect position_two_numbers 2 render "$box" --camera-position 1,2
+expect position_text 2 render "$box" --camera-position 1,2,x
+expect position_nan 2 render "$box" --camera-position 1,nan,3
+expect focal_point_empty 2 render "$box" --camera-focal-point ""
+expect view_angle_range 2 render "$box" --camera-view-angle 200
+expect near_text 2 render "$box" --near abc
+expect near_after_far 2 render "$box" --near 5 --far 1
+expect perspective_near_zero 2 render "$box" --near 0
+expect eye_at_focal_point 2 render "$box" --camera-position 0,0,0 --camera-focal-point 0,0,0
+expect frustum_three_numbers 2 render "$box" --projection frustum --frustum 1,2,3
+expect frustum_empty_window 2 render "$box" --projection frustum --frustum 1,1,-1,1
+expect bad_projection 2 render "$box" --projection fisheye
+expect bad_shading 2 render "$box" --shading toon
+expect bad_culling 2 render "$box" --culling sideways
+expect bad_up 2 render "$box" --up +W
+expect color_out_of_range 2 render "$box" --color 2,0,0
+expect background_text 2 render "$box" --background-color red
+expect zero_light 2 render "$box" --light-direction 0,0,0
+expect threads_negative 2 render "$box" --threads=-1
+expect same_depth_and_color 2 render "$box" --output "$scratch/same.png" --output-depth "$scratch/same.png"
+expect demo_unknown 2 demo teapot
+expect demo_frames_without_pattern 2 demo cube --frames 3
+expect demo_frames_zero 2 demo cube --frames 0
+expect demo_time_text 2 demo cube --time soon
+expect oblique_scale_range 2 render "$box" --projection oblique --oblique-scale 20
+expect threads_text 2 render "$box" --threads many
+expect frames_text 2 demo cube --frames x --output "$scratch/frames_text_{frame}.png"
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

@@ -1,0 +1,216 @@
+#!/usr/bin/env bash
+# render_cli.sh - `facet render` and `facet info` on real OBJ files: sizes, framing, projections, shadings, depth output.
+# Usage: render_cli.sh FACET SCRATCH. Prints one line per check and a closing "N passed, M failed".
+set -uo pipefail
+facet=$1
+scratch=$2
+models=/usr/share/assimp/models/OBJ
+mkdir -p "$scratch"
+rm -f "$scratch"/*.png "$scratch"/*.npy
+
+# PNG / .npy checks in plain python3 (zlib + the five PNG filters), so the test needs no imaging library.
+check=$scratch/check.py
+cat >"$check" <<'EOF'
+import ast, array, struct, sys, zlib
+
+def read_png(path):
+    data = open(path, 'rb').read()
+    if data[:8] != b'\x89PNG\r\n\x1a\n':
+        sys.exit(f'{path}: not a PNG')
+    pos, idat = 8, b''
+    while pos < len(data):
+        n, kind = struct.unpack('>I4s', data[pos:pos + 8])
+        body = data[pos + 8:pos + 8 + n]
+        pos += 12 + n
+        if kind == b'IHDR':
+            w, h, depth, ctype = struct.unpack('>IIBB', body[:10])
+            if depth != 8 or ctype not in (2, 6):
+                sys.exit(f'{path}: unsupported PNG (depth {depth}, colour type {ctype})')
+            ch = 3 if ctype == 2 else 4
+        elif kind == b'IDAT':
+            idat += body
+    raw, stride, rows, prev, i = zlib.decompress(idat), w * ch, [], bytearray(w * ch), 0
+    for _ in range(h):
+        f, line = raw[i], bytearray(raw[i + 1:i + 1 + stride])
+        i += 1 + stride
+        for x in range(stride):
+            a = line[x - ch] if x >= ch else 0
+            b, c = prev[x], (prev[x - ch] if x >= ch else 0)
+            if f == 1: line[x] = (line[x] + a) & 255
+            elif f == 2: line[x] = (line[x] + b) & 255
+            elif f == 3: line[x] = (line[x] + (a + b) // 2) & 255
+            elif f == 4:
+                p = a + b - c
+                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
+                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
+        rows.append(bytes(line))
+        prev = line
+    return w, h, ch, rows
+
+def model_mask(w, h, ch, rows):
+    # Background = the top-left pixel's colour (auto-framed models never reach the corner).
+    bg = rows[0][:ch]
+    return [[any(abs(rows[y][x * ch + k] - bg[k]) > 2 for k in range(ch)) for x in range(w)] for y in range(h)]
+
+def bbox(mask):
+    ys = [y for y, r in enumerate(mask) if any(r)]
+    xs = [x for x in range(len(mask[0])) if any(r[x] for r in mask)]
+    return (min(xs), min(ys), max(xs), max(ys)) if ys else None
+
+cmd, path = sys.argv[1], sys.argv[2]
+if cmd == 'image':  # image FILE W H [inside]: size, 1%..99% model pixels, optionally clear of the border
+    w, h, ch, rows = read_png(path)
+    if (w, h) != (int(sys.argv[3]), int(sys.argv[4])):
+        sys.exit(f'size {w}x{h}, expected {sys.argv[3]}x{sys.argv[4]}')
+    mask = model_mask(w, h, ch, rows)
+    frac = sum(map(sum, mask)) / (w * h)
+    box = bbox(mask)
+    if not 0.01 <= frac <= 0.99:
+        sys.exit(f'model covers {frac:.1%} of the image')
+    if len(sys.argv) > 5 and (box[0] == 0 or box[1] == 0 or box[2] == w - 1 or box[3] == h - 1):
+        sys.exit(f'model touches the border: bbox {box}')
+    print(f'{w}x{h}, model {frac:.1%}, bbox {box}')
+elif cmd == 'bbox-height':  # bbox-height FILE LO HI
+    w, h, ch, rows = read_png(path)
+    box = bbox(model_mask(w, h, ch, rows))
+    height = box[3] - box[1] + 1
+    if not float(sys.argv[3]) <= height <= float(sys.argv[4]):
+        sys.exit(f'model is {height} px tall (bbox {box}), expected {sys.argv[3]}..{sys.argv[4]}')
+    print(f'model {height} px tall')
+elif cmd == 'apex-up':  # apex-up FILE: the first row of the model is narrower than its last (a pyramid, apex up)
+    w, h, ch, rows = read_png(path)
+    mask = model_mask(w, h, ch, rows)
+    box = bbox(mask)
+    top, bottom = sum(mask[box[1] + 2]), sum(mask[box[3] - 2])
+    if not top < bottom:
+        sys.exit(f'apex not at the top: {top} model pixels near the top row, {bottom} near the bottom')
+    print(f'apex up ({top} px near the top, {bottom} near the bottom)')
+elif cmd == 'depth':  # depth FILE.npy PNG(RGBA): shape (H, W) float32, 0 exactly where the PNG is transparent
+    data = open(path, 'rb').read()
+    if data[:6] != b'\x93NUMPY':
+        sys.exit('not a .npy file')
+    n = struct.unpack('<H', data[8:10])[0]
+    header = ast.literal_eval(data[10:10 + n].decode('latin1'))
+    w, h, ch, rows = read_png(sys.argv[3])
+    if header['descr'] != '<f4' or header['fortran_order'] or header['shape'] != (h, w):
+        sys.exit(f'header {header}, expected <f4 C-order ({h}, {w})')
+    values = array.array('f')
+    values.frombytes(data[10 + n:])
+    if len(values) != w * h:
+        sys.exit(f'{len(values)} values for {w}x{h}')
+    bad = inside = 0
+    for y in range(h):
+        for x in range(w):
+            d, drawn = values[y * w + x], rows[y][x * 4 + 3] > 0
+            inside += drawn
+            if drawn != (d > 0) or not d < float('inf') or d < 0:
+                bad += 1
+    if inside == 0 or bad > 0.002 * w * h:
+        sys.exit(f'{bad} pixels where depth and coverage disagree ({inside} covered)')
+    print(f'({h}, {w}) float32, {inside} pixels with depth')
+elif cmd == 'rgba':  # rgba FILE: an RGBA PNG whose corner is transparent
+    w, h, ch, rows = read_png(path)
+    if ch != 4 or rows[0][3] != 0:
+        sys.exit(f'{ch} channels, corner alpha {rows[0][ch - 1]}')
+    print('RGBA, transparent background')
+EOF
+
+passed=0 failed=0
+ok() { echo "ok   $1"; passed=$((passed + 1)); }
+bad() { echo "FAIL $1: $2"; failed=$((failed + 1)); }
+
+# run NAME CHECK-ARGS... -- FACET-ARGS...: renders NAME.png with the facet args, then runs check.py on it.
+run() {
+  local name=$1; shift
+  local checks=()
+  while [ "$1" != "--" ]; do checks+=("$1"); shift; done
+  shift
+  local out=$scratch/$name.png
+  if ! "$facet" "$@" --output "$out" 2>"$scratch/$name.log"; then
+    bad "$name" "facet $* failed: $(head -n 2 "$scratch/$name.log")"
+    return
+  fi
+  local result
+  if result=$(python3 "$check" "${checks[0]}" "$out" "${checks[@]:1}" 2>&1); then
+    ok "$name: $result"
+  else
+    bad "$name" "$result"
+  fi
+}
+
+# Real models, auto-framed: the requested size, the model in view and clear of the border.
+for model in WusonOBJ spider box cube_with_vertexcolors; do
+  run "model_$model" image 320 240 inside -- render "$models/$model.obj" --resolution 320,240
+done
+run default_size image 1024 768 inside -- render "$models/box.obj"
+
+# Every projection and shading renders with the model in view.
+for p in perspective orthographic frustum oblique isometric dimetric trimetric front top side; do
+  run "projection_$p" image 160 120 inside -- render "$models/WusonOBJ.obj" --projection "$p" --resolution 160,120
+done
+run frustum_window image 160 120 -- render "$models/box.obj" --projection frustum --frustum -0.1,0.05,-0.05,0.05 \
+  --near 0.2 --far 10 --camera-position 0,0,3 --resolution 160,120
+run oblique_cavalier image 160 120 inside -- render "$models/box.obj" --projection oblique --oblique-angle 30 \
+  --oblique-scale 1 --resolution 160,120
+for s in unlit flat gouraud phong blinn-phong normals depth; do
+  run "shading_$s" image 160 120 inside -- render "$models/spider.obj" --shading "$s" --resolution 160,120
+done
+
+# Drawing modes and look flags.
+run wireframe image 160 120 inside -- render "$models/WusonOBJ.obj" --wireframe --resolution 160,120
+run edges image 160 120 inside -- render "$models/box.obj" --edges --resolution 160,120
+for c in back front none; do
+  run "culling_$c" image 160 120 inside -- render "$models/spider.obj" --culling "$c" --resolution 160,120
+done
+run no_depth_test image 160 120 inside -- render "$models/box.obj" --no-depth-test --resolution 160,120
+run painter image 160 120 inside -- render "$models/spider.obj" --painter --resolution 160,120
+run look image 160 120 inside -- render "$models/box.obj" --background-color 1,1,1 --color 0.8,0.2,0.1 \
+  --light-direction 1,1,1 --threads 2 --resolution 160,120
+run camera_angles image 160 120 inside -- render "$models/WusonOBJ.obj" --camera-azimuth-angle 90 \
+  --camera-elevation-angle -30 --camera-view-angle 40 --resolution 160,120
+run no_background rgba -- render "$models/box.obj" --no-background --resolution 160,120
+
+# An explicit camera neither moves nor scales the model: the unit box seen from (0,0,5) with a 30 degree view angle
+# spans 0.5 / 4.5 / tan(15 deg) = 0.4147 of the image height, 99.5 of 240 pixels (its front face is 4.5 away).
+run camera_position bbox-height 97 102 -- render "$models/box.obj" --camera-position 0,0,5 \
+  --camera-focal-point 0,0,0 --camera-view-angle 30 --resolution 240,240
+
+# Right way up, and --up +Z: a pyramid with its apex up the model's up axis shows the apex at the top.
+printf 'v -1 0 -1\nv 1 0 -1\nv 1 0 1\nv -1 0 1\nv 0 2 0\nf 1 2 3 4\nf 4 3 5\nf 3 2 5\nf 2 1 5\nf 1 4 5\n' \
+  >"$scratch/pyramid_y.obj"
+printf 'v -1 1 0\nv 1 1 0\nv 1 -1 0\nv -1 -1 0\nv 0 0 2\nf 1 2 3 4\nf 4 3 5\nf 3 2 5\nf 2 1 5\nf 1 4 5\n' \
+  >"$scratch/pyramid_z.obj"
+run up_y apex-up -- render "$scratch/pyramid_y.obj" --projection front --culling none --resolution 160,120
+run up_z apex-up -- render "$scratch/pyramid_z.obj" --up +Z --projection front --culling none --resolution 160,120
+run up_z_perspective apex-up -- render "$scratch/pyramid_z.obj" --up +Z --culling none --resolution 160,120
+
+# --output-depth: float32 H x W, 0 exactly where nothing was drawn.
+for p in perspective orthographic; do
+  name=depth_$p
+  if "$facet" render "$models/spider.obj" --projection "$p" --resolution 96,64 --no-background \
+    --output "$scratch/$name.png" --output-depth "$scratch/$name.npy" 2>"$scratch/$name.log" &&
+    result=$(python3 "$check" depth "$scratch/$name.npy" "$scratch/$name.png" 2>&1); then
+    ok "$name: $result"
+  else
+    bad "$name" "${result:-$(head -n 2 "$scratch/$name.log")}"
+  fi
+done
+
+# facet info: counts and bounds, one item per line.
+if info=$("$facet" info "$models/box.obj" 2>"$scratch/info.log") &&
+  grep -qx 'vertices: 8' <<<"$info" && grep -qx 'triangles: 12' <<<"$info" && grep -qx 'edges: 18' <<<"$info" &&
+  grep -qx 'materials: 0' <<<"$info" && grep -qx 'bounds min: -0.5 -0.5 -0.5' <<<"$info" &&
+  grep -qx 'bounds max: 0.5 0.5 0.5' <<<"$info"; then
+  ok "info box.obj"
+else
+  bad "info box.obj" "$(tr '\n' ';' <<<"${info:-}") $(head -n 2 "$scratch/info.log")"
+fi
+if info=$("$facet" info "$models/spider.obj" 2>/dev/null) && grep -qx 'materials: 5' <<<"$info" &&
+  grep -qx 'triangles: [0-9]*' <<<"$info"; then
+  ok "info spider.obj"
+else
+  bad "info spider.obj" "$(tr '\n' ';' <<<"${info:-}")"
+fi
+
+echo "$passed passed, $failed failed"
+[ "$failed" -eq 0 ]

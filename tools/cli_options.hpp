@@ -1,0 +1,90 @@
+// cli_options.hpp - option parsing and camera / projection / look setup shared by `facet render` and `facet demo`.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <glm/glm.hpp>
+
+#include "facet/framebuffer.hpp"
+#include "facet/renderer.hpp"
+#include "facet/scene.hpp"
+
+namespace facet::cli {
+
+// Bad usage found after CLI11 has parsed (exit status 2); what() names the option and the problem.
+class UsageError : public std::runtime_error {
+ public:
+  using std::runtime_error::runtime_error;
+};
+
+// "1,2,3" -> exactly `count` finite floats; throws UsageError("<option>: ...") otherwise.
+std::vector<float> parse_floats(const std::string& text, std::size_t count, const std::string& option);
+glm::vec3 parse_vec3(const std::string& text, const std::string& option);
+// "R,G,B" with each component in 0..1.
+glm::vec3 parse_color(const std::string& text, const std::string& option);
+// "W,H" or "WxH", each in 1..kMaxDimension.
+glm::ivec2 parse_resolution(const std::string& text, const std::string& option);
+
+// A CLI11 check: a plain decimal number in lo..hi (no nan/inf, no trailing text), whole when `integer`.
+CLI::Validator number_in(double lo, double hi, bool integer = false);
+
+// An option holding `count` comma-separated floats, checked while CLI11 parses so errors are usage errors.
+CLI::Option* add_floats_option(CLI::App& app, const std::string& name, std::string& target, std::size_t count,
+                               const std::string& description);
+
+// The classical view presets come last (is_preset relies on the order).
+enum class ProjectionKind {
+  perspective,
+  orthographic,
+  frustum,
+  oblique,
+  isometric,
+  dimetric,
+  trimetric,
+  front,
+  top,
+  side,
+};
+
+// The camera and projection flags as given (f3d's spelling where f3d has one); empty strings were not given.
+struct CameraArgs {
+  std::string position, focal_point, view_up;
+  float view_angle = 30.0f;  // VTK's and f3d's default vertical field of view
+  float azimuth = 0.0f, elevation = 0.0f;
+  std::optional<float> near, far;
+  ProjectionKind projection = ProjectionKind::perspective;
+  std::string frustum, ortho;  // L,R,B,T
+  float oblique_angle = 45.0f, oblique_scale = 0.5f;
+  std::string up = "+Y";
+};
+void add_camera_options(CLI::App& app, CameraArgs& args);
+
+// The drawing and look flags, shared by render and demo.
+struct LookArgs {
+  std::optional<Shading> shading;
+  bool wireframe = false, edges = false, no_depth_test = false, painter = false, no_background = false;
+  std::optional<CullMode> culling;
+  std::string background_color, color, light_direction;
+  int threads = 0;
+};
+void add_look_options(CLI::App& app, LookArgs& args);
+
+// The output flags: --output, --output-depth, --resolution.
+struct OutputArgs {
+  std::string output, output_depth;
+  std::string resolution;
+};
+void add_output_options(CLI::App& app, OutputArgs& args, const std::string& default_resolution);
+
+// The rotation taking the model's up axis ("+Y", "-Z", ...) to +Y; throws UsageError for anything else.
+glm::mat3 upright_from_model(const std::string& up);
+
+// The view of a model whose bounding sphere is (center, radius), for a target of the given aspect (width / height).
+View make_view(const CameraArgs& args, glm::vec3 center, float radius, float aspect);
+
+}  // namespace facet::cli

@@ -1,0 +1,194 @@
+// demo_command.cpp - the seeds' demo scenes: seed 000's rotating cube and torus, seed 002's two cubes, seed 003's fan.
+#include "demo_command.hpp"
+
+#include <cmath>
+#include <cstddef>
+#include <memory>
+#include <span>
+
+#include "facet/mesh.hpp"
+#include "facet/primitives.hpp"
+#include "facet/projection.hpp"
+#include "facet/transform.hpp"
+#include "render_command.hpp"
+
+namespace facet::cli {
+namespace {
+
+constexpr double kPi = 3.14159265358979323846;
+constexpr glm::vec3 kWhite{1.0f};  // seeds 000 and 002 clear to white
+
+struct DemoFrame {
+  std::vector<Instance> instances;
+  View view;
+};
+
+// Seed 000's own interleaved buffer (position, rgb; stride 24, offsets 0 and 12), read as WebGL would.
+Mesh seed_cube() {
+  const std::vector<float> data = seed_cube_vertex_data();
+  VertexLayout layout;
+  layout.stride = 6 * sizeof(float);
+  layout.position_offset = 0;
+  layout.color_offset = 3 * sizeof(float);
+  layout.color_components = 3;
+  return mesh_from_interleaved(std::as_bytes(std::span(data)), layout);
+}
+
+// Seed 002's cube, converted from the book's left-handed, +Z-forward space to OpenGL's by negating z. The mirror
+// keeps each triangle's on-screen winding, so the book's clockwise front faces stay clockwise; reversing each
+// triangle makes them counter-clockwise, OpenGL's front.
+Mesh seed_two_cubes_mesh() {
+  Mesh mesh;
+  mesh.positions = {{1, 1, -1}, {-1, 1, -1}, {-1, -1, -1}, {1, -1, -1}, {1, 1, 1}, {-1, 1, 1}, {-1, -1, 1}, {1, -1, 1}};
+  const glm::vec4 red{1, 0, 0, 1}, green{0, 1, 0, 1}, blue{0, 0, 1, 1}, yellow{1, 1, 0, 1}, purple{1, 0, 1, 1},
+      cyan{0, 1, 1, 1};
+  const std::uint32_t triangles[12][3] = {{0, 1, 2}, {0, 2, 3}, {1, 5, 6}, {1, 6, 2}, {2, 6, 7}, {2, 7, 3},
+                                          {4, 0, 3}, {4, 1, 0}, {4, 3, 7}, {4, 5, 1}, {5, 4, 7}, {5, 7, 6}};
+  const glm::vec4 colors[12] = {red, red, yellow, yellow, cyan, cyan, green, purple, green, purple, blue, blue};
+  for (int i = 0; i < 12; ++i) {
+    mesh.indices.insert(mesh.indices.end(), {triangles[i][0], triangles[i][2], triangles[i][1]});
+    mesh.face_colors.push_back(colors[i]);
+  }
+  validate(mesh, "two-cubes");
+  return mesh;
+}
+
+// Seed 000: no camera; the model transform T(0,0,-9) Rx(a) Ry(a) S(2) with a = t_ms * pi / 4000, under the glFrustum
+// of near 0.1, far 100, top = near * tan(pi / 8) and right = top * aspect.
+DemoFrame seed_000_frame(const std::shared_ptr<const Mesh>& mesh, double seconds, float aspect) {
+  const auto a = static_cast<float>(std::fmod(seconds * kPi / 4.0, 2.0 * kPi));
+  DemoFrame frame;
+  frame.instances.push_back({mesh, translate({0.0f, 0.0f, -9.0f}) * rotate_x(a) * rotate_y(a) * scale(2.0f)});
+  const float n = 0.1f, f = 100.0f, t = n * std::tan(static_cast<float>(kPi) / 8.0f), r = t * aspect;
+  frame.view.clip_from_view = frustum(-r, r, -t, t, n, f);
+  frame.view.near = n;
+  frame.view.far = f;
+  return frame;
+}
+
+// Seed 002: camera at (-3, 1, 2) turned -30 degrees about Y; instances at (-1.5, 0, 7) scaled 0.75 and at
+// (1.25, 2.5, 7.5) turned 195 degrees; a 1 x 1 viewport at distance 1 (vertical view angle 2 atan(1/2)), near
+// plane at 1. Negating z conjugates each of the book's Y rotations into OpenGL's rotate_y of the same angle.
+DemoFrame seed_002_frame(const std::shared_ptr<const Mesh>& mesh, float aspect) {
+  DemoFrame frame;
+  frame.instances.push_back({mesh, translate({-1.5f, 0.0f, -7.0f}) * scale(0.75f)});
+  frame.instances.push_back({mesh, translate({1.25f, 2.5f, -7.5f}) * rotate_y(glm::radians(195.0f))});
+  // view = (camera orientation)^T * translate(-camera position), as RenderScene builds it.
+  frame.view.view_from_world = rotate_y(glm::radians(30.0f)) * translate({3.0f, -1.0f, 2.0f});
+  frame.view.near = 1.0f;
+  frame.view.far = 100.0f;
+  frame.view.clip_from_view = perspective(2.0f * std::atan(0.5f), aspect, frame.view.near, frame.view.far);
+  return frame;
+}
+
+// Seed 003's pentagon fan, face on under an orthographic window fitted to its unit circumcircle. It turns a fifth
+// of a revolution per second about its normal, so whole seconds show it upright.
+DemoFrame seed_003_frame(const std::shared_ptr<const Mesh>& mesh, double seconds, float aspect) {
+  const auto a = static_cast<float>(std::fmod(seconds * 0.4 * kPi, 2.0 * kPi));
+  DemoFrame frame;
+  frame.instances.push_back({mesh, rotate_z(a)});
+  const float half_h = 1.15f * std::max(1.0f, 1.0f / aspect), half_w = half_h * aspect;
+  frame.view.near = -1.0f;
+  frame.view.far = 1.0f;
+  frame.view.clip_from_view = ortho(-half_w, half_w, -half_h, half_h, frame.view.near, frame.view.far);
+  return frame;
+}
+
+}  // namespace
+
+bool expand_frame_pattern(const std::string& pattern, int frame, std::string& out) {
+  static const std::string kKey = "{frame";
+  out.clear();
+  bool found = false;
+  std::size_t pos = 0;
+  for (;;) {
+    const std::size_t start = pattern.find(kKey, pos);
+    if (start == std::string::npos) break;
+    std::size_t i = start + kKey.size();
+    int width = 0;
+    if (i < pattern.size() && pattern[i] == ':') {
+      ++i;
+      while (i < pattern.size() && pattern[i] >= '0' && pattern[i] <= '9' && width < 100)
+        width = width * 10 + (pattern[i++] - '0');
+    }
+    if (i >= pattern.size() || pattern[i] != '}') {  // not a placeholder after all: keep the text
+      out.append(pattern, pos, i - pos);
+      pos = i;
+      continue;
+    }
+    std::string number = std::to_string(frame);
+    if (static_cast<int>(number.size()) < width) number.insert(0, static_cast<std::size_t>(width) - number.size(), '0');
+    out.append(pattern, pos, start - pos);
+    out += number;
+    pos = i + 1;
+    found = true;
+  }
+  out.append(pattern, pos, std::string::npos);
+  return found;
+}
+
+CLI::App* add_demo_command(CLI::App& app, DemoArgs& args) {
+  CLI::App* demo = app.add_subcommand("demo", "Render a demo scene from the source material");
+  demo->add_option("scene", args.name, "cube | torus (seed 000), two-cubes (seed 002), pentagon (seed 003)")
+      ->required()
+      ->check(CLI::IsMember({"cube", "torus", "two-cubes", "pentagon"}))
+      ->type_name("SCENE");
+  add_output_options(*demo, args.output, "800,800");
+  demo->add_option("--time", args.time, "Moment of the animation in seconds (1)")
+      ->check(number_in(-1e6, 1e6))
+      ->type_name("SECONDS");
+  demo->add_option("--frames", args.frames, "Write N frames 1/30 s apart; the output name needs {frame:04}")
+      ->check(number_in(1, 100000, true))
+      ->type_name("N");
+  add_look_options(*demo, args.look);
+  return demo;
+}
+
+int run_demo(const DemoArgs& args) {
+  const glm::ivec2 size = parse_resolution(args.output.resolution, "--resolution");
+  std::string name;
+  if (!expand_frame_pattern(args.output.output, 0, name) && args.frames > 1)
+    throw UsageError("--output: --frames needs {frame} or {frame:04} in the file name");
+  if (!args.output.output_depth.empty() && !expand_frame_pattern(args.output.output_depth, 0, name) && args.frames > 1)
+    throw UsageError("--output-depth: --frames needs {frame} or {frame:04} in the file name");
+
+  Mesh model;
+  Shading shading = Shading::unlit;  // the seeds draw flat vertex and face colours
+  if (args.name == "cube") {
+    model = seed_cube();
+  } else if (args.name == "torus") {
+    model = make_torus(1.0f, 0.4f, 64, 32);
+    shading = Shading::automatic;  // a one-colour tube only reads as round when lit
+  } else if (args.name == "two-cubes") {
+    model = seed_two_cubes_mesh();
+  } else {
+    model = make_pentagon();
+  }
+  apply_color_override(model, args.look);
+  const std::shared_ptr<const Mesh> mesh = std::make_shared<Mesh>(std::move(model));
+
+  const float aspect = static_cast<float>(size.x) / static_cast<float>(size.y);
+  const glm::vec4 clear = clear_color(args.look, kWhite);
+  Renderer renderer(args.look.threads);
+  Framebuffer target(size.x, size.y);
+  for (int i = 0; i < args.frames; ++i) {
+    const double seconds = args.time + i / 30.0;
+    DemoFrame frame;
+    if (args.name == "cube" || args.name == "torus")
+      frame = seed_000_frame(mesh, seconds, aspect);
+    else if (args.name == "two-cubes")
+      frame = seed_002_frame(mesh, aspect);
+    else
+      frame = seed_003_frame(mesh, seconds, aspect);
+    Scene scene;
+    for (Instance& instance : frame.instances) scene.add(std::move(instance));
+    const SceneOptions options = make_scene_options(args.look, frame.view.view_from_world, shading, glm::vec3(clear));
+    std::string color_path, depth_path;
+    expand_frame_pattern(args.output.output, i, color_path);
+    if (!args.output.output_depth.empty()) expand_frame_pattern(args.output.output_depth, i, depth_path);
+    draw_and_write(renderer, target, scene, frame.view, options, clear, color_path, depth_path);
+  }
+  return 0;
+}
+
+}  // namespace facet::cli

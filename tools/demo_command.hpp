@@ -1,0 +1,30 @@
+// demo_command.hpp - `facet demo cube|torus|two-cubes|pentagon`: the seeds' demo scenes, one frame or an animation.
+#pragma once
+
+#include <string>
+
+#include <CLI/CLI.hpp>
+
+#include "cli_options.hpp"
+
+namespace facet::cli {
+
+struct DemoArgs {
+  std::string name;
+  LookArgs look;
+  OutputArgs output;
+  double time = 1.0;  // seconds into the animation; at 1 s the seed cube shows three faces
+  int frames = 1;
+};
+
+// Adds the `demo` subcommand, filling `args` when it is parsed.
+CLI::App* add_demo_command(CLI::App& app, DemoArgs& args);
+
+// Renders the frames; throws UsageError for a frame count without a {frame} pattern, runtime errors for output.
+int run_demo(const DemoArgs& args);
+
+// Replaces each {frame}, {frame:N} or {frame:0N} in `pattern` with `frame` (zero-padded to N digits). Returns
+// whether the pattern held one.
+bool expand_frame_pattern(const std::string& pattern, int frame, std::string& out);
+
+}  // namespace facet::cli

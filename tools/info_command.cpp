@@ -1,0 +1,76 @@
+// info_command.cpp - `facet info`: loads a model and prints what it holds.
+#include "info_command.hpp"
+
+#include <array>
+#include <cstdio>
+#include <cstring>
+#include <map>
+
+#include "facet/mesh.hpp"
+#include "facet/model_io.hpp"
+
+namespace facet::cli {
+namespace {
+
+void print_vec3(const char* label, glm::vec3 v) { std::printf("%s: %g %g %g\n", label, v.x, v.y, v.z); }
+
+const char* yes_no(bool b) { return b ? "yes" : "no"; }
+
+// The loader splits a corner wherever its uv or normal differs, so vertex indices over-count the model's own
+// vertices and edges; welding by exact position counts them as the modeller sees them.
+Mesh welded(const Mesh& mesh) {
+  std::map<std::array<std::uint32_t, 3>, std::uint32_t> first;
+  std::vector<std::uint32_t> canonical(mesh.positions.size());
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i) {
+    std::array<std::uint32_t, 3> key;
+    std::memcpy(key.data(), &mesh.positions[i], sizeof key);
+    canonical[i] = first.try_emplace(key, static_cast<std::uint32_t>(i)).first->second;
+  }
+  Mesh out;
+  out.positions = mesh.positions;
+  out.indices.reserve(mesh.indices.size());
+  for (const std::uint32_t index : mesh.indices) out.indices.push_back(canonical[index]);
+  return out;
+}
+
+std::size_t distinct(const std::vector<std::uint32_t>& indices) {
+  std::vector<bool> seen;
+  std::size_t count = 0;
+  for (const std::uint32_t i : indices) {
+    if (i >= seen.size()) seen.resize(i + 1, false);
+    if (!seen[i]) ++count;
+    seen[i] = true;
+  }
+  return count;
+}
+
+}  // namespace
+
+CLI::App* add_info_command(CLI::App& app, InfoArgs& args) {
+  CLI::App* info = app.add_subcommand("info", "Print a model's vertex, triangle, edge and material counts and bounds");
+  info->add_option("model", args.model, "Model file (.obj)")->required()->type_name("MODEL");
+  return info;
+}
+
+int run_info(const InfoArgs& args) {
+  const Mesh mesh = load_model(args.model);
+  const Bounds box = bounds(mesh);
+  std::printf("file: %s\n", args.model.c_str());
+  const Mesh weld = welded(mesh);
+  std::printf("vertices: %zu\n", distinct(weld.indices));
+  std::printf("render vertices: %zu\n", mesh.vertex_count());
+  std::printf("triangles: %zu\n", mesh.triangle_count());
+  std::printf("edges: %zu\n", unique_edges(weld).size());
+  std::printf("materials: %zu\n", mesh.materials.size());
+  print_vec3("bounds min", box.min);
+  print_vec3("bounds max", box.max);
+  print_vec3("size", box.max - box.min);
+  print_vec3("center", box.center());
+  std::printf("radius: %g\n", box.radius());
+  std::printf("normals: %s\n", yes_no(!mesh.normals.empty()));
+  std::printf("uvs: %s\n", yes_no(!mesh.uvs.empty()));
+  std::printf("vertex colors: %s\n", yes_no(!mesh.colors.empty()));
+  return std::fflush(stdout) == 0 ? 0 : 1;
+}
+
+}  // namespace facet::cli
