@@ -88,8 +88,10 @@ DemoFrame seed_003_frame(const std::shared_ptr<const Mesh>& mesh, double seconds
   DemoFrame frame;
   frame.instances.push_back({mesh, rotate_z(a)});
   const float half_h = 1.15f * std::max(1.0f, 1.0f / aspect), half_w = half_h * aspect;
-  frame.view.near = -1.0f;
-  frame.view.far = 1.0f;
+  // The eye sits 2 units in front so the fan's depth (what --output-depth writes) is 2, not the "empty" 0.
+  frame.view.view_from_world = translate({0.0f, 0.0f, -2.0f});
+  frame.view.near = 1.0f;
+  frame.view.far = 3.0f;
   frame.view.clip_from_view = ortho(-half_w, half_w, -half_h, half_h, frame.view.near, frame.view.far);
   return frame;
 }
