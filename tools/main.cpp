@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "bench/bench_command.hpp"
 #include "cli_options.hpp"
 #include "demo_command.hpp"
 #include "facet/error.hpp"
@@ -36,8 +37,12 @@ int fail(std::string message, int status) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // `facet bench` follows SCENES.md's own argument rules (and exit statuses), so it bypasses CLI11 entirely.
+  if (argc >= 2 && std::string_view(argv[1]) == "bench") return run_bench(argc - 1, argv + 1);
+
   CLI::App app{"facet: a CPU 3D rendering pipeline", "facet"};
   app.set_version_flag("--version", std::string("facet ") + FACET_VERSION);
+  app.footer("Also: facet bench [flags] times a scene (see facet bench --help).");
   facet::cli::RenderArgs render_args;
   facet::cli::DemoArgs demo_args;
   facet::cli::InfoArgs info_args;
@@ -48,7 +53,7 @@ int main(int argc, char** argv) {
   // CLI11 would list every argument as unexpected; name the command instead.
   if (const std::string_view command = argc >= 2 ? argv[1] : "-";
       (command.empty() || command[0] != '-') && command != "render" && command != "demo" && command != "info")
-    return fail(std::string("unknown command '") + argv[1] + "': use render, demo or info", kUsageError);
+    return fail(std::string("unknown command '") + argv[1] + "': use render, demo, info or bench", kUsageError);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -65,7 +70,7 @@ int main(int argc, char** argv) {
     if (render->parsed()) return facet::cli::run_render(render_args);
     if (demo->parsed()) return facet::cli::run_demo(demo_args);
     if (info->parsed()) return facet::cli::run_info(info_args);
-    return fail("no command given: use render, demo or info (see facet --help)", kUsageError);
+    return fail("no command given: use render, demo, info or bench (see facet --help)", kUsageError);
   } catch (const facet::InputError& e) {
     return fail(e.what(), kInputError);
   } catch (const facet::cli::UsageError& e) {
