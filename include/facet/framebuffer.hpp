@@ -1,6 +1,7 @@
 // framebuffer.hpp - the render target: RGBA8 colour and float depth, row 0 at the top of the image.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -37,7 +38,12 @@ class Framebuffer {
   // Rows are top to bottom; x grows to the right. Valid after Renderer::finish().
   std::span<std::uint32_t> color() { return color_; }
   std::span<const std::uint32_t> color() const { return color_; }
-  std::span<float> depth() { return depth_; }
+  // Writable access to depth voids the hierarchical depth bounds (they become "unknown"), since the caller may
+  // store anything there.
+  std::span<float> depth() {
+    std::fill(block_max_depth_.begin(), block_max_depth_.end(), kUnknownDepthBound);
+    return depth_;
+  }
   std::span<const float> depth() const { return depth_; }
   std::uint32_t pixel(int x, int y) const { return color_[static_cast<std::size_t>(y) * width_ + x]; }
   float depth_at(int x, int y) const { return depth_[static_cast<std::size_t>(y) * width_ + x]; }
@@ -57,10 +63,19 @@ class Framebuffer {
   void resolve_clear(int tile_index);
   void resolve_all_clears();
 
+  // For the rasterizer. Hierarchical depth: one upper bound on the stored depth per 8x8 block (row-major over
+  // blocks_x() blocks per row); a triangle whose nearest point in a block is behind the bound is rejected for
+  // the whole block without a per-pixel test.
+  static constexpr float kUnknownDepthBound = 3.402823466e+38f;
+  int blocks_x() const { return blocks_x_; }
+  float* depth_storage() { return depth_.data(); }
+  float* block_max_depth() { return block_max_depth_.data(); }
+
  private:
-  int width_, height_, tiles_x_, tiles_y_;
+  int width_, height_, tiles_x_, tiles_y_, blocks_x_;
   std::vector<std::uint32_t> color_;
   std::vector<float> depth_;
+  std::vector<float> block_max_depth_;
   PendingClear pending_;
   std::vector<std::uint8_t> tile_needs_clear_;
 };

@@ -16,6 +16,8 @@ Framebuffer::Framebuffer(int width, int height) : width_(width), height_(height)
   tiles_y_ = (height + kTileSize - 1) / kTileSize;
   color_.assign(static_cast<std::size_t>(width) * height, 0);
   depth_.assign(static_cast<std::size_t>(width) * height, 1.0f);
+  blocks_x_ = tiles_x_ * (kTileSize / 8);
+  block_max_depth_.assign(static_cast<std::size_t>(blocks_x_) * tiles_y_ * (kTileSize / 8), 1.0f);
   tile_needs_clear_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y_, 0);
 }
 
@@ -44,6 +46,10 @@ void Framebuffer::resolve_clear(int tile_index) {
     if (pending_.color) std::fill(color_.begin() + row + x0, color_.begin() + row + x1, pending_.color_value);
     if (pending_.depth) std::fill(depth_.begin() + row + x0, depth_.begin() + row + x1, pending_.depth_value);
   }
+  if (pending_.depth)
+    for (int by = y0 / 8; by < y0 / 8 + kTileSize / 8; ++by)
+      std::fill_n(block_max_depth_.begin() + static_cast<std::ptrdiff_t>(by) * blocks_x_ + x0 / 8, kTileSize / 8,
+                  pending_.depth_value);
 }
 
 void Framebuffer::resolve_all_clears() {

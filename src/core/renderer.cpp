@@ -92,7 +92,8 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       const int x0 = (tile % target.tiles_x()) * kTileSize, y0 = (tile / target.tiles_x()) * kTileSize;
       const TileWork work{tile, x0, y0, std::min(x0 + kTileSize, target.width()),
                           std::min(y0 + kTileSize, target.height()), target.width(), target.color().data(),
-                          target.depth().data(), chunks_.data(), chunk_count};
+                          target.depth_storage(), target.block_max_depth(), target.blocks_x(), chunks_.data(),
+                          chunk_count};
       request.raster(request.draw, work);
     });
   }

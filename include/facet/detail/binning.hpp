@@ -65,6 +65,8 @@ struct TileWork {
   int stride;          // pixels per framebuffer row
   std::uint32_t* color;
   float* depth;
+  float* block_max_depth;  // see Framebuffer::block_max_depth
+  int blocks_x;
   const SetupChunk* chunks;
   std::size_t chunk_count;
 };

@@ -146,16 +146,48 @@ void shade_quad(const ShadeContext<S>& ctx, const TriangleSetup& tri, const Tile
   }
 }
 
+// Hierarchical depth works with an upper bound on the stored depth of each 8x8 block. The plane's extremes over a
+// block are at its corner pixels; kDepthBoundMargin covers the float rounding of evaluating the plane elsewhere.
+inline constexpr float kDepthBoundMargin = 4e-6f;
+
+struct DepthRange {
+  float nearest, farthest;
+};
+
+inline DepthRange raster_block_depth_range(const TriangleSetup& tri, float depth_offset, int x0, int y0, int x1,
+                                           int y1) {
+  const float dx0 = static_cast<float>(x0) + 0.5f - tri.origin_x, dx1 = static_cast<float>(x1) + 0.5f - tri.origin_x;
+  const float dy0 = static_cast<float>(y0) + 0.5f - tri.origin_y, dy1 = static_cast<float>(y1) + 0.5f - tri.origin_y;
+  const float z[4] = {evaluate(tri.depth, dx0, dy0), evaluate(tri.depth, dx1, dy0), evaluate(tri.depth, dx0, dy1),
+                      evaluate(tri.depth, dx1, dy1)};
+  return {std::clamp(std::min(std::min(z[0], z[1]), std::min(z[2], z[3])) + depth_offset, 0.0f, 1.0f),
+          std::clamp(std::max(std::max(z[0], z[1]), std::max(z[2], z[3])) + depth_offset, 0.0f, 1.0f)};
+}
+
 template <Shader S>
 void raster_triangle(const ShadeContext<S>& ctx, const TriangleSetup& tri, const TileWork& work) {
   const int x0 = std::max<int>(tri.min_x, work.x0), x1 = std::min<int>(tri.max_x, work.x1 - 1);
   const int y0 = std::max<int>(tri.min_y, work.y0), y1 = std::min<int>(tri.max_y, work.y1 - 1);
   if (x0 > x1 || y0 > y1) return;
+  const RenderState& state = *ctx.state;
+  const bool less = state.depth_func == DepthFunc::less, lequal = state.depth_func == DepthFunc::lequal;
+  // Writes under LESS or LEQUAL only lower stored depth, so a full block tightens its bound; writes under any other
+  // function may raise it, so the bound must follow them up.
+  const bool reject_hidden = state.depth_test && (less || lequal);
+  const bool writes_depth = state.depth_test && state.depth_write;
   for (int by = y0 & ~(kBlockSize - 1); by <= y1; by += kBlockSize) {
     for (int bx = x0 & ~(kBlockSize - 1); bx <= x1; bx += kBlockSize) {
-      const std::uint64_t mask =
-          raster_block_coverage(tri, bx, by, std::max(x0 - bx, 0), std::min(x1 - bx, kBlockSize - 1),
-                                std::max(y0 - by, 0), std::min(y1 - by, kBlockSize - 1));
+      const int i0 = std::max(x0 - bx, 0), i1 = std::min(x1 - bx, kBlockSize - 1);
+      const int j0 = std::max(y0 - by, 0), j1 = std::min(y1 - by, kBlockSize - 1);
+      float& bound = work.block_max_depth[static_cast<std::size_t>(by / kBlockSize) * work.blocks_x + bx / kBlockSize];
+      DepthRange range{0.0f, 1.0f};
+      if (reject_hidden || writes_depth) {
+        range = raster_block_depth_range(tri, state.depth_offset, bx + i0, by + j0, bx + i1, by + j1);
+        if (reject_hidden && (less ? range.nearest - kDepthBoundMargin >= bound
+                                   : range.nearest - kDepthBoundMargin > bound))
+          continue;
+      }
+      const std::uint64_t mask = raster_block_coverage(tri, bx, by, i0, i1, j0, j1);
       if (!mask) continue;
       for (int qy = 0; qy < kBlockSize; qy += 2) {
         const std::uint64_t rows = mask >> (qy * kBlockSize);
@@ -165,6 +197,11 @@ void raster_triangle(const ShadeContext<S>& ctx, const TriangleSetup& tri, const
                                 static_cast<unsigned>((rows >> (kBlockSize + qx)) & 3) << 2;
           if (quad) shade_quad(ctx, tri, work, bx + qx, by + qy, quad);
         }
+      }
+      if (writes_depth) {
+        const float farthest = std::min(range.farthest + kDepthBoundMargin, 1.0f);
+        if (!reject_hidden) bound = std::max(bound, farthest);
+        else if (mask == ~std::uint64_t{0} && !S::may_discard) bound = std::min(bound, farthest);
       }
     }
   }
