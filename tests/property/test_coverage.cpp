@@ -110,3 +110,46 @@ TEST(Coverage, ZeroAreaAndOffscreenTrianglesDrawNothing) {
 
 }  // namespace
 }  // namespace facet::test
+
+namespace facet::test {
+namespace {
+
+ClipMesh eye_space_mesh(const glm::mat4& projection, std::initializer_list<glm::vec3> points,
+                        std::vector<std::uint32_t> indices) {
+  ClipMesh m;
+  for (const glm::vec3& p : points) {
+    m.clip.push_back(projection * glm::vec4(p, 1.0f));
+    m.color.emplace_back(1.0f);
+  }
+  m.indices = std::move(indices);
+  return m;
+}
+
+TEST(Clipping, TriangleCrossingTheNearPlaneDrawsExactlyItsVisiblePart) {
+  // Eye space: A and B in front, C behind the eye. With near = 0.5 the visible part is the quad A B Q P, where P
+  // and Q are where AC and BC meet z = -0.5 (halfway along each edge).
+  const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, 0.5f, 10.0f);
+  const glm::vec3 a(-1, -1, -2), b(1, -1, -2), c(0, 1, 1), p(-0.5f, 0, -0.5f), q(0.5f, 0, -0.5f);
+  const ClipMesh crossing = eye_space_mesh(projection, {a, b, c}, {0, 1, 2});
+  const ClipMesh visible = eye_space_mesh(projection, {a, b, q, p}, {0, 1, 2, 0, 2, 3});
+  const std::vector<int> drawn = coverage_counts(crossing, 97, 97, no_depth_no_cull());
+  const std::vector<int> expected = coverage_counts(visible, 97, 97, no_depth_no_cull());
+  int covered = 0, different = 0;
+  for (std::size_t i = 0; i < drawn.size(); ++i) {
+    ASSERT_LE(drawn[i], 1);
+    covered += drawn[i];
+    different += drawn[i] != expected[i];
+  }
+  EXPECT_GT(covered, 97 * 97 / 8);
+  EXPECT_LE(different, 3) << "only pixels on the cut edge may differ (its end points are rounded differently)";
+}
+
+TEST(Clipping, TriangleBehindTheCameraDrawsNothing) {
+  const glm::mat4 projection = glm::perspective(glm::radians(90.0f), 1.0f, 0.5f, 10.0f);
+  const ClipMesh behind = eye_space_mesh(projection, {{-1, -1, 2}, {1, -1, 2}, {0, 1, 3}}, {0, 1, 2});
+  const std::vector<int> drawn = coverage_counts(behind, 64, 64, no_depth_no_cull());
+  EXPECT_EQ(std::count(drawn.begin(), drawn.end(), 0), 64 * 64);
+}
+
+}  // namespace
+}  // namespace facet::test
