@@ -8,19 +8,6 @@
 namespace facet::detail {
 namespace {
 
-// Signed distance to plane p; the point is inside when it is >= 0.
-float distance(const glm::vec4& v, int plane) {
-  switch (plane) {
-    case 0: return v.w + v.x;
-    case 1: return v.w - v.x;
-    case 2: return v.w + v.y;
-    case 3: return v.w - v.y;
-    case 4: return v.w + v.z;
-    case 5: return v.w - v.z;
-    default: return v.w - kMinW;
-  }
-}
-
 bool finite(const glm::vec4& v) {
   return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z) && std::isfinite(v.w);
 }
@@ -48,7 +35,7 @@ int clip_triangle(const glm::vec4 (&clip)[3], ClipVertex (&out)[kMaxClipVertices
     for (int k = 0; k < count; ++k) {
       const ClipVertex& a = in[k];
       const ClipVertex& b = in[(k + 1) % count];
-      const float da = distance(a.position, plane), db = distance(b.position, plane);
+      const float da = plane_distance(a.position, plane), db = plane_distance(b.position, plane);
       if (da >= 0.0f) next[written++] = a;
       if ((da >= 0.0f) != (db >= 0.0f)) {
         // Interpolate from the inside end: the two triangles sharing an edge walk it in opposite directions and
@@ -74,7 +61,7 @@ bool clip_line(const glm::vec4& a, const glm::vec4& b, float& t0, float& t1) {
   t0 = 0.0f;
   t1 = 1.0f;
   for (int plane = 0; plane < kClipPlanes; ++plane) {
-    const float da = distance(a, plane), db = distance(b, plane);
+    const float da = plane_distance(a, plane), db = plane_distance(b, plane);
     if (da < 0.0f && db < 0.0f) return false;
     if (da < 0.0f) t0 = std::max(t0, da / (da - db));
     if (db < 0.0f) t1 = std::min(t1, da / (da - db));

@@ -18,18 +18,6 @@ glm::vec4 place(int plane, bool in, glm::vec2 spread) {
   return v;
 }
 
-float plane_distance(const glm::vec4& v, int plane) {
-  switch (plane) {
-    case 0: return v.w + v.x;
-    case 1: return v.w - v.x;
-    case 2: return v.w + v.y;
-    case 3: return v.w - v.y;
-    case 4: return v.w + v.z;
-    case 5: return v.w - v.z;
-    default: return v.w - kMinW;
-  }
-}
-
 class ClipPlaneTest : public ::testing::TestWithParam<std::tuple<int, int>> {};
 
 TEST_P(ClipPlaneTest, VerticesInsideDecideThePolygon) {

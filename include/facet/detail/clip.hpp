@@ -20,6 +20,20 @@ inline constexpr int kClipPlanes = 7;
 inline constexpr int kMaxClipVertices = 3 + kClipPlanes;  // each plane adds at most one vertex
 inline constexpr float kMinW = 1e-5f;
 
+// Signed distance of a clip-space point to plane p (0..5: w + x, w - x, w + y, w - y, w + z, w - z; 6: w - kMinW);
+// the point is inside when it is >= 0.
+inline float plane_distance(const glm::vec4& v, int plane) {
+  switch (plane) {
+    case 0: return v.w + v.x;
+    case 1: return v.w - v.x;
+    case 2: return v.w + v.y;
+    case 3: return v.w - v.y;
+    case 4: return v.w + v.z;
+    case 5: return v.w - v.z;
+    default: return v.w - kMinW;
+  }
+}
+
 // Bit p is set when the point is outside plane p. A point with a NaN or infinite coordinate gets every bit plus
 // kNonFinite, and any primitive touching it is dropped whole.
 inline constexpr std::uint32_t kNonFinite = 1u << kClipPlanes;
