@@ -21,6 +21,20 @@ void require_finite(glm::vec3 v, const char* what, const char* fn) {
     throw std::invalid_argument(std::string(fn) + ": " + what + " must be finite");
 }
 
+// The axis rotations are written out rather than routed through rotate() so their zero entries are exactly zero.
+// Each turns the plane of axes (i, j) so that axis i moves towards axis j: (i, j) = (1, 2) about x, (2, 0) about y
+// and (0, 1) about z, all counter-clockwise seen from the positive axis.
+glm::mat4 plane_rotation(float radians, int i, int j, const char* fn) {
+  require_finite(radians, "angle", fn);
+  const float c = std::cos(radians), s = std::sin(radians);
+  glm::mat4 m(1.0f);
+  m[i][i] = c;
+  m[i][j] = s;
+  m[j][i] = -s;
+  m[j][j] = c;
+  return m;
+}
+
 }  // namespace
 
 glm::mat4 translate(glm::vec3 offset) {
@@ -61,39 +75,9 @@ glm::mat4 rotate(float radians, glm::vec3 axis) {
   return m;
 }
 
-// The axis rotations are written out rather than routed through rotate() so their zero entries are exactly zero.
-glm::mat4 rotate_x(float radians) {
-  require_finite(radians, "angle", "rotate_x");
-  const float c = std::cos(radians), s = std::sin(radians);
-  glm::mat4 m(1.0f);
-  m[1][1] = c;
-  m[1][2] = s;
-  m[2][1] = -s;
-  m[2][2] = c;
-  return m;
-}
-
-glm::mat4 rotate_y(float radians) {
-  require_finite(radians, "angle", "rotate_y");
-  const float c = std::cos(radians), s = std::sin(radians);
-  glm::mat4 m(1.0f);
-  m[0][0] = c;
-  m[0][2] = -s;
-  m[2][0] = s;
-  m[2][2] = c;
-  return m;
-}
-
-glm::mat4 rotate_z(float radians) {
-  require_finite(radians, "angle", "rotate_z");
-  const float c = std::cos(radians), s = std::sin(radians);
-  glm::mat4 m(1.0f);
-  m[0][0] = c;
-  m[0][1] = s;
-  m[1][0] = -s;
-  m[1][1] = c;
-  return m;
-}
+glm::mat4 rotate_x(float radians) { return plane_rotation(radians, 1, 2, "rotate_x"); }
+glm::mat4 rotate_y(float radians) { return plane_rotation(radians, 2, 0, "rotate_y"); }
+glm::mat4 rotate_z(float radians) { return plane_rotation(radians, 0, 1, "rotate_z"); }
 
 glm::mat4 look_at(glm::vec3 eye, glm::vec3 target, glm::vec3 up) {
   require_finite(eye, "eye", "look_at");
