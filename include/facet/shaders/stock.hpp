@@ -6,6 +6,7 @@
 #include "facet/shaders/gouraud.hpp"
 #include "facet/shaders/lighting.hpp"
 #include "facet/shaders/line.hpp"
+#include "facet/shaders/lit.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
 #include "facet/shaders/normal.hpp"
 #include "facet/shaders/surface.hpp"

@@ -1,33 +1,19 @@
 // surface.hpp - SurfaceShader: per-pixel Phong or Blinn-Phong lighting of a textured, vertex-coloured material.
 #pragma once
 
-#include "facet/shader.hpp"
-#include "facet/shaders/lighting.hpp"
-#include "facet/shaders/mesh_vertex.hpp"
-#include "facet/shaders/surface_color.hpp"
+#include "facet/shaders/lit.hpp"
 
 namespace facet {
 
 // With one white directional light, ambient 0.15, specular 0.4, shininess 32 and SpecularModel::phong this is the
 // reference fragment shader of SCENES.md section 7.
-struct SurfaceShader {
-  using Vertex = MeshVertex;
+struct SurfaceShader : LitUniforms {
   struct Varyings {
     glm::vec3 world;
     glm::vec3 normal;  // world space, not normalized until the pixel
     glm::vec4 color;
     glm::vec2 uv;
   };
-  static constexpr bool may_discard = false;
-  static constexpr bool needs_derivatives = true;
-
-  ObjectTransforms transforms{};
-  SurfaceColor surface{};
-  LightBlock lights{};
-  glm::vec3 specular{0.0f};
-  float shininess = 32.0f;
-  SpecularModel specular_model = SpecularModel::blinn_phong;
-  glm::vec3 eye{0.0f};  // world space
 
   VertexOut<Varyings> vertex(const Vertex& v) const {
     const glm::vec4 p(v.position, 1.0f);
@@ -35,11 +21,7 @@ struct SurfaceShader {
             {glm::vec3(transforms.world_from_object * p), transforms.normal_from_object * v.normal, v.color, v.uv}};
   }
   glm::vec4 fragment(const Fragment<Varyings>& f) const {
-    const glm::vec3 n = glm::normalize(f.varyings.normal);
-    const glm::vec4 albedo = surface.albedo(f.varyings.color, f.primitive, f.varyings.uv, f.ddx.uv, f.ddy.uv);
-    return glm::vec4(shade_lit(lights, glm::vec3(albedo), specular, shininess, specular_model, n, f.varyings.world,
-                               eye - f.varyings.world),
-                     albedo.a);
+    return shade(albedo(f), glm::normalize(f.varyings.normal), f.varyings.world);
   }
 };
 
