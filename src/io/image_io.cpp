@@ -4,7 +4,6 @@
 #include <atomic>
 #include <bit>
 #include <cerrno>
-#include <climits>
 #include <cstdio>
 #include <cstring>
 #include <memory>
@@ -16,21 +15,12 @@
 
 #include "facet/error.hpp"
 #include "facet/framebuffer.hpp"
+#include "io/file_util.hpp"
 
 // The one stb_image_write implementation in facet. stb_image's implementation lives in src/texture/texture.cpp;
 // here only its declarations are needed.
 #define STB_IMAGE_WRITE_IMPLEMENTATION
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wall"
-#pragma GCC diagnostic ignored "-Wextra"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#include <stb_image_write.h>
-#include <stb_image.h>
-#pragma GCC diagnostic pop
+#include "io/stb.hpp"
 
 namespace facet {
 
@@ -39,8 +29,6 @@ namespace {
 [[noreturn]] void write_failed(const std::filesystem::path& path, const std::string& reason) {
   throw std::runtime_error(path.string() + ": " + reason);
 }
-
-std::string errno_text(int err) { return std::generic_category().message(err); }
 
 // A name in the same folder as path (so the final rename cannot cross file systems), unique per process and call,
 // hidden so that a crash mid-write leaves nothing that looks like the real output.
@@ -124,20 +112,7 @@ void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer
 }
 
 std::vector<std::uint8_t> read_png(const std::filesystem::path& path, int& width, int& height) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) throw InputError(path.string(), "is a directory, not an image file");
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!file) throw InputError(path.string(), "cannot open: " + errno_text(errno));
-  std::vector<unsigned char> bytes;
-  unsigned char chunk[1 << 16];
-  std::size_t n = 0;
-  while ((n = std::fread(chunk, 1, sizeof chunk, file.get())) > 0) {
-    bytes.insert(bytes.end(), chunk, chunk + n);
-    if (bytes.size() > static_cast<std::size_t>(INT_MAX)) throw InputError(path.string(), "file is too large");
-  }
-  if (std::ferror(file.get())) throw InputError(path.string(), "cannot read: " + errno_text(errno));
-  if (bytes.empty()) throw InputError(path.string(), "file is empty");
-
+  const std::vector<unsigned char> bytes = read_image_file(path);
   int channels = 0;
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
       stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width, &height, &channels, 4),

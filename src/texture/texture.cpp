@@ -2,15 +2,12 @@
 #include "facet/texture.hpp"
 
 #include <algorithm>
-#include <cerrno>
-#include <climits>
-#include <cstdio>
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 
 #include "facet/error.hpp"
+#include "io/file_util.hpp"
 
 // The one stb_image implementation in facet (image_io.cpp uses it too). Only the formats facet promises are
 // compiled in, which also keeps the decoder's attack surface small; the dimension cap rejects absurd files early.
@@ -20,16 +17,7 @@
 #define STBI_ONLY_TGA
 #define STBI_ONLY_BMP
 #define STBI_MAX_DIMENSIONS 16384
-#pragma GCC diagnostic push
-#pragma GCC diagnostic ignored "-Wall"
-#pragma GCC diagnostic ignored "-Wextra"
-#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
-#pragma GCC diagnostic ignored "-Wsign-compare"
-#pragma GCC diagnostic ignored "-Wunused-function"
-#pragma GCC diagnostic ignored "-Wunused-parameter"
-#pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
-#include <stb_image.h>
-#pragma GCC diagnostic pop
+#include "io/stb.hpp"
 
 namespace facet {
 
@@ -149,31 +137,10 @@ namespace {
   throw InputError(path.string(), problem);
 }
 
-std::string errno_text(int err) { return std::generic_category().message(err); }
-
-// Reads the whole file, with the system's reason on failure (stb_image's own fopen only says "can't fopen").
-std::vector<unsigned char> read_whole_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not an image file");
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!file) fail(path, "cannot open: " + errno_text(errno));
-  std::vector<unsigned char> bytes;
-  unsigned char chunk[1 << 16];
-  for (;;) {
-    const std::size_t n = std::fread(chunk, 1, sizeof chunk, file.get());
-    bytes.insert(bytes.end(), chunk, chunk + n);
-    if (bytes.size() > static_cast<std::size_t>(INT_MAX)) fail(path, "file is too large for an image (over 2 GiB)");
-    if (n < sizeof chunk) break;
-  }
-  if (std::ferror(file.get())) fail(path, "cannot read: " + errno_text(errno));
-  if (bytes.empty()) fail(path, "file is empty");
-  return bytes;
-}
-
 }  // namespace
 
 Texture load_texture(const std::filesystem::path& path) {
-  const std::vector<unsigned char> bytes = read_whole_file(path);
+  const std::vector<unsigned char> bytes = read_image_file(path);
   const int length = static_cast<int>(bytes.size());
   int w = 0, h = 0, channels = 0;
   if (!stbi_info_from_memory(bytes.data(), length, &w, &h, &channels))
