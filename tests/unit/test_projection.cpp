@@ -11,6 +11,7 @@
 
 #include "facet/projection.hpp"
 #include "facet/transform.hpp"
+#include "support/matrix_asserts.hpp"
 
 namespace facet {
 namespace {
@@ -35,16 +36,8 @@ glm::mat4 from_rows(const float (&v)[16]) {
   return m;
 }
 
-void expect_mat_near(const glm::mat4& a, const glm::mat4& b, float tol = 1e-5f) {
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) EXPECT_NEAR(a[c][r], b[c][r], tol) << "column " << c << " row " << r;
-}
-
-void expect_vec_near(glm::vec3 a, glm::vec3 b, float tol = 1e-5f) {
-  EXPECT_NEAR(a.x, b.x, tol);
-  EXPECT_NEAR(a.y, b.y, tol);
-  EXPECT_NEAR(a.z, b.z, tol);
-}
+using test::expect_mat_near;
+using test::expect_vec_near;
 
 glm::vec3 ndc(const glm::mat4& clip_from_eye, glm::vec3 eye_point) {
   const glm::vec4 c = clip_from_eye * glm::vec4(eye_point, 1.0f);

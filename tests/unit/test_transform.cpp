@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "facet/transform.hpp"
+#include "support/matrix_asserts.hpp"
 
 namespace facet {
 namespace {
@@ -24,16 +25,8 @@ void expect_columns(const glm::mat4& m, const float (&expected)[16], float tol =
     for (int r = 0; r < 4; ++r) EXPECT_NEAR(m[c][r], expected[c * 4 + r], tol) << "column " << c << " row " << r;
 }
 
-void expect_mat_near(const glm::mat4& a, const glm::mat4& b, float tol = 1e-5f) {
-  for (int c = 0; c < 4; ++c)
-    for (int r = 0; r < 4; ++r) EXPECT_NEAR(a[c][r], b[c][r], tol) << "column " << c << " row " << r;
-}
-
-void expect_vec_near(glm::vec3 a, glm::vec3 b, float tol = 1e-5f) {
-  EXPECT_NEAR(a.x, b.x, tol);
-  EXPECT_NEAR(a.y, b.y, tol);
-  EXPECT_NEAR(a.z, b.z, tol);
-}
+using test::expect_mat_near;
+using test::expect_vec_near;
 
 glm::vec3 apply(const glm::mat4& m, glm::vec3 p) { return glm::vec3(m * glm::vec4(p, 1.0f)); }
 
