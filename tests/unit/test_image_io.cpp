@@ -15,18 +15,12 @@
 #include "facet/error.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/image_io.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace facet {
 namespace {
 
-std::filesystem::path scratch_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir = std::filesystem::path(FACET_TEST_OUTPUT_DIR) / "image_io" /
-                                    (std::string(info->test_suite_name()) + "." + info->name());
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path scratch_dir() { return test::scratch_dir("image_io"); }
 
 std::string read_bytes(const std::filesystem::path& path) {
   std::ifstream in(path, std::ios::binary);

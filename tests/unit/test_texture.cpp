@@ -12,6 +12,7 @@
 #include "facet/error.hpp"
 #include "facet/image_io.hpp"
 #include "facet/texture.hpp"
+#include "support/scratch_dir.hpp"
 
 namespace facet {
 namespace {
@@ -28,14 +29,7 @@ void expect_color(glm::vec4 actual, glm::vec4 expected, float tolerance = 1e-6f)
   for (int c = 0; c < 4; ++c) EXPECT_NEAR(actual[c], expected[c], tolerance) << "channel " << c;
 }
 
-std::filesystem::path scratch_dir() {
-  const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir = std::filesystem::path(FACET_TEST_OUTPUT_DIR) / "texture" /
-                                    (std::string(info->test_suite_name()) + "." + info->name());
-  std::filesystem::remove_all(dir);
-  std::filesystem::create_directories(dir);
-  return dir;
-}
+std::filesystem::path scratch_dir() { return test::scratch_dir("texture"); }
 
 void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
   std::ofstream(path, std::ios::binary) << bytes;
