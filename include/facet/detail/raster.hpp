@@ -40,7 +40,8 @@ inline bool depth_passes(DepthFunc func, float fragment, float stored) {
 // inside all three edges. Whole-rectangle accept and reject use 64-bit values; an edge that crosses the rectangle
 // is tested per pixel in 32 bits (see Edge). Restricting the work to the triangle's bounds keeps the many tiny
 // triangles of dense meshes from paying for whole blocks.
-inline std::uint64_t raster_block_coverage(const TriangleSetup& tri, int bx, int by, int i0, int i1, int j0, int j1) {
+[[gnu::always_inline]] inline std::uint64_t raster_block_coverage(const TriangleSetup& tri, int bx, int by, int i0,
+                                                                  int i1, int j0, int j1) {
   const std::uint64_t row_bits = ((std::uint64_t{1} << (i1 + 1)) - 1) & ~((std::uint64_t{1} << i0) - 1);
   std::uint64_t mask = 0;
   for (int j = j0; j <= j1; ++j) mask |= row_bits << (j * kBlockSize);
@@ -68,8 +69,9 @@ inline std::uint64_t raster_block_coverage(const TriangleSetup& tri, int bx, int
   return raster_block_coverage(tri, bx, by, 0, kBlockSize - 1, 0, kBlockSize - 1);
 }
 
+// Always inlined, like raster_triangle: both must be compiled inside each target clone of raster_tile.
 template <Shader S>
-void shade_quad(const ShadeContext<S>& ctx, const TriangleSetup& tri, const TileWork& work, int px, int py,
+[[gnu::always_inline]] inline void shade_quad(const ShadeContext<S>& ctx, const TriangleSetup& tri, const TileWork& work, int px, int py,
                 unsigned covered) {
   using Varyings = typename S::Varyings;
   constexpr std::size_t kFloats = float_count_v<Varyings>;
@@ -165,7 +167,7 @@ inline DepthRange raster_block_depth_range(const TriangleSetup& tri, float depth
 }
 
 template <Shader S>
-void raster_triangle(const ShadeContext<S>& ctx, const TriangleSetup& tri, const TileWork& work) {
+[[gnu::always_inline]] inline void raster_triangle(const ShadeContext<S>& ctx, const TriangleSetup& tri, const TileWork& work) {
   const int x0 = std::max<int>(tri.min_x, work.x0), x1 = std::min<int>(tri.max_x, work.x1 - 1);
   const int y0 = std::max<int>(tri.min_y, work.y0), y1 = std::min<int>(tri.max_y, work.y1 - 1);
   if (x0 > x1 || y0 > y1) return;
@@ -207,8 +209,11 @@ void raster_triangle(const ShadeContext<S>& ctx, const TriangleSetup& tri, const
   }
 }
 
+// The whole per-tile loop, with the shader inlined into it, is compiled twice: for x86-64-v3 (AVX2, FMA, BMI)
+// and for the baseline; the loader picks one per CPU at run time, so one binary runs everywhere.
 template <Shader S>
-void raster_tile(const void* draw, const TileWork& work) {
+__attribute__((target_clones("arch=x86-64-v3", "default"))) void raster_tile(const void* draw,
+                                                                              const TileWork& work) {
   const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
   for (std::size_t c = 0; c < work.chunk_count; ++c) {
     const SetupChunk& chunk = work.chunks[c];
