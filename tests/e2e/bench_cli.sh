@@ -2,16 +2,14 @@
 # bench_cli.sh - end-to-end test of `facet bench` (SCENES.md): result line, images, scenes and argument errors.
 # Usage: bash tests/e2e/bench_cli.sh <path-to-facet> <scratch-dir>
 set -u
+# shellcheck source=SCRIPTDIR/lib/common.bash
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.bash"
 
 facet=${1:?usage: bench_cli.sh <path-to-facet> <scratch-dir>}
 scratch=${2:?usage: bench_cli.sh <path-to-facet> <scratch-dir>}
 wuson=/usr/share/assimp/models/OBJ/WusonOBJ.obj
 rm -rf "$scratch"
 mkdir -p "$scratch"
-passed=0 failed=0
-
-pass() { passed=$((passed + 1)); echo "ok   $1"; }
-fail() { failed=$((failed + 1)); echo "FAIL $1${2:+: $2}"; }
 
 # json_check JSON KEY=VALUE...: every KEY has exactly VALUE (numbers and strings compared as text); prints problems.
 json_check() {
@@ -77,11 +75,11 @@ run_ok() {
   shift
   out=$("$facet" bench "$@" --json 2>"$scratch/stderr.txt")
   status=$?
-  if [ $status -ne 0 ]; then fail "$name" "exit status $status: $(head -n 3 "$scratch/stderr.txt")"; return 1; fi
+  if [ $status -ne 0 ]; then bad "$name" "exit status $status: $(head -n 3 "$scratch/stderr.txt")"; return 1; fi
   lines=$(grep -c '^{' <<<"$out")
-  if [ "$lines" -ne 1 ]; then fail "$name" "expected one result line starting with '{', got $lines"; return 1; fi
-  if problems=$(json_check "$(grep '^{' <<<"$out")" "${checks[@]}"); then pass "$name"
-  else fail "$name" "$problems"; return 1; fi
+  if [ "$lines" -ne 1 ]; then bad "$name" "expected one result line starting with '{', got $lines"; return 1; fi
+  if problems=$(json_check "$(grep '^{' <<<"$out")" "${checks[@]}"); then ok "$name"
+  else bad "$name" "$problems"; return 1; fi
 }
 
 # run_bad NAME ARGS...: expects status 2, exactly one stderr line 'facet: error: ...', no result line and no files.
@@ -95,12 +93,12 @@ run_bad() {
   status=$?
   local err_lines
   err_lines=$(wc -l <"$dir/stderr.txt")
-  if [ $status -ne 2 ]; then fail "$name" "exit status $status, expected 2"
-  elif [ "$err_lines" -ne 1 ]; then fail "$name" "expected one stderr line, got $err_lines"
-  elif ! grep -q '^facet: error: ' "$dir/stderr.txt"; then fail "$name" "stderr: $(cat "$dir/stderr.txt")"
-  elif grep -q '^{' <<<"$out"; then fail "$name" "printed a result line"
-  elif [ -e "$dir/out.png" ] || [ -e "$dir/out.npy" ]; then fail "$name" "wrote a file"
-  else pass "$name"; fi
+  if [ $status -ne 2 ]; then bad "$name" "exit status $status, expected 2"
+  elif [ "$err_lines" -ne 1 ]; then bad "$name" "expected one stderr line, got $err_lines"
+  elif ! grep -q '^facet: error: ' "$dir/stderr.txt"; then bad "$name" "stderr: $(cat "$dir/stderr.txt")"
+  elif grep -q '^{' <<<"$out"; then bad "$name" "printed a result line"
+  elif [ -e "$dir/out.png" ] || [ -e "$dir/out.npy" ]; then bad "$name" "wrote a file"
+  else ok "$name"; fi
 }
 
 # --- the sphere, with both image outputs ---
@@ -108,14 +106,14 @@ png=$scratch/sphere16.png npy=$scratch/sphere16.npy
 if run_ok "sphere:16 result line" scene=sphere:16 triangles=480 width=64 height=48 warmup=1 frames=2 threads=2 -- \
   --sphere 16 --resolution 64,48 --frames 2 --warmup 1 --threads 2 --png "$png" --depth "$npy"; then
   size=$(png_size "$png" 2>&1)
-  if [ "$size" = "64 48" ]; then pass "sphere:16 png is 64x48"; else fail "sphere:16 png" "size '$size'"; fi
-  if err=$(npy_check "$npy" 64 48 2>&1); then pass "sphere:16 depth .npy"; else fail "sphere:16 depth .npy" "$err"; fi
+  if [ "$size" = "64 48" ]; then ok "sphere:16 png is 64x48"; else bad "sphere:16 png" "size '$size'"; fi
+  if err=$(npy_check "$npy" 64 48 2>&1); then ok "sphere:16 depth .npy"; else bad "sphere:16 depth .npy" "$err"; fi
 fi
 # The image must not depend on the thread count (tiles see their triangles in draw order).
 run_ok "sphere:16 single-threaded" threads=0 -- --sphere 16 --resolution 64,48 --frames 1 --warmup 0 --threads 0 \
   --png "$scratch/sphere16-t0.png" &&
-  { cmp -s "$png" "$scratch/sphere16-t0.png" && pass "sphere:16 same image with --threads 0" ||
-    fail "sphere:16 same image with --threads 0"; }
+  { cmp -s "$png" "$scratch/sphere16-t0.png" && ok "sphere:16 same image with --threads 0" ||
+    bad "sphere:16 same image with --threads 0"; }
 # A repeated flag takes its last value (compare.sh appends its own --warmup/--frames).
 run_ok "repeated flags take the last value" frames=3 warmup=0 width=32 height=20 -- \
   --sphere 8 --frames 1 --resolution 64,48 --warmup 2 --frames 3 --warmup 0 --resolution 32,20
@@ -125,24 +123,24 @@ if run_ok "quads:4:b2f result line" scene=quads:4:b2f triangles=8 width=96 heigh
      --quads 4 --resolution 96,54 --frames 1 --warmup 0 --png "$scratch/quads-b2f.png" &&
    run_ok "quads:4:f2b result line" scene=quads:4:f2b triangles=8 -- \
      --quads 4 --order f2b --resolution 96,54 --frames 1 --warmup 0 --png "$scratch/quads-f2b.png"; then
-  if cmp -s "$scratch/quads-b2f.png" "$scratch/quads-f2b.png"; then pass "quads b2f and f2b images are equal"
-  else fail "quads b2f and f2b images are equal"; fi
+  if cmp -s "$scratch/quads-b2f.png" "$scratch/quads-f2b.png"; then ok "quads b2f and f2b images are equal"
+  else bad "quads b2f and f2b images are equal"; fi
 fi
 
 # --- a mesh (assimp-testmodels) ---
 if [ -f "$wuson" ]; then
   run_ok "mesh:WusonOBJ.obj result line" scene=mesh:WusonOBJ.obj triangles=3732 width=80 height=60 -- \
     --mesh "$wuson" --resolution 80,60 --frames 1 --warmup 0 --png "$scratch/wuson.png" &&
-    { [ "$(png_size "$scratch/wuson.png" 2>&1)" = "80 60" ] && pass "mesh png is 80x60" || fail "mesh png is 80x60"; }
+    { [ "$(png_size "$scratch/wuson.png" 2>&1)" = "80 60" ] && ok "mesh png is 80x60" || bad "mesh png is 80x60"; }
 else
   echo "skip mesh:WusonOBJ.obj ($wuson not installed; apt-get install assimp-testmodels)"
 fi
 
 # --- human-readable output and --help ---
 out=$("$facet" bench --sphere 4 --resolution 16,16 --frames 1 --warmup 0 2>/dev/null)
-if [ $? -eq 0 ] && [ -n "$out" ] && ! grep -q '^{' <<<"$out"; then pass "without --json: a text line"
-else fail "without --json: a text line" "'$out'"; fi
-if "$facet" bench --help | grep -q -- '--sphere'; then pass "--help lists the flags"; else fail "--help lists the flags"; fi
+if [ $? -eq 0 ] && [ -n "$out" ] && ! grep -q '^{' <<<"$out"; then ok "without --json: a text line"
+else bad "without --json: a text line" "'$out'"; fi
+if "$facet" bench --help | grep -q -- '--sphere'; then ok "--help lists the flags"; else bad "--help lists the flags"; fi
 
 # --- bad arguments: status 2, one line on stderr, nothing written ---
 run_bad "unknown flag" --sphere 16 --frobnicate
@@ -165,5 +163,4 @@ run_bad "mesh without triangles" --mesh "$scratch/no-faces.obj"
 printf 'v 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\n' >"$scratch/coincident.obj"
 run_bad "mesh whose vertices all coincide" --mesh "$scratch/coincident.obj"
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish

@@ -2,49 +2,16 @@
 # demo_cli.sh - `facet demo`: every seed demo renders, --time animates, --frames writes numbered PNGs.
 # Usage: demo_cli.sh FACET SCRATCH. Prints one line per check and a closing "N passed, M failed".
 set -uo pipefail
+# shellcheck source=SCRIPTDIR/lib/common.bash
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.bash"
 facet=$1
 scratch=$2
 mkdir -p "$scratch"
 rm -f "$scratch"/*.png "$scratch"/*.npy
 
-# PNG checks in plain python3 (zlib + the five PNG filters), so the test needs no imaging library.
+# PNG checks: the shared reader (lib/png.py) followed by this script's commands.
 check=$scratch/check.py
-cat >"$check" <<'EOF'
-import struct, sys, zlib
-
-def read_png(path):
-    data = open(path, 'rb').read()
-    if data[:8] != b'\x89PNG\r\n\x1a\n':
-        sys.exit(f'{path}: not a PNG')
-    pos, idat = 8, b''
-    while pos < len(data):
-        n, kind = struct.unpack('>I4s', data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        pos += 12 + n
-        if kind == b'IHDR':
-            w, h, depth, ctype = struct.unpack('>IIBB', body[:10])
-            if depth != 8 or ctype not in (2, 6):
-                sys.exit(f'{path}: unsupported PNG (depth {depth}, colour type {ctype})')
-            ch = 3 if ctype == 2 else 4
-        elif kind == b'IDAT':
-            idat += body
-    raw, stride, rows, prev, i = zlib.decompress(idat), w * ch, [], bytearray(w * ch), 0
-    for _ in range(h):
-        f, line = raw[i], bytearray(raw[i + 1:i + 1 + stride])
-        i += 1 + stride
-        for x in range(stride):
-            a = line[x - ch] if x >= ch else 0
-            b, c = prev[x], (prev[x - ch] if x >= ch else 0)
-            if f == 1: line[x] = (line[x] + a) & 255
-            elif f == 2: line[x] = (line[x] + b) & 255
-            elif f == 3: line[x] = (line[x] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(bytes(line))
-        prev = line
-    return w, h, ch, rows
+cat "$e2e_lib/png.py" - >"$check" <<'EOF'
 
 def mask(path, bg):
     w, h, ch, rows = read_png(path)
@@ -82,10 +49,6 @@ elif cmd == 'pixel':  # pixel FILE X Y R G B: one pixel's colour within 8 levels
         sys.exit(f'pixel ({x}, {y}) is {got}, expected {want}')
     print(f'pixel ({x}, {y}) is {got}')
 EOF
-
-passed=0 failed=0
-ok() { echo "ok   $1"; passed=$((passed + 1)); }
-bad() { echo "FAIL $1: $2"; failed=$((failed + 1)); }
 
 # render NAME FACET-ARGS...: facet demo ... --output $scratch/NAME.png; 0 when it succeeded.
 render() {
@@ -154,5 +117,4 @@ status=$?
 if [ "$status" -eq 2 ] && [ ! -e "$scratch/frames.png" ]; then ok "frames without a pattern: exit 2, nothing written"
 else bad frames_without_pattern "exit $status$([ -e "$scratch/frames.png" ] && echo ', wrote frames.png')"; fi
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish

@@ -2,6 +2,8 @@
 # errors_cli.sh - bad input and bad usage: one "facet: error:" line on stderr, exit 1 (input) or 2 (usage), no output.
 # Usage: errors_cli.sh FACET SCRATCH. Prints one line per case and a closing "N passed, M failed".
 set -uo pipefail
+# shellcheck source=SCRIPTDIR/lib/common.bash
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.bash"
 facet=$1
 scratch=$2
 models=/usr/share/assimp/models/OBJ
@@ -20,8 +22,6 @@ printf 'v 0 0 0\nv 3e38 0 0\nv -3e38 1 0\nf 1 2 3\n' >"$scratch/huge.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\n' >"$scratch/no_faces.obj"
 printf 'solid x\nendsolid x\n' >"$scratch/model.stl"
 mkdir -p "$scratch/folder.obj"
-
-passed=0 failed=0
 
 # expect NAME STATUS [-n] FACET-ARGS...: runs facet writing to $scratch/NAME.png (unless the args name an output or
 # -n asks for none) and checks the exit status, that stderr is exactly one "facet: error: " line, and that no output file appeared.
@@ -47,11 +47,9 @@ expect() {
     problem="$problem; an output file was left behind"
   fi
   if [ -z "$problem" ]; then
-    echo "ok   $name ($status): $first"
-    passed=$((passed + 1))
+    ok "$name ($status): $first"
   else
-    echo "FAIL $name: ${problem#; } -- $(tr '\n' '|' <"$scratch/$name.stderr")"
-    failed=$((failed + 1))
+    bad "$name" "${problem#; } -- $(tr '\n' '|' <"$scratch/$name.stderr")"
   fi
 }
 
@@ -115,5 +113,4 @@ expect oblique_scale_range 2 render "$box" --projection oblique --oblique-scale 
 expect threads_text 2 render "$box" --threads many
 expect frames_text 2 demo cube --frames x --output "$scratch/frames_text_{frame}.png"
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish

@@ -2,50 +2,18 @@
 # render_cli.sh - `facet render` and `facet info` on real OBJ files: sizes, framing, projections, shadings, depth output.
 # Usage: render_cli.sh FACET SCRATCH. Prints one line per check and a closing "N passed, M failed".
 set -uo pipefail
+# shellcheck source=SCRIPTDIR/lib/common.bash
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.bash"
 facet=$1
 scratch=$2
 models=/usr/share/assimp/models/OBJ
 mkdir -p "$scratch"
 rm -f "$scratch"/*.png "$scratch"/*.npy
 
-# PNG / .npy checks in plain python3 (zlib + the five PNG filters), so the test needs no imaging library.
+# PNG / .npy checks: the shared PNG reader (lib/png.py) followed by this script's commands.
 check=$scratch/check.py
-cat >"$check" <<'EOF'
-import ast, array, struct, sys, zlib
-
-def read_png(path):
-    data = open(path, 'rb').read()
-    if data[:8] != b'\x89PNG\r\n\x1a\n':
-        sys.exit(f'{path}: not a PNG')
-    pos, idat = 8, b''
-    while pos < len(data):
-        n, kind = struct.unpack('>I4s', data[pos:pos + 8])
-        body = data[pos + 8:pos + 8 + n]
-        pos += 12 + n
-        if kind == b'IHDR':
-            w, h, depth, ctype = struct.unpack('>IIBB', body[:10])
-            if depth != 8 or ctype not in (2, 6):
-                sys.exit(f'{path}: unsupported PNG (depth {depth}, colour type {ctype})')
-            ch = 3 if ctype == 2 else 4
-        elif kind == b'IDAT':
-            idat += body
-    raw, stride, rows, prev, i = zlib.decompress(idat), w * ch, [], bytearray(w * ch), 0
-    for _ in range(h):
-        f, line = raw[i], bytearray(raw[i + 1:i + 1 + stride])
-        i += 1 + stride
-        for x in range(stride):
-            a = line[x - ch] if x >= ch else 0
-            b, c = prev[x], (prev[x - ch] if x >= ch else 0)
-            if f == 1: line[x] = (line[x] + a) & 255
-            elif f == 2: line[x] = (line[x] + b) & 255
-            elif f == 3: line[x] = (line[x] + (a + b) // 2) & 255
-            elif f == 4:
-                p = a + b - c
-                pa, pb, pc = abs(p - a), abs(p - b), abs(p - c)
-                line[x] = (line[x] + (a if pa <= pb and pa <= pc else b if pb <= pc else c)) & 255
-        rows.append(bytes(line))
-        prev = line
-    return w, h, ch, rows
+cat "$e2e_lib/png.py" - >"$check" <<'EOF'
+import ast, array  # struct and sys come with png.py
 
 def model_mask(w, h, ch, rows):
     # Background = the top-left pixel's colour (auto-framed models never reach the corner).
@@ -114,10 +82,6 @@ elif cmd == 'rgba':  # rgba FILE: an RGBA PNG whose corner is transparent
         sys.exit(f'{ch} channels, corner alpha {rows[0][ch - 1]}')
     print('RGBA, transparent background')
 EOF
-
-passed=0 failed=0
-ok() { echo "ok   $1"; passed=$((passed + 1)); }
-bad() { echo "FAIL $1: $2"; failed=$((failed + 1)); }
 
 # run NAME CHECK-ARGS... -- FACET-ARGS...: renders NAME.png with the facet args, then runs check.py on it.
 run() {
@@ -212,5 +176,4 @@ else
   bad "info spider.obj" "$(tr '\n' ';' <<<"${info:-}")"
 fi
 
-echo "$passed passed, $failed failed"
-[ "$failed" -eq 0 ]
+finish
