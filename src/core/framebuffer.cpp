@@ -1,6 +1,8 @@
 // framebuffer.cpp - colour/depth storage and the deferred per-tile clear.
 #include "facet/framebuffer.hpp"
 
+#include "facet/detail/dispatch.hpp"
+
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
@@ -19,14 +21,13 @@ void fill_rect(T* first, std::size_t stride, int rows, int columns, T value) {
   }
 }
 
-__attribute__((target_clones("avx512f", "avx2", "default"))) void fill_color(std::uint32_t* first, std::size_t stride,
-                                                                             int rows, int columns,
-                                                                             std::uint32_t value) {
+FACET_CPU_DISPATCH("avx512f", "avx2", "default")
+void fill_color(std::uint32_t* first, std::size_t stride, int rows, int columns, std::uint32_t value) {
   fill_rect(first, stride, rows, columns, value);
 }
 
-__attribute__((target_clones("avx512f", "avx2", "default"))) void fill_depth(float* first, std::size_t stride,
-                                                                             int rows, int columns, float value) {
+FACET_CPU_DISPATCH("avx512f", "avx2", "default")
+void fill_depth(float* first, std::size_t stride, int rows, int columns, float value) {
   fill_rect(first, stride, rows, columns, value);
 }
 

@@ -9,6 +9,7 @@
 #include "facet/render_state.hpp"
 #include "facet/shader.hpp"
 #include "facet/detail/binning.hpp"
+#include "facet/detail/dispatch.hpp"
 #include "facet/detail/triangle_setup.hpp"
 
 namespace facet::detail {
@@ -212,8 +213,7 @@ template <Shader S>
 // The whole per-tile loop, with the shader inlined into it, is compiled twice: for x86-64-v3 (AVX2, FMA, BMI)
 // and for the baseline; the loader picks one per CPU at run time, so one binary runs everywhere.
 template <Shader S>
-__attribute__((target_clones("arch=x86-64-v3", "default"))) void raster_tile(const void* draw,
-                                                                              const TileWork& work) {
+FACET_CPU_DISPATCH("arch=x86-64-v3", "default") void raster_tile(const void* draw, const TileWork& work) {
   const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
   for (std::size_t c = 0; c < work.chunk_count; ++c) {
     const SetupChunk& chunk = work.chunks[c];

@@ -1,0 +1,12 @@
+// dispatch.hpp - run-time CPU dispatch: hot loops compiled for several x86-64 levels, one picked per CPU at load.
+#pragma once
+
+// FACET_CPU_DISPATCH("arch=x86-64-v3", "default") clones a function for AVX2+FMA CPUs and the baseline; the
+// dynamic loader's ifunc resolver picks one, so a single portable binary uses the wide units where they exist.
+// Building with FACET_NO_DISPATCH keeps only the baseline: the sanitizer configuration does that, so the
+// scalar fallback is tested too.
+#if defined(FACET_NO_DISPATCH) || !defined(__x86_64__)
+#define FACET_CPU_DISPATCH(...)
+#else
+#define FACET_CPU_DISPATCH(...) __attribute__((target_clones(__VA_ARGS__)))
+#endif
