@@ -1,4 +1,4 @@
-// mesh.hpp - indexed triangle meshes: validation, bounds, edges, smooth normals, strips, fans, polygons, buffers.
+// mesh.hpp - indexed triangle meshes: validation, bounds, edges, smooth/crease normals, strips, fans, polygons, buffers
 #pragma once
 
 #include <array>
@@ -66,6 +66,21 @@ std::vector<std::array<std::uint32_t, 2>> unique_edges(const Mesh& mesh);
 // position (equal coordinate values, so seams and split vertices get one shared normal); each vertex gets its
 // group's normalised sum, or (0, 0, 1) when the sum is zero.
 void compute_smooth_normals(Mesh& mesh);
+
+// Replaces mesh.normals with normals that stay smooth across gentle bends but split at sharp edges (like VTK's
+// vtkPolyDataNormals feature angle, Blender's auto smooth or three.js toCreasedNormals). Each triangle corner gets the
+// area-weighted sum, normalised, of the face normals of the triangles at its position (grouped by value as in
+// compute_smooth_normals) whose face normal is within crease_angle_radians of its own triangle's (with 1e-6 of slack
+// on the cosine, so coplanar faces always count); so a cube's faces stay flat and a finely tessellated sphere stays
+// smooth. Corners of one vertex that end up with different normals are split: the first normal keeps the vertex,
+// each other one gets a copy of it (uvs and colours too, when they have one entry per vertex) appended after the
+// existing vertices, and its corners are re-pointed, so the mesh stays indexed and vertices whose corners agree stay
+// shared. Triangles with zero area, a non-finite normal or an index out of range change nothing and keep their
+// indices; a vertex that only such triangles use gets the smooth normal at its position, or (0, 0, 1). At pi or more
+// every face counts, and the sums are compute_smooth_normals' own, in its order: the same normals, nothing split.
+// Time O(n log n), plus at each position (distinct face normals x triangles there) when those faces are not all
+// within half the angle of their mean: small except at the apex of a sharp, finely divided cone.
+void compute_crease_normals(Mesh& mesh, float crease_angle_radians);
 
 // OpenGL GL_TRIANGLE_STRIP: triangle i uses strip[i], strip[i+1], strip[i+2], with the first two swapped for odd i
 // so every triangle keeps the strip's front-face winding. Triangles with a repeated index (the degenerate ones used

@@ -1,7 +1,10 @@
-// topology.cpp - connectivity work on meshes: edges, smooth normals, strips, fans and polygon triangulation.
+// topology.cpp - connectivity work on meshes: edges, smooth and crease normals, strips, fans, polygon triangulation.
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <limits>
+#include <span>
+#include <stdexcept>
 #include <string>
 #include <unordered_map>
 
@@ -91,6 +94,179 @@ void compute_smooth_normals(Mesh& mesh) {
     const glm::vec3 s = sum[group[v]];
     const float len = std::sqrt(s.x * s.x + s.y * s.y + s.z * s.z);
     mesh.normals[v] = len > 0 ? s / len : glm::vec3(0, 0, 1);  // also catches a NaN length
+  }
+}
+
+namespace {
+
+using NormalBits = std::array<std::uint32_t, 3>;
+
+NormalBits bits_of(const glm::vec3& v) {
+  return {std::bit_cast<std::uint32_t>(v.x), std::bit_cast<std::uint32_t>(v.y), std::bit_cast<std::uint32_t>(v.z)};
+}
+
+// The same grouping as compute_smooth_normals (kept separate so that function stays exactly as the reference
+// renderer's): group[v] is the index of v's position among the distinct positions. Returns the number of groups.
+std::size_t group_by_position(const std::vector<glm::vec3>& positions, std::vector<std::uint32_t>& group) {
+  std::unordered_map<PositionKey, std::uint32_t, PositionKeyHash> groups;
+  groups.reserve(positions.size());
+  group.resize(positions.size());
+  for (std::size_t v = 0; v < positions.size(); ++v)
+    group[v] = groups.try_emplace(PositionKey(positions[v]), static_cast<std::uint32_t>(groups.size())).first->second;
+  return groups.size();
+}
+
+// s / |s| with the arithmetic of compute_smooth_normals, or fallback when s has no direction (zero, or so large that
+// its length overflowed).
+glm::vec3 normalized_or(const glm::vec3& s, const glm::vec3& fallback) {
+  const float len = std::sqrt(s.x * s.x + s.y * s.y + s.z * s.z);
+  return len > 0 && std::isfinite(len) ? s / len : fallback;
+}
+
+// A triangle corner, 3 t + k: 32 bits (checked) rather than size_t, as the several per-corner arrays dominate the
+// memory this takes.
+using Corner = std::uint32_t;
+
+// Counting sort of items by key (key(item) < buckets): start gets buckets + 1 offsets, sorted the items bucket by
+// bucket, each bucket keeping the items' order. Linear, and reuses the vectors' storage when called again.
+template <typename Key>
+void bucket(std::span<const Corner> items, std::size_t buckets, std::vector<Corner>& start, std::vector<Corner>& sorted,
+            Key key) {
+  start.assign(buckets + 1, 0);
+  for (Corner item : items) ++start[key(item) + 1];
+  for (std::size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
+  sorted.resize(items.size());
+  for (Corner item : items) sorted[start[key(item)]++] = item;
+  // Each start[b] has moved on to the end of bucket b, which is where bucket b + 1 begins: shift them back.
+  for (std::size_t b = buckets; b > 0; --b) start[b] = start[b - 1];
+  start[0] = 0;
+}
+
+}  // namespace
+
+void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
+  const std::size_t n = mesh.positions.size();
+  const std::size_t triangles = mesh.indices.size() / 3;
+  if (mesh.indices.size() > std::numeric_limits<Corner>::max())
+    throw std::length_error("compute_crease_normals: more indices than 32-bit corner numbers can address");
+  std::vector<std::uint32_t> group;
+  const std::size_t group_count = group_by_position(mesh.positions, group);
+
+  // Per triangle, the unnormalised face normal (twice the area long: the weight, computed as in
+  // compute_smooth_normals so a 180 degree crease reproduces it bit for bit) and the unit one for the angle test.
+  // Triangles with an index out of range, zero area or a non-finite normal are unusable: they add nothing and keep
+  // their indices, so a degenerate triangle can neither split a vertex nor make a NaN.
+  std::vector<glm::vec3> area(triangles), unit(triangles);
+  std::vector<Corner> corners;  // corners of the usable triangles, in triangle order
+  corners.reserve(mesh.indices.size());
+  for (std::size_t t = 0; t < triangles; ++t) {
+    const std::uint32_t i0 = mesh.indices[3 * t], i1 = mesh.indices[3 * t + 1], i2 = mesh.indices[3 * t + 2];
+    if (i0 >= n || i1 >= n || i2 >= n) continue;
+    const glm::vec3 e1 = mesh.positions[i1] - mesh.positions[i0];
+    const glm::vec3 e2 = mesh.positions[i2] - mesh.positions[i0];
+    area[t] = glm::vec3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
+    const float len = std::sqrt(glm::dot(area[t], area[t]));
+    if (!(len > 0) || !std::isfinite(len)) continue;
+    unit[t] = area[t] / len;
+    const auto c0 = static_cast<Corner>(3 * t);
+    corners.insert(corners.end(), {c0, c0 + 1, c0 + 2});
+  }
+
+  // The crease test is dot(own, other) >= cos(angle). The 1e-6 of slack keeps faces that are coplanar (or exactly at
+  // the crease angle) but differ by rounding together; at 180 degrees or more every face counts.
+  const float pi = 3.14159265358979f;
+  const float angle = crease_angle_radians > 0 ? std::min(crease_angle_radians, pi) : 0.0f;  // NaN counts as 0
+  const bool everything = crease_angle_radians >= pi;
+  const float min_dot = everything ? -std::numeric_limits<float>::infinity() : std::cos(angle) - 1e-6f;
+  // If every face is within angle / 2 of one direction, any two are within angle of each other (triangle inequality
+  // on the sphere), so each corner sums every face; the margin covers rounding in both tests.
+  const float min_dot_to_mean = std::cos(angle / 2) + 1e-5f;
+
+  // Corners by position group; counting sort, so each group lists its corners in triangle order.
+  std::vector<Corner> start, bucketed;
+  bucket(corners, group_count, start, bucketed, [&](Corner c) { return group[mesh.indices[c]]; });
+  std::size_t largest = 0;
+  for (std::size_t g = 0; g < group_count; ++g) largest = std::max<std::size_t>(largest, start[g + 1] - start[g]);
+
+  std::vector<glm::vec3> corner_normal(mesh.indices.size()), group_normal(group_count);
+  std::vector<Corner> by_normal;  // one group's corners sorted by face normal; reserved once, reused
+  by_normal.reserve(largest);
+  for (std::size_t g = 0; g < group_count; ++g) {
+    const std::span<const Corner> members(bucketed.data() + start[g], bucketed.data() + start[g + 1]);
+    // The plain area-weighted sum over the group, in triangle order: the smooth normal. Every corner whose faces are
+    // all within the crease angle gets exactly these bits, which is what keeps smooth regions' vertices shared.
+    glm::vec3 sum(0);
+    for (Corner c : members) sum += area[c / 3];
+    group_normal[g] = normalized_or(sum, glm::vec3(0, 0, 1));
+    if (members.empty()) continue;
+    // If every face is within half the angle of the group's normal, every corner sees all of them: one sum for the
+    // group, so high-valence smooth vertices (a sphere's poles) cost no more than at pi.
+    bool all_within = everything || glm::dot(sum, sum) > 0;
+    for (std::size_t i = 0; i < members.size() && all_within && !everything; ++i)
+      all_within = glm::dot(unit[members[i] / 3], group_normal[g]) >= min_dot_to_mean;
+    if (all_within) {
+      for (Corner c : members) corner_normal[c] = group_normal[g];
+      continue;
+    }
+    // Otherwise each distinct face normal sums the faces within the angle of it: O(distinct x members), where the
+    // distinct normals are few except at the apex of a sharp cone-like fan.
+    by_normal.assign(members.begin(), members.end());
+    std::sort(by_normal.begin(), by_normal.end(),
+              [&](Corner a, Corner b) { return bits_of(unit[a / 3]) < bits_of(unit[b / 3]); });
+    for (std::size_t begin = 0, end = 0; begin < by_normal.size(); begin = end) {
+      const glm::vec3 own = unit[by_normal[begin] / 3];
+      for (end = begin + 1; end < by_normal.size() && bits_of(unit[by_normal[end] / 3]) == bits_of(own);) ++end;
+      // In triangle order, so corners that see the same set of faces get the same bits and share a vertex.
+      glm::vec3 s(0);
+      for (Corner c : members)
+        if (glm::dot(own, unit[c / 3]) >= min_dot) s += area[c / 3];
+      const glm::vec3 normal = normalized_or(s, own);
+      for (std::size_t k = begin; k < end; ++k) corner_normal[by_normal[k]] = normal;
+    }
+  }
+
+  // Corners by vertex, sorted by normal bits: each run of equal normals is one vertex. The first run keeps the
+  // original index (so unsplit vertices, and edges listed by index, stay valid); each further run is a copy appended
+  // after the original vertices.
+  bucket(corners, n, start, bucketed, [&](Corner c) { return mesh.indices[c]; });
+  const auto normal_less = [&](Corner a, Corner b) { return bits_of(corner_normal[a]) < bits_of(corner_normal[b]); };
+  const auto same_normal = [&](Corner a, Corner b) { return bits_of(corner_normal[a]) == bits_of(corner_normal[b]); };
+  std::size_t total = n;
+  for (std::size_t v = 0; v < n; ++v) {
+    std::sort(bucketed.data() + start[v], bucketed.data() + start[v + 1], normal_less);
+    for (Corner i = start[v] + 1; i < start[v + 1]; ++i) total += !same_normal(bucketed[i], bucketed[i - 1]);
+  }
+  if (total > std::size_t{std::numeric_limits<std::uint32_t>::max()} + 1)
+    throw std::length_error("compute_crease_normals: more vertices than 32-bit indices can address");
+
+  // Attributes with one entry per vertex are copied along; a wrongly sized one is left alone (the mesh was already
+  // invalid, and users check sizes against positions).
+  const bool copy_uvs = mesh.uvs.size() == n, copy_colors = mesh.colors.size() == n;
+  mesh.positions.resize(total);
+  mesh.normals.assign(total, glm::vec3(0, 0, 1));
+  if (copy_uvs) mesh.uvs.resize(total);
+  if (copy_colors) mesh.colors.resize(total);
+  std::size_t next = n;
+  for (std::size_t v = 0; v < n; ++v) {
+    const Corner first = start[v], last = start[v + 1];
+    // A vertex no usable triangle uses has no face of its own to compare with: it gets the smooth normal.
+    if (first == last) mesh.normals[v] = group_normal[group[v]];
+    for (Corner i = first; i < last; ++i) {
+      const Corner c = bucketed[i];
+      std::size_t target = v;
+      if (i == first) {
+        mesh.normals[v] = corner_normal[c];
+      } else if (!same_normal(c, bucketed[i - 1])) {
+        target = next++;
+        mesh.positions[target] = mesh.positions[v];
+        mesh.normals[target] = corner_normal[c];
+        if (copy_uvs) mesh.uvs[target] = mesh.uvs[v];
+        if (copy_colors) mesh.colors[target] = mesh.colors[v];
+      } else {
+        target = mesh.indices[bucketed[i - 1]];  // same run as the previous corner, already re-pointed
+      }
+      mesh.indices[c] = static_cast<std::uint32_t>(target);
+    }
   }
 }
 

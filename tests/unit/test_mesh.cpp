@@ -1,9 +1,11 @@
-// test_mesh.cpp - unit tests for mesh.hpp: strips, fans, polygons, edges, smooth normals, bounds, interleaved input.
+// test_mesh.cpp - unit tests for mesh.hpp: strips, fans, polygons, edges, smooth and crease normals, bounds, buffers.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <cstring>
 #include <map>
+#include <numbers>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -54,6 +56,24 @@ PolygonMesh lecture_cube() {
                  {-0.5f, -0.5f, -0.5f}, {-0.5f, 0.5f, -0.5f}, {0.5f, 0.5f, -0.5f}, {0.5f, -0.5f, -0.5f}};
   p.polygons = {{1, 0, 3, 2}, {2, 3, 7, 6}, {3, 0, 4, 7}, {6, 5, 1, 2}, {4, 5, 6, 7}, {5, 4, 0, 1}};
   return p;
+}
+
+// A cube of side 1 around the origin as 8 shared corners and no normals: faces +z, -z, +x, -x, +y, -y, two
+// triangles each, as a model file without normals gives it.
+Mesh shared_cube() {
+  Mesh m;
+  for (int i = 0; i < 8; ++i)
+    m.positions.emplace_back((i & 1) ? 0.5f : -0.5f, (i & 2) ? 0.5f : -0.5f, (i & 4) ? 0.5f : -0.5f);
+  const std::uint32_t quads[6][4] = {{4, 5, 7, 6}, {1, 0, 2, 3}, {5, 1, 3, 7},
+                                     {0, 4, 6, 2}, {6, 7, 3, 2}, {0, 1, 5, 4}};
+  for (const auto& q : quads) m.indices.insert(m.indices.end(), {q[0], q[1], q[2], q[0], q[2], q[3]});
+  return m;
+}
+
+bool all_finite(const std::vector<glm::vec3>& normals) {
+  for (const glm::vec3& n : normals)
+    if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) return false;
+  return true;
 }
 
 TEST(MeshStrip, AlternateTrianglesAreFlippedToCounterClockwise) {
@@ -183,6 +203,153 @@ TEST(MeshNormals, AreaWeightingSplitVerticesAndZeroSum) {
   d.indices = {0, 1, 2};
   compute_smooth_normals(d);
   for (const glm::vec3& n : d.normals) EXPECT_EQ(n, glm::vec3(0, 0, 1));
+}
+
+TEST(MeshCreaseNormals, SharedCubeCornersSplitIntoFlatFaces) {
+  Mesh m = shared_cube();
+  for (int i = 0; i < 8; ++i) {
+    m.colors.emplace_back(i / 8.0f, 0.5f, 1.0f, 1.0f);  // per-vertex attributes must follow the split copies
+    m.uvs.emplace_back(i / 8.0f, 1.0f - i / 8.0f);
+  }
+  const Mesh before = m;
+  compute_crease_normals(m, glm::radians(60.0f));
+  validate(m, "creased cube");
+  ASSERT_EQ(m.vertex_count(), 24u);  // each corner once per face meeting there
+  ASSERT_EQ(m.triangle_count(), 12u);
+  const glm::vec3 axes[6] = {{0, 0, 1}, {0, 0, -1}, {1, 0, 0}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
+  for (std::size_t t = 0; t < 12; ++t)
+    for (std::size_t k = 0; k < 3; ++k) {
+      const std::uint32_t was = before.indices[3 * t + k], now = m.indices[3 * t + k];
+      EXPECT_EQ(m.positions[now], before.positions[was]);
+      EXPECT_EQ(m.colors[now], before.colors[was]);
+      EXPECT_EQ(m.uvs[now], before.uvs[was]);
+      EXPECT_EQ(m.normals[now], axes[t / 2]) << "triangle " << t << " corner " << k;  // exactly, not nearly
+    }
+  // Still indexed: each face's two triangles share their diagonal (4 vertices a face), and no face shares a vertex
+  // with another; the original 8 vertices keep their indices, the copies come after them.
+  std::set<std::uint32_t> used;
+  for (std::size_t face = 0; face < 6; ++face) {
+    const std::set<std::uint32_t> corners(m.indices.begin() + static_cast<std::ptrdiff_t>(6 * face),
+                                          m.indices.begin() + static_cast<std::ptrdiff_t>(6 * face + 6));
+    EXPECT_EQ(corners.size(), 4u) << "face " << face;
+    used.insert(corners.begin(), corners.end());
+  }
+  EXPECT_EQ(used.size(), 24u);
+  for (std::size_t v = 0; v < 8; ++v) EXPECT_EQ(m.positions[v], before.positions[v]);
+}
+
+TEST(MeshCreaseNormals, HingeSplitsOnlyBeyondTheCreaseAngle) {
+  // Two unit squares sharing the edge from (0, 0, 0) to (0, 1, 0): one flat (+z), one folded down by 45 degrees.
+  const float c = std::sqrt(0.5f);
+  Mesh m;
+  m.positions = {{0, 0, 0}, {0, 1, 0}, {-1, 0, 0}, {-1, 1, 0}, {c, 0, -c}, {c, 1, -c}};
+  m.indices = {2, 0, 1, 2, 1, 3, 0, 4, 5, 0, 5, 1};
+  const glm::vec3 flat(0, 0, 1), folded(c, 0, c);
+
+  Mesh tight = m;
+  compute_crease_normals(tight, glm::radians(30.0f));
+  EXPECT_EQ(tight.vertex_count(), 8u);  // both hinge vertices split
+  for (std::size_t corner = 0; corner < 12; ++corner)
+    EXPECT_LT(glm::distance(tight.normals[tight.indices[corner]], corner < 6 ? flat : folded), 1e-6f) << corner;
+
+  Mesh loose = m;
+  compute_crease_normals(loose, glm::radians(60.0f));
+  EXPECT_EQ(loose.vertex_count(), 6u);
+  EXPECT_EQ(loose.indices, m.indices);
+  for (const std::uint32_t hinge : {0u, 1u}) {  // between the two faces
+    const glm::vec3 n = loose.normals[hinge];
+    EXPECT_NEAR(glm::length(n), 1.0f, 1e-6f);
+    EXPECT_GT(glm::dot(n, flat), std::cos(glm::radians(45.0f)) + 0.01f);
+    EXPECT_GT(glm::dot(n, folded), std::cos(glm::radians(45.0f)) + 0.01f);
+  }
+  EXPECT_EQ(loose.normals[2], flat);
+  EXPECT_LT(glm::distance(loose.normals[4], folded), 1e-6f);
+
+  // A two-sided sheet (each triangle also listed with the opposite winding) gets one vertex per side, where smooth
+  // normals would cancel to nothing.
+  Mesh sheet;
+  sheet.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
+  sheet.indices = {0, 1, 2, 0, 2, 3, 0, 2, 1, 0, 3, 2};
+  compute_crease_normals(sheet, glm::radians(60.0f));
+  EXPECT_EQ(sheet.vertex_count(), 8u);
+  for (std::size_t corner = 0; corner < 12; ++corner)
+    EXPECT_EQ(sheet.normals[sheet.indices[corner]], glm::vec3(0, 0, corner < 6 ? 1 : -1)) << corner;
+
+  // A tilted plane at crease angle 0: its triangles' unit normals differ in the last bits, which must not split it.
+  Mesh plane;
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 4; ++x) plane.positions.emplace_back(0.37f * x, 0.29f * y, 0.3f * x + 0.7f * y);
+  for (std::uint32_t y = 0; y < 3; ++y)
+    for (std::uint32_t x = 0; x < 3; ++x) {
+      const std::uint32_t v = 4 * y + x;
+      plane.indices.insert(plane.indices.end(), {v, v + 1, v + 5, v, v + 5, v + 4});
+    }
+  compute_crease_normals(plane, 0.0f);
+  EXPECT_EQ(plane.vertex_count(), 16u);
+}
+
+TEST(MeshCreaseNormals, FineSphereStaysSmoothAndShared) {
+  for (const float degrees : {30.0f, 60.0f}) {
+    Mesh s = make_uv_sphere(24, 32);
+    s.normals.clear();
+    const std::vector<std::uint32_t> indices = s.indices;
+    Mesh smooth = s;
+    compute_smooth_normals(smooth);
+    compute_crease_normals(s, glm::radians(degrees));
+    ASSERT_EQ(s.vertex_count(), smooth.vertex_count()) << degrees;
+    EXPECT_EQ(s.indices, indices);
+    EXPECT_EQ(s.normals, smooth.normals);  // no face is cut off anywhere, so the sums are the smooth ones
+    // As for compute_smooth_normals, the seam columns and the -y pole row (copies not equal in float) are skipped.
+    for (int i = 0; i < 24; ++i)
+      for (int j = 1; j < 32; ++j) {
+        const std::size_t v = static_cast<std::size_t>(i * 33 + j);
+        EXPECT_NEAR(glm::length(s.normals[v]), 1.0f, 1e-5f);
+        EXPECT_GT(glm::dot(s.normals[v], s.positions[v]), 0.999f) << "vertex " << v;
+      }
+  }
+}
+
+TEST(MeshCreaseNormals, DegenerateTrianglesMakeNoNaN) {
+  Mesh m;
+  m.positions = {{0, 0, 0},     {0, 1, 0},     {0, 0, 1},     {0, 2, 0},  // 0-2 a real triangle (+x); 3 collinear
+                 {1, 1, 1},     {2, 2, 2},     {3, 3, 3},                 // 4-6 collinear
+                 {1e30f, 0, 0}, {0, 1e30f, 0}, {0, 0, 1e30f},             // 7-9 a normal that overflows to inf
+                 {-0.0f, 0, 0}, {7, 7, 7}};                               // 10 at vertex 0's position; 11 unused
+  m.indices = {0, 1, 2, 0, 1, 3, 2, 2, 0, 4, 5, 6, 7, 8, 9, 10, 10, 1};
+  const std::vector<std::uint32_t> indices = m.indices;
+  compute_crease_normals(m, glm::radians(60.0f));
+  EXPECT_EQ(m.vertex_count(), 12u);  // degenerate triangles split nothing
+  EXPECT_EQ(m.indices, indices);
+  ASSERT_TRUE(all_finite(m.normals));
+  for (const std::size_t v : {0, 1, 2}) EXPECT_EQ(m.normals[v], glm::vec3(1, 0, 0)) << v;
+  // Only in degenerate triangles, so no face of their own: the smooth normal at their position, else (0, 0, 1).
+  EXPECT_EQ(m.normals[10], glm::vec3(1, 0, 0));
+  for (const std::size_t v : {3, 4, 5, 6, 7, 8, 9, 11}) EXPECT_EQ(m.normals[v], glm::vec3(0, 0, 1)) << v;
+
+  Mesh only;  // nothing but degenerate triangles, and an index out of range, which is left as it is
+  only.positions = {{1, 1, 1}, {1, 1, 1}, {2, 2, 2}};
+  only.indices = {0, 1, 2, 0, 1, 9};
+  compute_crease_normals(only, glm::radians(60.0f));
+  EXPECT_EQ(only.indices, (std::vector<std::uint32_t>{0, 1, 2, 0, 1, 9}));
+  EXPECT_EQ(only.normals, std::vector<glm::vec3>(3, glm::vec3(0, 0, 1)));
+}
+
+TEST(MeshCreaseNormals, StraightAngleReproducesSmoothNormals) {
+  Mesh torus = make_torus(1.0f, 0.3f, 48, 24);
+  torus.normals.clear();
+  Mesh sphere = make_uv_sphere(12, 16);
+  sphere.normals.clear();
+  Mesh area;  // from AreaWeightingSplitVerticesAndZeroSum: faces at 90 degrees, and a split vertex
+  area.positions = {{0, 0, 0}, {4, 0, 0}, {0, 4, 0}, {-0.0f, 0, 0}, {0, 1, 0}, {0, 0, 1}};
+  area.indices = {0, 1, 2, 3, 4, 5};
+  for (const Mesh& mesh : {torus, sphere, area, shared_cube()}) {
+    Mesh smooth = mesh, creased = mesh;
+    compute_smooth_normals(smooth);
+    compute_crease_normals(creased, std::numbers::pi_v<float>);
+    EXPECT_EQ(creased.positions, smooth.positions);
+    EXPECT_EQ(creased.indices, smooth.indices);
+    EXPECT_EQ(creased.normals, smooth.normals);  // the same sums in the same order: equal bits
+  }
 }
 
 TEST(MeshBounds, CubeSphereAndEmpty) {

@@ -1,8 +1,9 @@
-// test_scene.cpp - the Scene: frustum rejection, drawing modes, material groups, texture warnings, linear depth.
+// test_scene.cpp - the Scene: frustum rejection, drawing modes, materials, textures, computed normals, linear depth.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -305,6 +306,50 @@ TEST(SceneShading, MissingNormalsAreComputedAndDefaultMaterialIsLit) {
   options.color = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
   const glm::vec4 got = unpack_rgba8(render(scene, view, options).fb.pixel(32, 32));
   EXPECT_NEAR(got.r, 0.5f * 1.1f + 0.4f, 1.5f / 255);
+}
+
+TEST(SceneShading, BoxWithoutNormalsHasFlatFaces) {
+  // Computed normals split at the box's 90 degree edges, so under a directional light each face is one colour, the
+  // one flat shading (face normals) gives it; smooth normals would shade each face as a gradient. The material has
+  // no specular term, which would vary with the view direction across a face.
+  Mesh m = cube();
+  m.materials = {Material{"matte", glm::vec4(1.0f), glm::vec3(0.0f), 32, {}}};
+  m.face_materials.assign(m.triangle_count(), 0);
+  Scene scene;
+  scene.add(instance(m));
+  const View view = make_view({1.6f, 2.2f, 3.4f});
+  SceneOptions options;
+  options.lights = {Light{Light::Kind::directional, {0.3f, 0.5f, 0.8f}, glm::vec3(1.0f), 1.0f}};
+  options.ambient = glm::vec3(0.1f);
+  const Frame lit = render(scene, view, options);
+  options.shading = Shading::flat;
+  const Frame flat = render(scene, view, options);
+
+  struct Face {
+    glm::vec3 center, u, v;
+  };
+  const Face visible[3] = {{{0, 0, 0.5f}, {1, 0, 0}, {0, 1, 0}},   // +z
+                           {{0.5f, 0, 0}, {0, 0, 1}, {0, 1, 0}},   // +x
+                           {{0, 0.5f, 0}, {1, 0, 0}, {0, 0, 1}}};  // +y
+  std::vector<int> face_colors;
+  for (const Face& face : visible) {
+    const glm::vec3 n = glm::normalize(face.center);
+    int lo = 255, hi = 0;
+    for (int i = -3; i <= 3; ++i)
+      for (int j = -3; j <= 3; ++j) {  // inset from the face's edges by 0.2, a few pixels
+        const glm::vec2 p =
+            project(view, face.center + 0.1f * (static_cast<float>(i) * face.u + static_cast<float>(j) * face.v));
+        const int x = static_cast<int>(p.x), y = static_cast<int>(p.y);
+        const glm::vec4 got = unpack_rgba8(lit.fb.pixel(x, y)), want = unpack_rgba8(flat.fb.pixel(x, y));
+        EXPECT_NEAR(got.r, want.r, 1.5f / 255) << "face " << n.x << n.y << n.z << " at " << x << ", " << y;
+        lo = std::min(lo, static_cast<int>(std::lround(got.r * 255)));
+        hi = std::max(hi, static_cast<int>(std::lround(got.r * 255)));
+      }
+    EXPECT_LE(hi - lo, 1) << "face " << n.x << " " << n.y << " " << n.z;
+    face_colors.push_back(lo);
+  }
+  // Three different shades, so the light really does tell the faces apart.
+  EXPECT_EQ(std::set<int>(face_colors.begin(), face_colors.end()).size(), 3u);
 }
 
 TEST(SceneShading, DepthShadingUsesTheViewRange) {
