@@ -61,6 +61,10 @@ class Framebuffer {
   void request_clear(glm::vec4 color, float depth, bool clear_color = true, bool clear_depth = true);
   // Applies the pending clear to one tile if it has not been applied yet. Only the tile's owner thread calls it.
   void resolve_clear(int tile_index);
+  // For a tile that writes all of its depth itself (deferred shading keeps a local copy): applies the colour part
+  // of the pending clear and, if depth was to be cleared too, resets the tile's depth bounds and returns true with
+  // the clear depth in `depth_value`, leaving the depth writes to the caller. Only the tile's owner calls it.
+  bool resolve_clear_except_depth(int tile_index, float& depth_value);
   void resolve_all_clears();
 
   // For the rasterizer. Hierarchical depth: one upper bound on the stored depth per 8x8 block (row-major over
@@ -72,6 +76,9 @@ class Framebuffer {
   float* block_max_depth() { return block_max_depth_.data(); }
 
  private:
+  void apply_clear(int tile_index, bool color, bool depth);
+  void reset_depth_bounds(int tile_index, float value);
+
   int width_, height_, tiles_x_, tiles_y_, blocks_x_;
   std::vector<std::uint32_t> color_;
   std::vector<float> depth_;

@@ -24,6 +24,10 @@ struct RenderState {
   DrawOrder order = DrawOrder::as_given;
   float depth_offset = 0.0f;  // added to window depth before the test, e.g. -1e-4 pulls outlines onto a surface
   float line_width = 1.0f;    // pixels, for draw_lines
+  // Shade each pixel once, after the depth test has seen all of a draw's triangles (tile-based deferred shading).
+  // Applies when the shader cannot discard and colour is written without blending; the image is identical either
+  // way, only overdraw gets cheaper. false shades every passing fragment as its triangle is drawn.
+  bool defer_shading = true;
 };
 
 }  // namespace facet

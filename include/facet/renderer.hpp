@@ -39,6 +39,7 @@ struct DrawRequest {
   const RenderState* state;
   TileRasterFn raster;
   const void* draw;  // what `raster` reads: shader, varyings and state
+  bool deferred;     // tiles keep their depth locally (see raster_deferred.hpp)
 };
 }  // namespace detail
 
@@ -86,12 +87,13 @@ class Renderer {
   std::vector<std::uint32_t> order_;  // painter's order
   std::vector<float> sort_keys_;
   std::vector<int> active_tiles_;
+  std::vector<detail::TileScratch> scratch_;  // one per thread, for deferred shading
   DrawStats stats_;
 };
 
 }  // namespace facet
 
-#include "facet/detail/raster.hpp"
+#include "facet/detail/raster_tile.hpp"
 
 namespace facet {
 
@@ -140,7 +142,8 @@ void Renderer::draw_primitives(detail::PrimitiveKind kind, Framebuffer& target, 
   });
 
   const detail::ShadeContext<S> context{&shader, varyings, &state};
-  execute(target, {kind, clip, projected, n, indices, &state, &detail::raster_tile<S>, &context});
+  execute(target, {kind, clip, projected, n, indices, &state, &detail::raster_tile<S>, &context,
+                   detail::shades_deferred<S>(state)});
 }
 
 }  // namespace facet

@@ -11,6 +11,8 @@
 
 #include <glm/glm.hpp>
 
+#include "facet/simd.hpp"
+
 // FACET_NO_SIMD selects the portable scalar code (for testing that both agree); define it for the whole build.
 #if defined(__SSE2__) && defined(__x86_64__) && !defined(FACET_NO_SIMD)
 #define FACET_TEXTURE_SSE2 1
@@ -67,6 +69,10 @@ class Texture {
   // lod = log2(max(|duv_dx * size|, |duv_dy * size|)) and blends the two nearest levels; lod <= 0 (magnification)
   // samples level 0 bilinearly. nearest and bilinear ignore the derivatives, as in OpenGL.
   glm::vec4 sample(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, const Sampler& sampler) const;
+
+  // sample(uv, sampler) for 16 lanes. The benchmark's case (bilinear, repeat, power-of-two) runs in lanes with the
+  // same IEEE operations as the scalar path, so both give identical results; other samplers sample lane by lane.
+  FACET_LANES_INLINE simd::Color sample_lanes(const simd::Vec2& uv, const Sampler& sampler) const;
 
  private:
   // Each level is stored with one extra column and one extra row, copies of column 0 and row 0: with repeat
@@ -167,6 +173,8 @@ class Texture {
     return blend(bottom, top, p.alpha, p.beta);
   }
 
+  FACET_LANES_INLINE simd::Color bilinear_repeat_pow2_lanes(const simd::Vec2& uv) const;
+
   void pad_level(int level);  // fills the extra column and row of a level from column 0 and row 0
   glm::vec4 sample_level0(glm::vec2 uv, const Sampler& sampler) const;
   glm::vec4 sample_nearest(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const;
@@ -177,6 +185,61 @@ class Texture {
   bool pow2_ = false;  // level 0 has power-of-two sides: the inline fast path applies
   std::vector<std::uint32_t> texels_;  // all levels, level 0 first, each padded and row-major, row 0 at v = 0
 };
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+inline simd::Color Texture::sample_lanes(const simd::Vec2& uv, const Sampler& sampler) const {
+  if (pow2_ && sampler.filter != Filter::nearest && sampler.wrap_u == Wrap::repeat && sampler.wrap_v == Wrap::repeat)
+    return bilinear_repeat_pow2_lanes(uv);
+  simd::Color c;
+  for (int k = 0; k < simd::kLanes; ++k) {
+    const glm::vec4 s = sample(glm::vec2(uv.x[k], uv.y[k]), sampler);
+    c.r[k] = s.r;
+    c.g[k] = s.g;
+    c.b[k] = s.b;
+    c.a[k] = s.a;
+  }
+  return c;
+}
+
+// bilinear_repeat_pow2 lane by lane: split_floor, the padded 8-byte pair loads and blend, in the same order.
+inline simd::Color Texture::bilinear_repeat_pow2_lanes(const simd::Vec2& uv) const {
+  using namespace simd;
+  constexpr float lo = -1073741824.0f, hi = 1073741824.0f;
+  const Level& l = levels_[0];
+  auto split = [&](Float v, Int& index, Float& fraction) {
+    v = select(v > lo, v, splat(lo));  // NaN goes to lo, as maxps does in split_floor
+    v = select(v < hi, v, splat(hi));
+    index = truncate(v);
+    index += v < to_float(index);  // -1 where truncation rounded up
+    fraction = v - to_float(index);
+  };
+  Int i, j;
+  Float alpha, beta;
+  split(uv.x * l.fwidth - 0.5f, i, alpha);
+  split(uv.y * l.fheight - 0.5f, j, beta);
+  const Int first = (j & (l.height - 1)) * l.stride + (i & (l.width - 1));
+  UInt t00, t10, t01, t11;
+  const std::uint32_t* texels = texels_.data();
+  for (int k = 0; k < kLanes; ++k) {
+    const std::uint32_t* p = texels + first[k];
+    t00[k] = p[0];
+    t10[k] = p[1];
+    t01[k] = p[l.stride];
+    t11[k] = p[l.stride + 1];
+  }
+  auto channel = [&](int shift) {
+    auto bytes = [&](UInt t) { return to_float(__builtin_convertvector((t >> shift) & 0xffu, Int)); };
+    const Float c00 = bytes(t00), c10 = bytes(t10), c01 = bytes(t01), c11 = bytes(t11);
+    const Float bottom = c00 + (c10 - c00) * alpha;
+    const Float top = c01 + (c11 - c01) * alpha;
+    return (bottom + (top - bottom) * beta) / 255.0f;
+  };
+  return {channel(0), channel(8), channel(16), channel(24)};
+}
+
+#pragma GCC diagnostic pop
 
 // Loads a PNG, JPEG, TGA or BMP file as RGBA (missing channels filled as stb_image does: grey to RGB, alpha 255),
 // flipped so that row 0 (the image's bottom row) is at v = 0, with mipmaps. Throws InputError naming the file.

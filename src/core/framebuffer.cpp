@@ -64,15 +64,34 @@ void Framebuffer::request_clear(glm::vec4 color, float depth, bool clear_color, 
 void Framebuffer::resolve_clear(int tile_index) {
   if (!tile_needs_clear_[tile_index]) return;
   tile_needs_clear_[tile_index] = 0;
+  apply_clear(tile_index, pending_.color, pending_.depth);
+}
+
+bool Framebuffer::resolve_clear_except_depth(int tile_index, float& depth_value) {
+  if (!tile_needs_clear_[tile_index]) return false;
+  tile_needs_clear_[tile_index] = 0;
+  apply_clear(tile_index, pending_.color, false);
+  if (!pending_.depth) return false;
+  reset_depth_bounds(tile_index, pending_.depth_value);
+  depth_value = pending_.depth_value;
+  return true;
+}
+
+void Framebuffer::apply_clear(int tile_index, bool color, bool depth) {
   const int x0 = (tile_index % tiles_x_) * kTileSize, y0 = (tile_index / tiles_x_) * kTileSize;
   const int x1 = std::min(x0 + kTileSize, width_), y1 = std::min(y0 + kTileSize, height_);
   const std::size_t first = static_cast<std::size_t>(y0) * width_ + x0;
-  if (pending_.color) fill_color(color_.data() + first, width_, y1 - y0, x1 - x0, pending_.color_value);
-  if (pending_.depth) fill_depth(depth_.data() + first, width_, y1 - y0, x1 - x0, pending_.depth_value);
-  if (pending_.depth)
-    for (int by = y0 / 8; by < y0 / 8 + kTileSize / 8; ++by)
-      std::fill_n(block_max_depth_.begin() + static_cast<std::ptrdiff_t>(by) * blocks_x_ + x0 / 8, kTileSize / 8,
-                  pending_.depth_value);
+  if (color) fill_color(color_.data() + first, width_, y1 - y0, x1 - x0, pending_.color_value);
+  if (depth) {
+    fill_depth(depth_.data() + first, width_, y1 - y0, x1 - x0, pending_.depth_value);
+    reset_depth_bounds(tile_index, pending_.depth_value);
+  }
+}
+
+void Framebuffer::reset_depth_bounds(int tile_index, float value) {
+  const int x0 = (tile_index % tiles_x_) * kTileSize, y0 = (tile_index / tiles_x_) * kTileSize;
+  for (int by = y0 / 8; by < y0 / 8 + kTileSize / 8; ++by)
+    std::fill_n(block_max_depth_.begin() + static_cast<std::ptrdiff_t>(by) * blocks_x_ + x0 / 8, kTileSize / 8, value);
 }
 
 void Framebuffer::resolve_all_clears() {

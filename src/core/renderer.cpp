@@ -17,7 +17,7 @@ int resolve_thread_count(int threads) {
 
 }  // namespace
 
-Renderer::Renderer(int threads) : pool_(resolve_thread_count(threads)) {}
+Renderer::Renderer(int threads) : pool_(resolve_thread_count(threads)), scratch_(pool_.size()) {}
 
 Renderer::~Renderer() = default;
 
@@ -86,14 +86,17 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     }
 
     // One owner per tile: no two threads ever write the same pixel, so the tile loop needs no locks.
-    pool_.parallel_for(active_tiles_.size(), [&](std::size_t i, int) {
+    pool_.parallel_for(active_tiles_.size(), [&](std::size_t i, int thread) {
       const int tile = active_tiles_[i];
-      target.resolve_clear(tile);
+      float clear_depth = 1.0f;
+      bool depth_cleared = false;
+      if (request.deferred) depth_cleared = target.resolve_clear_except_depth(tile, clear_depth);
+      else target.resolve_clear(tile);
       const int x0 = (tile % target.tiles_x()) * kTileSize, y0 = (tile / target.tiles_x()) * kTileSize;
       const TileWork work{tile, x0, y0, std::min(x0 + kTileSize, target.width()),
                           std::min(y0 + kTileSize, target.height()), target.width(), target.color().data(),
                           target.depth_storage(), target.block_max_depth(), target.blocks_x(), chunks_.data(),
-                          chunk_count};
+                          chunk_count, &scratch_[static_cast<std::size_t>(thread)], depth_cleared, clear_depth};
       request.raster(request.draw, work);
     });
   }

@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "facet/framebuffer.hpp"
 #include "facet/detail/triangle_setup.hpp"
 
 namespace facet::detail {
@@ -58,6 +59,25 @@ struct SetupChunk {
   bool has(std::size_t tile) const { return first[tile] != first[tile + 1]; }
 };
 
+// A reference to one set-up triangle of a batch: its chunk in the high bits, its index in the chunk below.
+inline constexpr int kTriangleIndexBits = 20;
+inline constexpr std::uint32_t kNoTriangle = 0xffffffffu;
+// Clipping makes at most 8 triangles of one primitive (a 10-gon), a line makes 2.
+static_assert(kSetupChunk * 8 < (std::size_t{1} << kTriangleIndexBits));
+static_assert(kChunksPerBatch << kTriangleIndexBits < kNoTriangle);
+inline std::uint32_t triangle_ref(std::size_t chunk, std::uint32_t index) {
+  return static_cast<std::uint32_t>(chunk) << kTriangleIndexBits | index;
+}
+
+// Deferred shading's per-thread copy of one tile: depth and, per pixel, the triangle that drew it last. Stored
+// block by block (8x8 blocks in row order, pixels in row order within a block), so each 8x2 strip of a block is
+// 16 consecutive values: one lane vector. 32 KiB, so a tile's working set stays in the first-level cache.
+inline constexpr int kScratchBlock = 8;
+struct alignas(64) TileScratch {
+  float depth[kTileSize * kTileSize];
+  std::uint32_t triangle[kTileSize * kTileSize];
+};
+
 // One tile's share of a batch, handed to the shader-specific rasterizer.
 struct TileWork {
   int tile;
@@ -69,6 +89,9 @@ struct TileWork {
   int blocks_x;
   const SetupChunk* chunks;
   std::size_t chunk_count;
+  TileScratch* scratch;  // the running thread's, for deferred shading
+  bool depth_cleared;    // deferred shading: the tile's depth is to be cleared to clear_depth, not read back
+  float clear_depth;
 };
 
 }  // namespace facet::detail

@@ -167,12 +167,15 @@ inline DepthRange raster_block_depth_range(const TriangleSetup& tri, float depth
           std::clamp(std::max(std::max(z[0], z[1]), std::max(z[2], z[3])) + depth_offset, 0.0f, 1.0f)};
 }
 
-template <Shader S>
-[[gnu::always_inline]] inline void raster_triangle(const ShadeContext<S>& ctx, const TriangleSetup& tri, const TileWork& work) {
+// Walks the 8x8 blocks of the triangle's bounds within the tile: hierarchical depth rejects hidden blocks, then
+// visit(bx, by, coverage) handles the covered pixels, and the block's depth bound follows the writes. Shared by
+// immediate shading and the visibility pass of deferred shading, which must reject and bound blocks alike.
+template <bool kMayDiscard, class Visit>
+[[gnu::always_inline]] inline void raster_triangle_blocks(const TriangleSetup& tri, const TileWork& work,
+                                                          const RenderState& state, Visit&& visit) {
   const int x0 = std::max<int>(tri.min_x, work.x0), x1 = std::min<int>(tri.max_x, work.x1 - 1);
   const int y0 = std::max<int>(tri.min_y, work.y0), y1 = std::min<int>(tri.max_y, work.y1 - 1);
   if (x0 > x1 || y0 > y1) return;
-  const RenderState& state = *ctx.state;
   const bool less = state.depth_func == DepthFunc::less, lequal = state.depth_func == DepthFunc::lequal;
   // Writes under LESS or LEQUAL only lower stored depth, so a full block tightens its bound; writes under any other
   // function may raise it, so the bound must follow them up.
@@ -192,34 +195,38 @@ template <Shader S>
       }
       const std::uint64_t mask = raster_block_coverage(tri, bx, by, i0, i1, j0, j1);
       if (!mask) continue;
-      for (int qy = 0; qy < kBlockSize; qy += 2) {
-        const std::uint64_t rows = mask >> (qy * kBlockSize);
-        if (!(rows & 0xffff)) continue;
-        for (int qx = 0; qx < kBlockSize; qx += 2) {
-          const unsigned quad = static_cast<unsigned>((rows >> qx) & 3) |
-                                static_cast<unsigned>((rows >> (kBlockSize + qx)) & 3) << 2;
-          if (quad) shade_quad(ctx, tri, work, bx + qx, by + qy, quad);
-        }
-      }
+      visit(bx, by, mask);
       if (writes_depth) {
         const float farthest = std::min(range.farthest + kDepthBoundMargin, 1.0f);
         if (!reject_hidden) bound = std::max(bound, farthest);
-        else if (mask == ~std::uint64_t{0} && !S::may_discard) bound = std::min(bound, farthest);
+        else if (mask == ~std::uint64_t{0} && !kMayDiscard) bound = std::min(bound, farthest);
       }
     }
   }
 }
 
-// The whole per-tile loop, with the shader inlined into it, is compiled twice: for x86-64-v3 (AVX2, FMA, BMI)
-// and for the baseline; the loader picks one per CPU at run time, so one binary runs everywhere.
+// Shades the covered 2x2 quads of one block, one fragment at a time.
 template <Shader S>
-FACET_CPU_DISPATCH("arch=x86-64-v3", "default") void raster_tile(const void* draw, const TileWork& work) {
-  const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
-  for (std::size_t c = 0; c < work.chunk_count; ++c) {
-    const SetupChunk& chunk = work.chunks[c];
-    for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i)
-      raster_triangle(ctx, chunk.triangles[chunk.binned[i]], work);
+[[gnu::always_inline]] inline void shade_block_quads(const ShadeContext<S>& ctx, const TriangleSetup& tri,
+                                                     const TileWork& work, int bx, int by, std::uint64_t mask) {
+  for (int qy = 0; qy < kBlockSize; qy += 2) {
+    const std::uint64_t rows = mask >> (qy * kBlockSize);
+    if (!(rows & 0xffff)) continue;
+    for (int qx = 0; qx < kBlockSize; qx += 2) {
+      const unsigned quad = static_cast<unsigned>((rows >> qx) & 3) |
+                            static_cast<unsigned>((rows >> (kBlockSize + qx)) & 3) << 2;
+      if (quad) shade_quad(ctx, tri, work, bx + qx, by + qy, quad);
+    }
   }
+}
+
+// Immediate shading: every fragment that passes the depth test is shaded as its triangle is drawn.
+template <Shader S>
+[[gnu::always_inline]] inline void raster_triangle(const ShadeContext<S>& ctx, const TriangleSetup& tri,
+                                                   const TileWork& work) {
+  raster_triangle_blocks<S::may_discard>(tri, work, *ctx.state, [&](int bx, int by, std::uint64_t mask) {
+    shade_block_quads(ctx, tri, work, bx, by, mask);
+  });
 }
 
 }  // namespace facet::detail

@@ -1,0 +1,36 @@
+// raster_tile.hpp - the per-tile entry point: deferred or immediate shading, compiled per CPU level.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+#include "facet/detail/dispatch.hpp"
+#include "facet/detail/raster.hpp"
+#include "facet/detail/raster_deferred.hpp"
+
+namespace facet::detail {
+
+// Deferred shading needs a shader without discard and colour writes without blending (see raster_deferred.hpp).
+template <Shader S>
+bool shades_deferred(const RenderState& state) {
+  return !S::may_discard && state.defer_shading && state.color_write && state.blend == BlendMode::none;
+}
+
+// The whole per-tile loop, with coverage, interpolation and the shader inlined into it, is compiled three times:
+// for x86-64-v4 (AVX-512), x86-64-v3 (AVX2, FMA) and the baseline; the loader picks one per CPU at run time, so
+// one binary runs everywhere and the 16-lane shading path uses the widest vectors the CPU has.
+template <Shader S>
+FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default") void raster_tile(const void* draw, const TileWork& work) {
+  const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
+  if (shades_deferred<S>(*ctx.state)) {
+    raster_tile_deferred(ctx, work);
+    return;
+  }
+  for (std::size_t c = 0; c < work.chunk_count; ++c) {
+    const SetupChunk& chunk = work.chunks[c];
+    for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i)
+      raster_triangle(ctx, chunk.triangles[chunk.binned[i]], work);
+  }
+}
+
+}  // namespace facet::detail

@@ -1,0 +1,62 @@
+// fragment_lanes.hpp - the optional 16-lane fragment function: a shader that has one shades a strip at a time.
+#pragma once
+
+#include <array>
+#include <concepts>
+#include <cstddef>
+#include <cstdint>
+
+#include "facet/shader.hpp"
+#include "facet/simd.hpp"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace facet {
+
+// Sixteen fragments of one triangle: the 8x2 strip of pixels (x0 + k % 8, y0 + k / 8) for lane k. Varyings are
+// stored structure-of-arrays, one simd::Float per float of the Varyings struct; read them by member with get().
+// Lanes outside the triangle (or hidden) are computed too, as helper lanes, and their results are discarded.
+template <Interpolatable V>
+struct FragmentLanes {
+  static constexpr std::size_t kFloats = float_count_v<V>;
+  std::array<simd::Float, kFloats> varyings;
+  std::array<simd::Float, kFloats> ddx, ddy;  // coarse, per 2x2 quad; filled only when needs_derivatives
+  simd::Float screen_x, screen_y, depth;     // as Fragment::screen
+  simd::Mask active;                          // the lanes whose colour will be written
+  std::uint32_t primitive = 0;
+  bool front_facing = true;
+
+  // Position of a member within V, in floats. The probe object is folded away by the optimiser.
+  template <class M>
+  static std::size_t float_index(M V::*member) {
+    const V probe{};
+    return static_cast<std::size_t>(reinterpret_cast<const char*>(&(probe.*member)) -
+                                    reinterpret_cast<const char*>(&probe)) / sizeof(float);
+  }
+
+  FACET_LANES_INLINE simd::Float get(float V::*member) const { return varyings[float_index(member)]; }
+  FACET_LANES_INLINE simd::Vec2 get(glm::vec2 V::*member) const {
+    const std::size_t i = float_index(member);
+    return {varyings[i], varyings[i + 1]};
+  }
+  FACET_LANES_INLINE simd::Vec3 get(glm::vec3 V::*member) const {
+    const std::size_t i = float_index(member);
+    return {varyings[i], varyings[i + 1], varyings[i + 2]};
+  }
+};
+
+// A LaneShader is a Shader that also has
+//     simd::Color fragment_lanes(const FragmentLanes<Varyings>&) const;
+// computing, lane for lane, what fragment() computes. The pipeline then shades 16 fragments per call instead of
+// one; fragment() stays the definition (and the path for shaders without a lane version). Lane shading is used
+// only for shaders that cannot discard.
+template <class S>
+concept LaneShader = Shader<S> && !S::may_discard &&
+                     requires(const S& shader, const FragmentLanes<typename S::Varyings>& fragment) {
+                       { shader.fragment_lanes(fragment) } -> std::same_as<simd::Color>;
+                     };
+
+}  // namespace facet
+
+#pragma GCC diagnostic pop

@@ -1,0 +1,116 @@
+// simd.hpp - 16-lane float and int types for shading a strip of fragments at once, and the lane maths shaders use.
+#pragma once
+
+#include <cmath>
+#include <cstdint>
+#include <cstring>
+
+// The lane types are GCC/Clang vector extensions rather than intrinsics: the compiler lowers each operation for
+// the instruction set of the function it ends up in, so the same shader code becomes one AVX-512 instruction in
+// the x86-64-v4 clone of the tile loop, two AVX2 instructions in the v3 clone and four SSE2 instructions in the
+// baseline (see detail/dispatch.hpp). Passing such vectors by value between functions compiled for different
+// ISAs would change the ABI, hence -Wpsabi is silenced here and everything is always inlined.
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+#define FACET_LANES_INLINE [[gnu::always_inline]] inline
+
+namespace facet::simd {
+
+// One strip of an 8x8 block: two rows of eight pixels, i.e. four 2x2 quads. Lane k is pixel (k % 8, k / 8).
+inline constexpr int kLanes = 16;
+
+using Float = float __attribute__((vector_size(kLanes * sizeof(float))));
+using Int = std::int32_t __attribute__((vector_size(kLanes * sizeof(std::int32_t))));
+using UInt = std::uint32_t __attribute__((vector_size(kLanes * sizeof(std::uint32_t))));
+// Comparisons of Float or Int give an Int mask per lane: -1 where true, 0 where false.
+using Mask = Int;
+
+inline constexpr Int kLaneIndex = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
+inline constexpr Int kLaneX = kLaneIndex & 7;
+inline constexpr Int kLaneY = kLaneIndex >> 3;
+inline constexpr Int kLaneBit = (Int{} + 1) << kLaneIndex;  // Int{1} would set lane 0 only
+
+FACET_LANES_INLINE Float splat(float v) { return Float{} + v; }
+FACET_LANES_INLINE Int splat(std::int32_t v) { return Int{} + v; }
+
+FACET_LANES_INLINE Float select(Mask m, Float a, Float b) { return m ? a : b; }
+FACET_LANES_INLINE Int select(Mask m, Int a, Int b) { return m ? a : b; }
+FACET_LANES_INLINE UInt select(Mask m, UInt a, UInt b) { return m ? a : b; }
+// The same NaN behaviour as `a < b ? a : b` in scalar code, which the scalar paths use.
+FACET_LANES_INLINE Float min(Float a, Float b) { return a < b ? a : b; }
+FACET_LANES_INLINE Float max(Float a, Float b) { return a > b ? a : b; }
+// std::clamp's comparisons, so NaN and the bounds behave exactly as in the scalar paths.
+FACET_LANES_INLINE Float clamp(Float v, float lo, float hi) {
+  return select(v < lo, splat(lo), select(hi < v, splat(hi), v));
+}
+
+// A plain loop over the lanes: with -fno-math-errno (set for every facet user) it compiles to one vector sqrt.
+FACET_LANES_INLINE Float sqrt(Float v) {
+  Float r;
+  for (int k = 0; k < kLanes; ++k) r[k] = std::sqrt(v[k]);
+  return r;
+}
+
+FACET_LANES_INLINE Float to_float(Int v) { return __builtin_convertvector(v, Float); }
+FACET_LANES_INLINE Int truncate(Float v) { return __builtin_convertvector(v, Int); }
+
+// Lanes whose bit is set in a 16-bit coverage mask, and back.
+FACET_LANES_INLINE Mask mask_from_bits(unsigned bits) { return (splat(static_cast<std::int32_t>(bits)) & kLaneBit) != 0; }
+FACET_LANES_INLINE unsigned bits_from_mask(Mask m) {
+  unsigned bits = 0;
+  for (int k = 0; k < kLanes; ++k) bits |= static_cast<unsigned>(m[k] & 1) << k;
+  return bits;
+}
+
+template <class V>
+FACET_LANES_INLINE V load(const void* p) {
+  V v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+template <class V>
+FACET_LANES_INLINE void store(void* p, const V& v) {
+  std::memcpy(p, &v, sizeof v);
+}
+
+// Swaps lanes within each 2x2 quad: coarse derivatives are differences between a quad's pixels.
+FACET_LANES_INLINE Float quad_broadcast(Float v, Int pattern) { return __builtin_shuffle(v, pattern); }
+inline constexpr Int kQuadTopLeft = (kLaneIndex & ~9);        // lane of each quad's (0, 0) pixel
+inline constexpr Int kQuadTopRight = (kLaneIndex & ~9) | 1;   // ... (1, 0)
+inline constexpr Int kQuadBottomLeft = (kLaneIndex & ~9) | 8;  // ... (0, 1)
+
+struct Vec2 {
+  Float x, y;
+};
+
+struct Vec3 {
+  Float x, y, z;
+  FACET_LANES_INLINE friend Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
+  FACET_LANES_INLINE friend Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+  FACET_LANES_INLINE friend Vec3 operator*(const Vec3& a, Float s) { return {a.x * s, a.y * s, a.z * s}; }
+  FACET_LANES_INLINE friend Vec3 operator*(Float s, const Vec3& a) { return {s * a.x, s * a.y, s * a.z}; }
+};
+
+FACET_LANES_INLINE Vec3 splat(float x, float y, float z) { return {splat(x), splat(y), splat(z)}; }
+// In glm's order, (x*x + y*y) + z*z, so lane and scalar shaders round alike.
+FACET_LANES_INLINE Float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+FACET_LANES_INLINE Vec3 normalize(const Vec3& v) { return v * (1.0f / sqrt(dot(v, v))); }
+
+// What a lane fragment shader returns: straight (not premultiplied) RGBA in [0, 1].
+struct Color {
+  Float r, g, b, a;
+};
+
+// pack_rgba8 per lane: clamp to [0, 1] (NaN to 0), scale to 255 and round to nearest.
+FACET_LANES_INLINE UInt pack_channel(Float c) {
+  const Float clamped = select(c > 0.0f, select(c < 1.0f, c, splat(1.0f)), splat(0.0f));
+  return __builtin_convertvector(truncate(clamped * 255.0f + 0.5f), UInt);
+}
+FACET_LANES_INLINE UInt pack_rgba8(const Color& c) {
+  return pack_channel(c.r) | pack_channel(c.g) << 8 | pack_channel(c.b) << 16 | pack_channel(c.a) << 24;
+}
+
+}  // namespace facet::simd
+
+#pragma GCC diagnostic pop
