@@ -220,15 +220,21 @@ inline simd::Color Texture::bilinear_repeat_pow2_lanes(const simd::Vec2& uv) con
   split(uv.x * l.fwidth - 0.5f, i, alpha);
   split(uv.y * l.fheight - 0.5f, j, beta);
   const Int first = (j & (l.height - 1)) * l.stride + (i & (l.width - 1));
-  UInt t00, t10, t01, t11;
+  // The texel pairs are gathered with one 8-byte load each through memory, then split into left and right texels
+  // with two shuffles: inserting 64 texels lane by lane would chain 64 dependent instructions.
+  alignas(64) std::uint64_t bottom[kLanes], top[kLanes];
   const std::uint32_t* texels = texels_.data();
   for (int k = 0; k < kLanes; ++k) {
-    const std::uint32_t* p = texels + first[k];
-    t00[k] = p[0];
-    t10[k] = p[1];
-    t01[k] = p[l.stride];
-    t11[k] = p[l.stride + 1];
+    std::memcpy(&bottom[k], texels + first[k], sizeof bottom[k]);
+    std::memcpy(&top[k], texels + first[k] + l.stride, sizeof top[k]);
   }
+  const UInt b0 = load<UInt>(bottom), b1 = load<UInt>(bottom + kLanes / 2);
+  const UInt u0 = load<UInt>(top), u1 = load<UInt>(top + kLanes / 2);
+  // On a little-endian machine the left texel of each pair is the lower 32 bits, i.e. the even lane.
+  constexpr bool little = std::endian::native == std::endian::little;
+  const Int even = kLaneIndex * 2 + (little ? 0 : 1), odd = kLaneIndex * 2 + (little ? 1 : 0);
+  const UInt t00 = __builtin_shuffle(b0, b1, even), t10 = __builtin_shuffle(b0, b1, odd);
+  const UInt t01 = __builtin_shuffle(u0, u1, even), t11 = __builtin_shuffle(u0, u1, odd);
   auto channel = [&](int shift) {
     auto bytes = [&](UInt t) { return to_float(__builtin_convertvector((t >> shift) & 0xffu, Int)); };
     const Float c00 = bytes(t00), c10 = bytes(t10), c01 = bytes(t01), c11 = bytes(t11);

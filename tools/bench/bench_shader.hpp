@@ -5,6 +5,7 @@
 
 #include <glm/glm.hpp>
 
+#include "facet/fragment_lanes.hpp"
 #include "facet/shader.hpp"
 #include "facet/texture.hpp"
 
@@ -74,8 +75,32 @@ struct BenchShader {
     const glm::vec3 color = 0.15f * albedo + diffuse * albedo + glm::vec3(0.4f * spec);
     return {color, 1.0f};
   }
+
+  // fragment() for 16 pixels at once: the same operations in the same order, so both give identical images.
+  FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
+    using namespace simd;
+    const Vec3 normal = f.get(&Varyings::world_normal);
+    const Vec3 n = normal * (1.0f / sqrt(dot(normal, normal)));
+    const Vec3 to_eye = splat(eye.x, eye.y, eye.z) - f.get(&Varyings::world_pos);
+    const Vec3 v = to_eye * (1.0f / sqrt(dot(to_eye, to_eye)));
+    const Vec3 light = splat(light_dir.x, light_dir.y, light_dir.z);
+    const Float n_dot_l = dot(n, light);
+    const Vec3 r = (2.0f * n_dot_l) * n - light;
+    const Color albedo = texture->sample_lanes(f.get(&Varyings::uv), sampler);
+    const Float diffuse = select(n_dot_l > 0.0f, n_dot_l, splat(0.0f));
+    Float spec = dot(r, v);
+    spec = select(spec > 0.0f, spec, splat(0.0f));
+    spec *= spec;
+    spec *= spec;
+    spec *= spec;
+    spec *= spec;
+    spec *= spec;
+    const Float highlight = 0.4f * spec;
+    return {0.15f * albedo.r + diffuse * albedo.r + highlight, 0.15f * albedo.g + diffuse * albedo.g + highlight,
+            0.15f * albedo.b + diffuse * albedo.b + highlight, splat(1.0f)};
+  }
 };
 
-static_assert(Shader<BenchShader>);
+static_assert(LaneShader<BenchShader>);
 
 }  // namespace facet::bench

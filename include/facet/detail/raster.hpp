@@ -224,7 +224,7 @@ template <Shader S>
 template <Shader S>
 [[gnu::always_inline]] inline void raster_triangle(const ShadeContext<S>& ctx, const TriangleSetup& tri,
                                                    const TileWork& work) {
-  raster_triangle_blocks<S::may_discard>(tri, work, *ctx.state, [&](int bx, int by, std::uint64_t mask) {
+  raster_triangle_blocks<S::may_discard>(tri, work, *ctx.state, [&](int bx, int by, std::uint64_t mask) __attribute__((always_inline)) {
     shade_block_quads(ctx, tri, work, bx, by, mask);
   });
 }

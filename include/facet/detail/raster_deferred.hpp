@@ -26,18 +26,20 @@ inline std::size_t scratch_index(int block_x, int block_y) {
   return static_cast<std::size_t>(block_y * (kTileSize / kScratchBlock) + block_x) * kScratchBlock * kScratchBlock;
 }
 
-inline simd::Mask depth_passes(DepthFunc func, simd::Float fragment, simd::Float stored) {
+// Calls body.template operator()<F>() with the state's depth function as a constant, so the per-pixel depth test
+// of the visibility pass has no switch inside its loop.
+template <class Body>
+[[gnu::always_inline]] inline void with_depth_func(DepthFunc func, Body&& body) {
   switch (func) {
-    case DepthFunc::never: return simd::Mask{};
-    case DepthFunc::less: return fragment < stored;
-    case DepthFunc::equal: return fragment == stored;
-    case DepthFunc::lequal: return fragment <= stored;
-    case DepthFunc::greater: return fragment > stored;
-    case DepthFunc::notequal: return fragment != stored;
-    case DepthFunc::gequal: return fragment >= stored;
-    case DepthFunc::always: return simd::splat(-1);
+    case DepthFunc::never: return body.template operator()<DepthFunc::never>();
+    case DepthFunc::less: return body.template operator()<DepthFunc::less>();
+    case DepthFunc::equal: return body.template operator()<DepthFunc::equal>();
+    case DepthFunc::lequal: return body.template operator()<DepthFunc::lequal>();
+    case DepthFunc::greater: return body.template operator()<DepthFunc::greater>();
+    case DepthFunc::notequal: return body.template operator()<DepthFunc::notequal>();
+    case DepthFunc::gequal: return body.template operator()<DepthFunc::gequal>();
+    case DepthFunc::always: return body.template operator()<DepthFunc::always>();
   }
-  return simd::Mask{};
 }
 
 // A plane at the 16 pixel centres of the strip whose top-left pixel is (px, py): the same float operations, in the
@@ -53,27 +55,54 @@ struct StripCentres {
 };
 
 // Visibility pass, one block: the depth test of the covered pixels against the tile's local depth, and the
-// triangle reference of those that pass.
+// triangle reference of those that pass. Written as plain loops over the 16 pixels of a strip rather than with
+// the lane types: the loop vectoriser runs after inlining, inside each dispatch clone, and so emits that clone's
+// mask instructions, where GCC 12 lowers some lane-type idioms (broadcasts, -1/0 masks) element by element.
+template <DepthFunc kFunc, bool kDepthTest>
 [[gnu::always_inline]] inline void raster_block_visibility(const TriangleSetup& tri, const RenderState& state,
                                                            const TileWork& work, int bx, int by, std::uint64_t mask,
                                                            std::uint32_t ref) {
   const std::size_t block = scratch_index((bx - work.x0) / kScratchBlock, (by - work.y0) / kScratchBlock);
-  float* depth = work.scratch->depth + block;
-  std::uint32_t* triangle = work.scratch->triangle + block;
+  const bool depth_write = state.depth_write;
+  const float offset = state.depth_offset;
   for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
     const unsigned bits = static_cast<unsigned>(mask >> (strip * simd::kLanes)) & 0xffffu;
     if (!bits) continue;
-    simd::Mask pass = simd::mask_from_bits(bits);
-    const std::size_t at = static_cast<std::size_t>(strip) * simd::kLanes;
-    if (state.depth_test) {
-      const StripCentres centres(tri, bx, by + 2 * strip);
-      const simd::Float z = simd::clamp(centres.evaluate(tri.depth) + state.depth_offset, 0.0f, 1.0f);
-      const simd::Float stored = simd::load<simd::Float>(depth + at);
-      pass &= depth_passes(state.depth_func, z, stored);
-      if (state.depth_write) simd::store(depth + at, simd::select(pass, z, stored));
+    float* depth = work.scratch->depth + block + static_cast<std::size_t>(strip) * simd::kLanes;
+    std::uint32_t* triangle = work.scratch->triangle + block + static_cast<std::size_t>(strip) * simd::kLanes;
+    const int py = by + 2 * strip;
+    // Branch-free, so that the loop vectorises: bitwise &, selects, and stores of the old value where nothing passes.
+    const auto lane_pass = [&](int k, float& z) __attribute__((always_inline)) {
+      const unsigned covered = (bits >> k) & 1u;
+      if constexpr (!kDepthTest) return covered;
+      const float dx = static_cast<float>(bx + (k & 7)) + 0.5f - tri.origin_x;
+      const float dy = static_cast<float>(py + (k >> 3)) + 0.5f - tri.origin_y;
+      z = evaluate(tri.depth, dx, dy) + offset;
+      z = z < 0.0f ? 0.0f : (1.0f < z ? 1.0f : z);  // std::clamp(z, 0, 1), NaN kept, as shade_quad
+      const float stored = depth[k];
+      unsigned passes = 0;
+      if constexpr (kFunc == DepthFunc::less) passes = z < stored;
+      else if constexpr (kFunc == DepthFunc::equal) passes = z == stored;
+      else if constexpr (kFunc == DepthFunc::lequal) passes = z <= stored;
+      else if constexpr (kFunc == DepthFunc::greater) passes = z > stored;
+      else if constexpr (kFunc == DepthFunc::notequal) passes = z != stored;
+      else if constexpr (kFunc == DepthFunc::gequal) passes = z >= stored;
+      else if constexpr (kFunc == DepthFunc::always) passes = 1;
+      return covered & passes;
+    };
+    if (kDepthTest && depth_write) {
+      for (int k = 0; k < simd::kLanes; ++k) {
+        float z = 0.0f;
+        const unsigned pass = lane_pass(k, z);
+        depth[k] = pass ? z : depth[k];
+        triangle[k] = pass ? ref : triangle[k];
+      }
+    } else {
+      for (int k = 0; k < simd::kLanes; ++k) {
+        float z = 0.0f;
+        triangle[k] = lane_pass(k, z) ? ref : triangle[k];
+      }
     }
-    const simd::UInt previous = simd::load<simd::UInt>(triangle + at);
-    simd::store(triangle + at, simd::select(pass, simd::UInt{} + ref, previous));
   }
 }
 
@@ -128,17 +157,28 @@ template <LaneShader S>
   store_strip(work, px, py, bits, pack_rgba8(ctx.shader->fragment_lanes(fragment)));
 }
 
-// Shading pass, the pixels of one block that `tri` drew last.
+// Shading pass, the pixels of one strip that `tri` drew last.
 template <Shader S>
-[[gnu::always_inline]] inline void shade_block_deferred(const ShadeContext<S>& ctx, const TriangleSetup& tri,
-                                                        const TileWork& work, int bx, int by, std::uint64_t mask) {
-  if constexpr (LaneShader<S>) {
-    for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
-      const unsigned bits = static_cast<unsigned>(mask >> (strip * simd::kLanes)) & 0xffffu;
-      if (bits) shade_strip_lanes(ctx, tri, work, bx, by + 2 * strip, bits);
+[[gnu::always_inline]] inline void shade_strip_deferred(const ShadeContext<S>& ctx, const TriangleSetup& tri,
+                                                        const TileWork& work, int px, int py, unsigned bits) {
+  if constexpr (LaneShader<S>) shade_strip_lanes(ctx, tri, work, px, py, bits);
+  else shade_block_quads(ctx, tri, work, px, py, std::uint64_t{bits});  // ctx's state has the depth test off
+}
+
+// Visibility pass of one tile: coverage and depth of all its triangles, in draw order.
+template <DepthFunc kFunc, bool kDepthTest>
+[[gnu::always_inline]] inline void raster_tile_visibility(const RenderState& state, const TileWork& work) {
+  for (std::size_t c = 0; c < work.chunk_count; ++c) {
+    const SetupChunk& chunk = work.chunks[c];
+    for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i) {
+      const std::uint32_t index = chunk.binned[i];
+      const TriangleSetup& tri = chunk.triangles[index];
+      const std::uint32_t ref = triangle_ref(c, index);
+      raster_triangle_blocks<false>(
+          tri, work, state, [&](int bx, int by, std::uint64_t mask) __attribute__((always_inline)) {
+            raster_block_visibility<kFunc, kDepthTest>(tri, state, work, bx, by, mask, ref);
+          });
     }
-  } else {
-    shade_block_quads(ctx, tri, work, bx, by, mask);  // ctx's state has the depth test off: it is resolved
   }
 }
 
@@ -162,35 +202,30 @@ template <Shader S>
   }
   std::fill_n(scratch.triangle, kTileSize * kTileSize, kNoTriangle);
 
-  for (std::size_t c = 0; c < work.chunk_count; ++c) {
-    const SetupChunk& chunk = work.chunks[c];
-    for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i) {
-      const std::uint32_t index = chunk.binned[i];
-      const TriangleSetup& tri = chunk.triangles[index];
-      const std::uint32_t ref = triangle_ref(c, index);
-      raster_triangle_blocks<false>(tri, work, state, [&](int bx, int by, std::uint64_t mask) {
-        raster_block_visibility(tri, state, work, bx, by, mask, ref);
-      });
-    }
-  }
+  with_depth_func(state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
+    if (state.depth_test) raster_tile_visibility<kFunc, true>(state, work);
+    else raster_tile_visibility<kFunc, false>(state, work);
+  });
 
   RenderState resolved = state;
   resolved.depth_test = false;
   const ShadeContext<S> shade{ctx.shader, ctx.varyings, &resolved};
+  // Each strip is shaded once per triangle that drew some of its pixels last.
   for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
-    for (int block_x = 0; block_x * kScratchBlock < width; ++block_x) {
-      const std::uint32_t* triangle = scratch.triangle + scratch_index(block_x, block_y);
-      std::uint64_t pending = 0;
-      for (int k = 0; k < 64; ++k) pending |= std::uint64_t{triangle[k] != kNoTriangle} << k;
-      while (pending) {
-        const std::uint32_t ref = triangle[std::countr_zero(pending)];
-        std::uint64_t same = 0;
-        for (int k = 0; k < 64; ++k) same |= std::uint64_t{triangle[k] == ref} << k;
-        pending &= ~same;
-        const TriangleSetup& tri = work.chunks[ref >> kTriangleIndexBits].triangles[ref & ((1u << kTriangleIndexBits) - 1)];
-        shade_block_deferred(shade, tri, work, work.x0 + block_x * kScratchBlock, work.y0 + block_y * kScratchBlock, same);
+    for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
+      for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
+        const simd::UInt refs =
+            simd::load<simd::UInt>(scratch.triangle + scratch_index(block_x, block_y) + strip * simd::kLanes);
+        for (unsigned pending = simd::bits_from_mask(refs != kNoTriangle); pending;) {
+          const std::uint32_t ref = refs[std::countr_zero(pending)];
+          const unsigned same = simd::bits_from_mask(refs == ref);
+          pending &= ~same;
+          const TriangleSetup& tri =
+              work.chunks[ref >> kTriangleIndexBits].triangles[ref & ((1u << kTriangleIndexBits) - 1)];
+          shade_strip_deferred(shade, tri, work, work.x0 + block_x * kScratchBlock,
+                               work.y0 + block_y * kScratchBlock + 2 * strip, same);
+        }
       }
-    }
 
   if (work.depth_cleared || (state.depth_test && state.depth_write)) {
     for (int y = 0; y < height; ++y)
