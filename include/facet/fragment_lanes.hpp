@@ -14,9 +14,10 @@
 
 namespace facet {
 
-// Sixteen fragments of one triangle: the 8x2 strip of pixels (x0 + k % 8, y0 + k / 8) for lane k. Varyings are
+// Sixteen fragments: the 8x2 strip of pixels (x0 + k % 8, y0 + k / 8) for lane k. Varyings are
 // stored structure-of-arrays, one simd::Float per float of the Varyings struct; read them by member with get().
-// Lanes outside the triangle (or hidden) are computed too, as helper lanes, and their results are discarded.
+// Each lane holds the triangle that is visible there; lanes where none is (see active) hold another of the
+// strip's triangles, as helper lanes, and their results are discarded.
 template <Interpolatable V>
 struct FragmentLanes {
   static constexpr std::size_t kFloats = float_count_v<V>;
@@ -24,8 +25,9 @@ struct FragmentLanes {
   std::array<simd::Float, kFloats> ddx, ddy;  // coarse, per 2x2 quad; filled only when needs_derivatives
   simd::Float screen_x, screen_y, depth;     // as Fragment::screen
   simd::Mask active;                          // the lanes whose colour will be written
-  std::uint32_t primitive = 0;
-  bool front_facing = true;
+  // Per lane, as Fragment's: the lanes of one strip may come from different triangles.
+  simd::UInt primitive;
+  simd::Mask front_facing;                    // -1 where front-facing
 
   // Position of a member within V, in floats. The probe object is folded away by the optimiser.
   template <class M>

@@ -42,18 +42,6 @@ template <class Body>
   }
 }
 
-// A plane at the 16 pixel centres of the strip whose top-left pixel is (px, py): the same float operations, in the
-// same order, as evaluate() and shade_quad's per-pixel offsets, so lanes and scalar code agree bit for bit.
-struct StripCentres {
-  simd::Float x, y, dx, dy;
-  StripCentres(const TriangleSetup& tri, int px, int py)
-      : x(simd::to_float(simd::kLaneX + px) + 0.5f),
-        y(simd::to_float(simd::kLaneY + py) + 0.5f),
-        dx(x - tri.origin_x),
-        dy(y - tri.origin_y) {}
-  FACET_LANES_INLINE simd::Float evaluate(const Plane& p) const { return simd::splat(p.at_origin) + p.ddx * dx + p.ddy * dy; }
-};
-
 // Visibility pass, one block: the depth test of the covered pixels against the tile's local depth, and the
 // triangle reference of those that pass. Written as plain loops over the 16 pixels of a strip rather than with
 // the lane types: the loop vectoriser runs after inlining, inside each dispatch clone, and so emits that clone's
@@ -125,44 +113,65 @@ template <DepthFunc kFunc, bool kDepthTest>
   }
 }
 
-// Shading pass, one strip of a LaneShader: perspective-correct varyings for 16 pixels, one fragment_lanes call.
+// The bits of the lanes of a strip whose triangle reference is `ref` (a loop, vectorised in the clone's ISA).
+[[gnu::always_inline]] inline unsigned strip_lanes_equal(const std::uint32_t* refs, std::uint32_t ref) {
+  unsigned bits = 0;
+  for (int k = 0; k < simd::kLanes; ++k) bits |= static_cast<unsigned>(refs[k] == ref) << k;
+  return bits;
+}
+
+inline const TriangleSetup& triangle_at(const TileWork& work, std::uint32_t ref) {
+  return work.chunks[ref >> kTriangleIndexBits].triangles[ref & ((1u << kTriangleIndexBits) - 1)];
+}
+
+// Shading pass, one strip of a LaneShader: one fragment_lanes call for all 16 pixels, whichever triangles drew
+// them. Each triangle of the strip interpolates its varyings at all 16 centres, exactly as shade_quad would (its
+// quads' helper pixels included, so derivatives are its own), and its lanes take those values. Dense meshes put
+// several triangles in most strips; shading them together costs one interpolation each and one shader call.
 template <LaneShader S>
-[[gnu::always_inline]] inline void shade_strip_lanes(const ShadeContext<S>& ctx, const TriangleSetup& tri,
-                                                     const TileWork& work, int px, int py, unsigned bits) {
+[[gnu::always_inline]] inline void shade_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px, int py,
+                                                     const std::uint32_t* refs, unsigned covered) {
   using namespace simd;
   using Varyings = typename S::Varyings;
   constexpr std::size_t kFloats = float_count_v<Varyings>;
-  const StripCentres centres(tri, px, py);
   FragmentLanes<Varyings> fragment;
-  fragment.screen_x = centres.x;
-  fragment.screen_y = centres.y;
-  fragment.depth = clamp(centres.evaluate(tri.depth) + ctx.state->depth_offset, 0.0f, 1.0f);
-  fragment.active = mask_from_bits(bits);
-  fragment.primitive = tri.primitive;
-  fragment.front_facing = tri.front_facing;
-  const Float w = 1.0f / centres.evaluate(tri.inv_w);
-  const Float b1 = centres.evaluate(tri.b1_over_w) * w, b2 = centres.evaluate(tri.b2_over_w) * w;
-  const float* v0 = ctx.varyings + std::size_t{tri.vertex[0]} * kFloats;
-  const float* v1 = ctx.varyings + std::size_t{tri.vertex[1]} * kFloats;
-  const float* v2 = ctx.varyings + std::size_t{tri.vertex[2]} * kFloats;
-  for (std::size_t f = 0; f < kFloats; ++f) {
-    const Float value = v0[f] + b1 * (v1[f] - v0[f]) + b2 * (v2[f] - v0[f]);
-    fragment.varyings[f] = value;
-    if constexpr (needs_derivatives<S>()) {
-      const Float origin = quad_broadcast(value, kQuadTopLeft);
-      fragment.ddx[f] = quad_broadcast(value, kQuadTopRight) - origin;
-      fragment.ddy[f] = quad_broadcast(value, kQuadBottomLeft) - origin;
+  fragment.screen_x = to_float(kLaneX + px) + 0.5f;
+  fragment.screen_y = to_float(kLaneY + py) + 0.5f;
+  const float offset = ctx.state->depth_offset;
+  for (unsigned pending = covered, first = 1; pending; first = 0) {
+    const std::uint32_t ref = refs[std::countr_zero(pending)];
+    const unsigned same = strip_lanes_equal(refs, ref);
+    pending &= ~same;
+    const TriangleSetup& tri = triangle_at(work, ref);
+    // The lanes this triangle fills: its own, and every lane for the first one, so that none is left unset.
+    const Mask mine = first ? ~Mask{} : mask_from_bits(same);
+    const auto take = [&](auto value, auto previous) __attribute__((always_inline)) {
+      return first ? value : blend(mine, value, previous);
+    };
+    const Float dx = fragment.screen_x - tri.origin_x, dy = fragment.screen_y - tri.origin_y;
+    const auto at = [&](const Plane& p) __attribute__((always_inline)) { return p.at_origin + p.ddx * dx + p.ddy * dy; };
+    fragment.depth = take(clamp(at(tri.depth) + offset, 0.0f, 1.0f), fragment.depth);
+    fragment.primitive = take(UInt{} | tri.primitive, fragment.primitive);
+    fragment.front_facing = take(Mask{} | (tri.front_facing ? -1 : 0), fragment.front_facing);
+    // Perspective-correct weights of the source vertices: b/w and 1/w are linear in screen space.
+    const Float w = 1.0f / at(tri.inv_w);
+    const Float b1 = at(tri.b1_over_w) * w, b2 = at(tri.b2_over_w) * w;
+    const float* v0 = ctx.varyings + std::size_t{tri.vertex[0]} * kFloats;
+    const float* v1 = ctx.varyings + std::size_t{tri.vertex[1]} * kFloats;
+    const float* v2 = ctx.varyings + std::size_t{tri.vertex[2]} * kFloats;
+    for (std::size_t f = 0; f < kFloats; ++f) {
+      const Float value = v0[f] + b1 * (v1[f] - v0[f]) + b2 * (v2[f] - v0[f]);
+      fragment.varyings[f] = take(value, fragment.varyings[f]);
+      if constexpr (needs_derivatives<S>()) {
+        // Coarse derivatives: within each 2x2 quad, right minus left and bottom minus top of the top-left pixel.
+        const Float origin = quad_broadcast(value, kQuadTopLeft);
+        fragment.ddx[f] = take(quad_broadcast(value, kQuadTopRight) - origin, fragment.ddx[f]);
+        fragment.ddy[f] = take(quad_broadcast(value, kQuadBottomLeft) - origin, fragment.ddy[f]);
+      }
     }
   }
-  store_strip(work, px, py, bits, pack_rgba8(ctx.shader->fragment_lanes(fragment)));
-}
-
-// Shading pass, the pixels of one strip that `tri` drew last.
-template <Shader S>
-[[gnu::always_inline]] inline void shade_strip_deferred(const ShadeContext<S>& ctx, const TriangleSetup& tri,
-                                                        const TileWork& work, int px, int py, unsigned bits) {
-  if constexpr (LaneShader<S>) shade_strip_lanes(ctx, tri, work, px, py, bits);
-  else shade_block_quads(ctx, tri, work, px, py, std::uint64_t{bits});  // ctx's state has the depth test off
+  fragment.active = mask_from_bits(covered);
+  store_strip(work, px, py, covered, pack_rgba8(ctx.shader->fragment_lanes(fragment)));
 }
 
 // Visibility pass of one tile: coverage and depth of all its triangles, in draw order.
@@ -210,20 +219,23 @@ template <Shader S>
   RenderState resolved = state;
   resolved.depth_test = false;
   const ShadeContext<S> shade{ctx.shader, ctx.varyings, &resolved};
-  // Each strip is shaded once per triangle that drew some of its pixels last.
   for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
     for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
       for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
-        const simd::UInt refs =
-            simd::load<simd::UInt>(scratch.triangle + scratch_index(block_x, block_y) + strip * simd::kLanes);
-        for (unsigned pending = simd::bits_from_mask(refs != kNoTriangle); pending;) {
-          const std::uint32_t ref = refs[std::countr_zero(pending)];
-          const unsigned same = simd::bits_from_mask(refs == ref);
-          pending &= ~same;
-          const TriangleSetup& tri =
-              work.chunks[ref >> kTriangleIndexBits].triangles[ref & ((1u << kTriangleIndexBits) - 1)];
-          shade_strip_deferred(shade, tri, work, work.x0 + block_x * kScratchBlock,
-                               work.y0 + block_y * kScratchBlock + 2 * strip, same);
+        const std::uint32_t* refs = scratch.triangle + scratch_index(block_x, block_y) + strip * simd::kLanes;
+        const unsigned covered = ~strip_lanes_equal(refs, kNoTriangle) & 0xffffu;
+        if (!covered) continue;
+        const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
+        if constexpr (LaneShader<S>) {
+          shade_strip_lanes(shade, work, px, py, refs, covered);
+        } else {
+          // One triangle at a time, a quad at a time; ctx's state has the depth test off: it is resolved.
+          for (unsigned pending = covered; pending;) {
+            const std::uint32_t ref = refs[std::countr_zero(pending)];
+            const unsigned same = strip_lanes_equal(refs, ref);
+            pending &= ~same;
+            shade_block_quads(shade, triangle_at(work, ref), work, px, py, std::uint64_t{same});
+          }
         }
       }
 
