@@ -3,33 +3,206 @@
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
+#include <random>
+
+#include "bench/bench_shader.hpp"
+#include "facet/fragment_lanes.hpp"
 #include "support/draw_helpers.hpp"
 
 namespace facet::test {
 namespace {
 
-Framebuffer render(const ClipMesh& m, int width, int height, RenderState state, bool deferred, int threads) {
-  state.defer_shading = deferred;
-  return render_colors(m, width, height, state, threads);
-}
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
 
-void expect_same(const Framebuffer& a, const Framebuffer& b) {
-  ASSERT_EQ(a.color().size(), b.color().size());
-  std::size_t colour_diffs = 0, depth_diffs = 0, first = a.color().size();
-  for (std::size_t i = 0; i < a.color().size(); ++i) {
-    if (a.color()[i] != b.color()[i]) colour_diffs++, first = std::min(first, i);
-    if (a.depth()[i] != b.depth()[i]) depth_diffs++, first = std::min(first, i);
+// A shader whose colour depends on everything a fragment carries: varyings, their derivatives (when kDerivatives),
+// window depth, pixel position, primitive index and facing. With kLanes it also has fragment_lanes, the same
+// function on 16 lanes, so deferred shading takes its lane path.
+template <bool kLanes, bool kDerivatives>
+struct ProbeShader {
+  using Vertex = ColorShader::Vertex;
+  struct Varyings {
+    glm::vec3 color;
+    float u;
+  };
+  static constexpr bool may_discard = false;
+  static constexpr bool needs_derivatives = kDerivatives;
+
+  VertexOut<Varyings> vertex(const Vertex& v) const { return {v.clip, {v.color, v.clip.x * 3.0f}}; }
+
+  glm::vec4 fragment(const Fragment<Varyings>& f) const {
+    float r = f.varyings.color.r, g = f.varyings.color.g;
+    if constexpr (kDerivatives) {
+      r += 40.0f * f.ddx.u;
+      g += 40.0f * f.ddy.color.g;
+    }
+    const float b = 0.5f * f.screen.z + 0.25f * static_cast<float>(f.primitive % 3) +
+                    (f.front_facing ? 0.0f : 0.125f) + 0.001f * f.screen.x - 0.001f * f.screen.y;
+    return {r, g, b, 1.0f};
   }
-  EXPECT_EQ(colour_diffs, 0u) << "first differing pixel " << first % a.width() << "," << first / a.width();
-  EXPECT_EQ(depth_diffs, 0u) << "first differing pixel " << first % a.width() << "," << first / a.width();
+
+  simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const
+    requires kLanes
+  {
+    using namespace simd;
+    const Vec3 color = f.get(&Varyings::color);
+    Float r = color.x, g = color.y;
+    if constexpr (kDerivatives) {
+      r += 40.0f * f.ddx[3];
+      g += 40.0f * f.ddy[1];
+    }
+    const Float third = to_float(reinterpret_cast<Int>(f.primitive % 3u));
+    const Float b = 0.5f * f.depth + 0.25f * third + blend(f.front_facing, splat(0.0f), splat(0.125f)) +
+                    0.001f * f.screen_x - 0.001f * f.screen_y;
+    return {r, g, b, splat(1.0f)};
+  }
+};
+
+#pragma GCC diagnostic pop
+
+static_assert(LaneShader<ProbeShader<true, false>> && LaneShader<ProbeShader<true, true>>);
+static_assert(!LaneShader<ProbeShader<false, false>>);
+
+struct Draw {
+  ClipMesh mesh;
+  RenderState state;
+};
+
+template <class S>
+Framebuffer render(const std::vector<Draw>& draws, int width, int height, bool deferred, int threads,
+                   float clear_depth = 1.0f) {
+  Framebuffer fb(width, height);
+  Renderer renderer(threads);
+  renderer.clear(fb, glm::vec4(0.1f, 0.1f, 0.15f, 1.0f), clear_depth);
+  const S shader;
+  for (const Draw& d : draws) {
+    const std::vector<ColorShader::Vertex> vertices = color_vertices(d.mesh);
+    RenderState state = d.state;
+    state.defer_shading = deferred;
+    renderer.draw(fb, shader, std::span<const ColorShader::Vertex>(vertices), d.mesh.indices, state);
+  }
+  renderer.finish(fb);
+  return fb;
 }
 
-TEST(DeferredShading, SphereMatchesImmediateBitForBit) {
-  const glm::mat4 clip_from_object = glm::perspective(glm::radians(50.0f), 4.0f / 3.0f, 0.5f, 10.0f) *
-                                     glm::translate(glm::mat4(1), glm::vec3(0.2f, -0.1f, -3.0f));
-  const ClipMesh sphere = closed_sphere(24, 32, clip_from_object);
-  RenderState state;
-  for (const int threads : {1, 3}) expect_same(render(sphere, 203, 150, state, false, threads), render(sphere, 203, 150, state, true, threads));
+void expect_same(const Framebuffer& expected, const Framebuffer& actual, const char* what) {
+  ASSERT_EQ(expected.color().size(), actual.color().size());
+  std::size_t colour_diffs = 0, depth_diffs = 0, first = expected.color().size();
+  for (std::size_t i = 0; i < expected.color().size(); ++i) {
+    const bool colour = expected.color()[i] != actual.color()[i];
+    const bool depth = std::bit_cast<std::uint32_t>(expected.depth()[i]) != std::bit_cast<std::uint32_t>(actual.depth()[i]);
+    colour_diffs += colour;
+    depth_diffs += depth;
+    if ((colour || depth) && i < first) first = i;
+  }
+  EXPECT_EQ(colour_diffs, 0u) << what << ": first differing pixel " << first % expected.width() << ","
+                              << first / expected.width();
+  EXPECT_EQ(depth_diffs, 0u) << what << ": first differing pixel " << first % expected.width() << ","
+                             << first / expected.width();
+}
+
+// Immediate shading with the scalar fragment is the definition; deferred shading must match it bit for bit with
+// the scalar fragment (one triangle at a time) and with the lane fragment (all of a strip's triangles at once).
+template <bool kDerivatives>
+void expect_deferred_matches(const std::vector<Draw>& draws, int width, int height, float clear_depth = 1.0f) {
+  const Framebuffer expected = render<ProbeShader<true, kDerivatives>>(draws, width, height, false, 1, clear_depth);
+  for (const int threads : {1, 3}) {
+    expect_same(expected, render<ProbeShader<false, kDerivatives>>(draws, width, height, true, threads, clear_depth),
+                "deferred, scalar fragment");
+    expect_same(expected, render<ProbeShader<true, kDerivatives>>(draws, width, height, true, threads, clear_depth),
+                "deferred, lane fragment");
+  }
+}
+
+glm::mat4 camera(glm::vec3 offset) {
+  return glm::perspective(glm::radians(50.0f), 4.0f / 3.0f, 0.5f, 10.0f) * glm::translate(glm::mat4(1), offset);
+}
+
+TEST(DeferredShading, DenseSphereMatchesImmediate) {
+  // 1 to 30 pixels per triangle: most strips hold several triangles. 203x150 leaves partial tiles and blocks.
+  const std::vector<Draw> draws{{closed_sphere(40, 64, camera({0.2f, -0.1f, -3.0f})), RenderState{}}};
+  expect_deferred_matches<false>(draws, 203, 150);
+  expect_deferred_matches<true>(draws, 203, 150);
+}
+
+TEST(DeferredShading, SeveralDrawsAndDepthFunctionsMatchImmediate) {
+  RenderState no_cull;
+  no_cull.cull = CullMode::none;  // back faces show: front_facing varies
+  RenderState lequal = no_cull;
+  lequal.depth_func = DepthFunc::lequal;
+  RenderState no_write = no_cull;
+  no_write.depth_write = false;
+  const std::vector<Draw> draws{{closed_sphere(12, 16, camera({-0.4f, 0.0f, -2.5f})), no_cull},
+                                {triangle_soup(60, 7), lequal},
+                                {jittered_grid(9, 7, 3, true), no_write},
+                                {closed_sphere(20, 24, camera({0.5f, 0.3f, -3.5f})), lequal}};
+  expect_deferred_matches<true>(draws, 190, 133);
+
+  // Reversed depth: cleared to 0, GREATER keeps the farthest.
+  std::vector<Draw> reversed = draws;
+  for (Draw& d : reversed) d.state.depth_func = DepthFunc::greater;
+  expect_deferred_matches<false>(reversed, 190, 133, 0.0f);
+}
+
+TEST(DeferredShading, WithoutDepthTestTheLastDrawnTriangleWins) {
+  RenderState painter = no_depth_no_cull();
+  const std::vector<Draw> draws{{triangle_soup(80, 11), painter}, {jittered_grid(5, 4, 9, false), painter}};
+  expect_deferred_matches<true>(draws, 160, 120);
+}
+
+// The benchmark shader without its lane function: the scalar definition of the same picture.
+struct ScalarBenchShader {
+  using Vertex = bench::BenchShader::Vertex;
+  using Varyings = bench::BenchShader::Varyings;
+  static constexpr bool may_discard = false;
+  bench::BenchShader inner;
+  VertexOut<Varyings> vertex(const Vertex& v) const { return inner.vertex(v); }
+  glm::vec4 fragment(const Fragment<Varyings>& f) const { return inner.fragment(f); }
+};
+
+TEST(DeferredShading, BenchShaderLanesMatchItsScalarFragment) {
+  std::vector<bench::BenchVertex> vertices;
+  std::vector<std::uint32_t> indices;
+  const int n = 48;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const float theta = 3.14159265f * i / n, phi = 6.2831853f * j / n;
+      const glm::vec3 p(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+      vertices.push_back({p, p, {2.0f * j / n, 1.0f - static_cast<float>(i) / n}});  // u wraps once: repeat
+    }
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const auto at = [&](int a, int b) { return static_cast<std::uint32_t>(a * (n + 1) + b); };
+      indices.insert(indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)});
+    }
+  std::mt19937 rng(5);
+  std::vector<std::uint32_t> texels(64 * 64);
+  for (std::uint32_t& t : texels) t = static_cast<std::uint32_t>(rng());
+  const Texture texture(64, 64, std::move(texels));
+
+  bench::BenchShader lanes;
+  lanes.texture = &texture;
+  lanes.set_model(glm::rotate(glm::mat4(1), 0.7f, glm::vec3(0.3f, 1.0f, 0.1f)));
+  lanes.clip_from_world = glm::perspective(glm::radians(45.0f), 1.5f, 0.1f, 10.0f) *
+                          glm::lookAt(lanes.eye, glm::vec3(0.0f), glm::vec3(0, 1, 0));
+  const ScalarBenchShader scalar{lanes};
+  const auto draw = [&](const auto& shader, bool deferred) {
+    Framebuffer fb(241, 160);
+    Renderer renderer(2);
+    renderer.clear(fb);
+    RenderState state;
+    state.defer_shading = deferred;
+    renderer.draw(fb, shader, std::span<const bench::BenchVertex>(vertices), indices, state);
+    renderer.finish(fb);
+    return fb;
+  };
+  const Framebuffer expected = draw(scalar, false);
+  const auto drawn = std::count_if(expected.depth().begin(), expected.depth().end(), [](float z) { return z < 1.0f; });
+  ASSERT_GT(drawn, 241 * 160 / 4);  // the sphere fills a good part of the frame
+  expect_same(expected, draw(scalar, true), "deferred, scalar fragment");
+  expect_same(expected, draw(lanes, true), "deferred, lane fragment");
+  expect_same(expected, draw(lanes, false), "immediate, lane shader's scalar fragment");
 }
 
 }  // namespace
