@@ -65,6 +65,10 @@ class Framebuffer {
   // of the pending clear and, if depth was to be cleared too, resets the tile's depth bounds and returns true with
   // the clear depth in `depth_value`, leaving the depth writes to the caller. Only the tile's owner calls it.
   bool resolve_clear_except_depth(int tile_index, float& depth_value);
+  // Applies the pending clear to every tile of one row of tiles that still needs it. When all of them do (the
+  // common case at finish() after an empty or sparse frame), the row's pixels are contiguous in memory and are
+  // filled in one pass, near memset speed. Only the owner of that row of tiles calls it.
+  void resolve_clear_tile_row(int tile_row);
   void resolve_all_clears();
 
   // For the rasterizer. Hierarchical depth: one upper bound on the stored depth per 8x8 block (row-major over

@@ -4,6 +4,7 @@
 #include "facet/detail/dispatch.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -29,6 +30,16 @@ void fill_color(std::uint32_t* first, std::size_t stride, int rows, int columns,
 FACET_CPU_DISPATCH("avx512f", "avx2", "default")
 void fill_depth(float* first, std::size_t stride, int rows, int columns, float value) {
   fill_rect(first, stride, rows, columns, value);
+}
+
+// A contiguous fill of 32-bit values. On x86-64 `rep stosd` uses the CPU's fast-string path, which writes whole
+// cache lines without reading them first; vector stores would read each line in before overwriting it.
+void fill_words(void* first, std::size_t count, std::uint32_t value) {
+#if defined(__x86_64__) && !defined(FACET_NO_DISPATCH)
+  asm volatile("rep stosl" : "+D"(first), "+c"(count) : "a"(value) : "memory");
+#else
+  std::fill_n(static_cast<std::uint32_t*>(first), count, value);
+#endif
 }
 
 }  // namespace
@@ -92,6 +103,25 @@ void Framebuffer::reset_depth_bounds(int tile_index, float value) {
   const int x0 = (tile_index % tiles_x_) * kTileSize, y0 = (tile_index / tiles_x_) * kTileSize;
   for (int by = y0 / 8; by < y0 / 8 + kTileSize / 8; ++by)
     std::fill_n(block_max_depth_.begin() + static_cast<std::ptrdiff_t>(by) * blocks_x_ + x0 / 8, kTileSize / 8, value);
+}
+
+void Framebuffer::resolve_clear_tile_row(int tile_row) {
+  const int first = tile_row * tiles_x_;
+  const bool whole_row = std::all_of(tile_needs_clear_.begin() + first, tile_needs_clear_.begin() + first + tiles_x_,
+                                     [](std::uint8_t pending) { return pending != 0; });
+  if (!whole_row) {
+    for (int t = first; t < first + tiles_x_; ++t) resolve_clear(t);
+    return;
+  }
+  const int y0 = tile_row * kTileSize, rows = std::min(kTileSize, height_ - y0);
+  const std::size_t offset = static_cast<std::size_t>(y0) * width_, count = static_cast<std::size_t>(rows) * width_;
+  // One "row" of rows * width pixels: contiguous, so the fill runs without a stride.
+  if (pending_.color) fill_words(color_.data() + offset, count, pending_.color_value);
+  if (pending_.depth) fill_words(depth_.data() + offset, count, std::bit_cast<std::uint32_t>(pending_.depth_value));
+  for (int t = first; t < first + tiles_x_; ++t) {
+    tile_needs_clear_[t] = 0;
+    if (pending_.depth) reset_depth_bounds(t, pending_.depth_value);
+  }
 }
 
 void Framebuffer::resolve_all_clears() {

@@ -24,8 +24,8 @@ Renderer::~Renderer() = default;
 void Renderer::clear(Framebuffer& target, glm::vec4 color, float depth) { target.request_clear(color, depth); }
 
 void Renderer::finish(Framebuffer& target) {
-  pool_.parallel_for(static_cast<std::size_t>(target.tiles_x()) * target.tiles_y(),
-                     [&](std::size_t tile, int) { target.resolve_clear(static_cast<int>(tile)); });
+  pool_.parallel_for(static_cast<std::size_t>(target.tiles_y()),
+                     [&](std::size_t row, int) { target.resolve_clear_tile_row(static_cast<int>(row)); });
   target.resolve_all_clears();
 }
 
