@@ -12,6 +12,9 @@
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
+// GCC 12 reports the strip's FragmentLanes members as maybe-uninitialized where the first triangle writes them;
+// shade_strip_lanes fills every lane of every member before the shader reads it.
+#pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
 namespace facet::detail {
 
@@ -116,6 +119,7 @@ template <DepthFunc kFunc, bool kDepthTest>
 // The bits of the lanes of a strip whose triangle reference is `ref` (a loop, vectorised in the clone's ISA).
 [[gnu::always_inline]] inline unsigned strip_lanes_equal(const std::uint32_t* refs, std::uint32_t ref) {
   unsigned bits = 0;
+#pragma GCC unroll 1  // kept a loop for the vectoriser: fully unrolled early, it would stay 16 scalar compares
   for (int k = 0; k < simd::kLanes; ++k) bits |= static_cast<unsigned>(refs[k] == ref) << k;
   return bits;
 }
@@ -138,21 +142,18 @@ template <LaneShader S>
   fragment.screen_x = to_float(kLaneX + px) + 0.5f;
   fragment.screen_y = to_float(kLaneY + py) + 0.5f;
   const float offset = ctx.state->depth_offset;
-  for (unsigned pending = covered, first = 1; pending; first = 0) {
-    const std::uint32_t ref = refs[std::countr_zero(pending)];
-    const unsigned same = strip_lanes_equal(refs, ref);
-    pending &= ~same;
-    const TriangleSetup& tri = triangle_at(work, ref);
-    // The lanes this triangle fills: its own, and every lane for the first one, so that none is left unset.
-    const Mask mine = first ? ~Mask{} : mask_from_bits(same);
-    const auto take = [&](auto value, auto previous) __attribute__((always_inline)) {
-      return first ? value : blend(mine, value, previous);
+  // kFirst: the strip's first triangle fills every lane, so that none is left unset; later ones blend theirs in.
+  const auto interpolate = [&]<bool kFirst>(const TriangleSetup& tri, unsigned same) __attribute__((always_inline)) {
+    const Mask mine = mask_from_bits(same);
+    const auto put = [&](auto& slot, auto value) __attribute__((always_inline)) {
+      if constexpr (kFirst) slot = value;
+      else slot = blend(mine, value, slot);
     };
     const Float dx = fragment.screen_x - tri.origin_x, dy = fragment.screen_y - tri.origin_y;
     const auto at = [&](const Plane& p) __attribute__((always_inline)) { return p.at_origin + p.ddx * dx + p.ddy * dy; };
-    fragment.depth = take(clamp(at(tri.depth) + offset, 0.0f, 1.0f), fragment.depth);
-    fragment.primitive = take(UInt{} | tri.primitive, fragment.primitive);
-    fragment.front_facing = take(Mask{} | (tri.front_facing ? -1 : 0), fragment.front_facing);
+    put(fragment.depth, clamp(at(tri.depth) + offset, 0.0f, 1.0f));
+    put(fragment.primitive, UInt{} | tri.primitive);
+    put(fragment.front_facing, Mask{} | (tri.front_facing ? -1 : 0));
     // Perspective-correct weights of the source vertices: b/w and 1/w are linear in screen space.
     const Float w = 1.0f / at(tri.inv_w);
     const Float b1 = at(tri.b1_over_w) * w, b2 = at(tri.b2_over_w) * w;
@@ -161,14 +162,22 @@ template <LaneShader S>
     const float* v2 = ctx.varyings + std::size_t{tri.vertex[2]} * kFloats;
     for (std::size_t f = 0; f < kFloats; ++f) {
       const Float value = v0[f] + b1 * (v1[f] - v0[f]) + b2 * (v2[f] - v0[f]);
-      fragment.varyings[f] = take(value, fragment.varyings[f]);
+      put(fragment.varyings[f], value);
       if constexpr (needs_derivatives<S>()) {
         // Coarse derivatives: within each 2x2 quad, right minus left and bottom minus top of the top-left pixel.
         const Float origin = quad_broadcast(value, kQuadTopLeft);
-        fragment.ddx[f] = take(quad_broadcast(value, kQuadTopRight) - origin, fragment.ddx[f]);
-        fragment.ddy[f] = take(quad_broadcast(value, kQuadBottomLeft) - origin, fragment.ddy[f]);
+        put(fragment.ddx[f], quad_broadcast(value, kQuadTopRight) - origin);
+        put(fragment.ddy[f], quad_broadcast(value, kQuadBottomLeft) - origin);
       }
     }
+  };
+  std::uint32_t ref = refs[std::countr_zero(covered)];
+  unsigned same = strip_lanes_equal(refs, ref);
+  interpolate.template operator()<true>(triangle_at(work, ref), same);
+  for (unsigned pending = covered & ~same; pending; pending &= ~same) {
+    ref = refs[std::countr_zero(pending)];
+    same = strip_lanes_equal(refs, ref);
+    interpolate.template operator()<false>(triangle_at(work, ref), same);
   }
   fragment.active = mask_from_bits(covered);
   store_strip(work, px, py, covered, pack_rgba8(ctx.shader->fragment_lanes(fragment)));
