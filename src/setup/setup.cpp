@@ -72,22 +72,10 @@ class Binner {
       area = -area;
     }
 
-    TriangleSetup t;
-    std::int32_t min_x = X[0], max_x = X[0], min_y = Y[0], max_y = Y[0];
-    for (int k = 0; k < 3; ++k) {
-      const int a = k, b = (k + 1) % 3;
-      const std::int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
-      // Top-left rule, clockwise on screen with y down: a top edge is horizontal going right, a left edge goes up.
-      const bool top_left = (dy == 0 && dx > 0) || dy < 0;
-      const std::int64_t c = dy * X[a] - dx * Y[a];
-      const std::int64_t k_centre = (kSubpixelScale / 2) * (-dy + dx) + c + (top_left ? 0 : -1);
-      t.edge[k] = {static_cast<std::int32_t>(-dy), static_cast<std::int32_t>(dx), floor_div_subpixel(k_centre)};
-      min_x = std::min(min_x, X[k]);
-      max_x = std::max(max_x, X[k]);
-      min_y = std::min(min_y, Y[k]);
-      max_y = std::max(max_y, Y[k]);
-    }
-    // Pixels whose centres (i + 0.5) * 256 lie within the snapped bounds.
+    // Pixels whose centres (i + 0.5) * 256 lie within the snapped bounds. Most triangles of a dense mesh hold
+    // no pixel centre at all: they leave here, before any edge or plane is set up.
+    const std::int32_t min_x = std::min({X[0], X[1], X[2]}), max_x = std::max({X[0], X[1], X[2]});
+    const std::int32_t min_y = std::min({Y[0], Y[1], Y[2]}), max_y = std::max({Y[0], Y[1], Y[2]});
     const int half = kSubpixelScale / 2;
     const int px0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_x - half + kSubpixelScale - 1)));
     const int py0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_y - half + kSubpixelScale - 1)));
@@ -96,6 +84,19 @@ class Binner {
     if (px0 > px1 || py0 > py1) {
       ++out_.culled;
       return;
+    }
+
+    // Built in place in the chunk's array (capacity reserved once): no copy of the set-up triangle.
+    const auto index = static_cast<std::uint32_t>(out_.triangles.size());
+    TriangleSetup& t = out_.triangles.emplace_back();
+    for (int k = 0; k < 3; ++k) {
+      const int a = k, b = (k + 1) % 3;
+      const std::int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
+      // Top-left rule, clockwise on screen with y down: a top edge is horizontal going right, a left edge goes up.
+      const bool top_left = (dy == 0 && dx > 0) || dy < 0;
+      const std::int64_t c = dy * X[a] - dx * Y[a];
+      const std::int64_t k_centre = (kSubpixelScale / 2) * (-dy + dx) + c + (top_left ? 0 : -1);
+      t.edge[k] = {static_cast<std::int32_t>(-dy), static_cast<std::int32_t>(dx), floor_div_subpixel(k_centre)};
     }
     t.min_x = static_cast<std::int16_t>(px0);
     t.min_y = static_cast<std::int16_t>(py0);
@@ -116,13 +117,11 @@ class Binner {
     for (int k = 0; k < 3; ++k) t.vertex[k] = source[k];
     t.primitive = primitive;
     t.front_facing = front;
-    bin(t);
+    bin(t, index);
   }
 
  private:
-  void bin(const TriangleSetup& t) {
-    const auto index = static_cast<std::uint32_t>(out_.triangles.size());
-    out_.triangles.push_back(t);
+  void bin(const TriangleSetup& t, std::uint32_t index) {
     const int tx0 = t.min_x / kTileSize, tx1 = t.max_x / kTileSize;
     const int ty0 = t.min_y / kTileSize, ty1 = t.max_y / kTileSize;
     const bool single = tx0 == tx1 && ty0 == ty1;
