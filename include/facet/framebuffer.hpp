@@ -61,10 +61,10 @@ class Framebuffer {
   void request_clear(glm::vec4 color, float depth, bool clear_color = true, bool clear_depth = true);
   // Applies the pending clear to one tile if it has not been applied yet. Only the tile's owner thread calls it.
   void resolve_clear(int tile_index);
-  // For a tile that writes all of its depth itself (deferred shading keeps a local copy): applies the colour part
-  // of the pending clear and, if depth was to be cleared too, resets the tile's depth bounds and returns true with
-  // the clear depth in `depth_value`, leaving the depth writes to the caller. Only the tile's owner calls it.
-  bool resolve_clear_except_depth(int tile_index, float& depth_value);
+  // For a tile that writes every one of its pixels itself (deferred shading): marks the pending clear as applied
+  // and returns it, leaving the colour and depth writes to the caller (no clear when nothing was pending); depth
+  // bounds are reset here. Only the tile's owner thread calls it.
+  PendingClear take_clear(int tile_index);
   // Applies the pending clear to every tile of one row of tiles that still needs it. When all of them do (the
   // common case at finish() after an empty or sparse frame), the row's pixels are contiguous in memory and are
   // filled in one pass, near memset speed. Only the owner of that row of tiles calls it.

@@ -78,14 +78,11 @@ void Framebuffer::resolve_clear(int tile_index) {
   apply_clear(tile_index, pending_.color, pending_.depth);
 }
 
-bool Framebuffer::resolve_clear_except_depth(int tile_index, float& depth_value) {
-  if (!tile_needs_clear_[tile_index]) return false;
+Framebuffer::PendingClear Framebuffer::take_clear(int tile_index) {
+  if (!tile_needs_clear_[tile_index]) return {};
   tile_needs_clear_[tile_index] = 0;
-  apply_clear(tile_index, pending_.color, false);
-  if (!pending_.depth) return false;
-  reset_depth_bounds(tile_index, pending_.depth_value);
-  depth_value = pending_.depth_value;
-  return true;
+  if (pending_.depth) reset_depth_bounds(tile_index, pending_.depth_value);
+  return pending_;
 }
 
 void Framebuffer::apply_clear(int tile_index, bool color, bool depth) {

@@ -88,15 +88,14 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     // One owner per tile: no two threads ever write the same pixel, so the tile loop needs no locks.
     pool_.parallel_for(active_tiles_.size(), [&](std::size_t i, int thread) {
       const int tile = active_tiles_[i];
-      float clear_depth = 1.0f;
-      bool depth_cleared = false;
-      if (request.deferred) depth_cleared = target.resolve_clear_except_depth(tile, clear_depth);
+      Framebuffer::PendingClear clear;
+      if (request.deferred) clear = target.take_clear(tile);
       else target.resolve_clear(tile);
       const int x0 = (tile % target.tiles_x()) * kTileSize, y0 = (tile / target.tiles_x()) * kTileSize;
       const TileWork work{tile, x0, y0, std::min(x0 + kTileSize, target.width()),
                           std::min(y0 + kTileSize, target.height()), target.width(), target.color().data(),
                           target.depth_storage(), target.block_max_depth(), target.blocks_x(), chunks_.data(),
-                          chunk_count, &scratch_[static_cast<std::size_t>(thread)], depth_cleared, clear_depth};
+                          chunk_count, &scratch_[static_cast<std::size_t>(thread)], clear};
       request.raster(request.draw, work);
     });
   }

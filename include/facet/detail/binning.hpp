@@ -90,8 +90,7 @@ struct TileWork {
   const SetupChunk* chunks;
   std::size_t chunk_count;
   TileScratch* scratch;  // the running thread's, for deferred shading
-  bool depth_cleared;    // deferred shading: the tile's depth is to be cleared to clear_depth, not read back
-  float clear_depth;
+  Framebuffer::PendingClear clear;  // deferred shading: the clear the tile applies itself as it writes its pixels
 };
 
 }  // namespace facet::detail

@@ -97,11 +97,9 @@ template <DepthFunc kFunc, bool kDepthTest>
   }
 }
 
-// Writes the packed colours of the lanes set in `bits` to the strip's two framebuffer rows.
+// Writes colours[k] for the lanes k set in `bits` to the strip's two framebuffer rows.
 [[gnu::always_inline]] inline void store_strip(const TileWork& work, int px, int py, unsigned bits,
-                                               const simd::UInt& packed) {
-  alignas(64) std::uint32_t colors[simd::kLanes];
-  simd::store(colors, packed);
+                                               const std::uint32_t* colors) {
   for (int row = 0; row < 2; ++row) {
     std::uint32_t* out = work.color + static_cast<std::size_t>(py + row) * work.stride + px;
     const unsigned row_bits = (bits >> (row * 8)) & 0xffu;
@@ -114,6 +112,20 @@ template <DepthFunc kFunc, bool kDepthTest>
       out[i] = colors[row * 8 + i];
     }
   }
+}
+
+// The strip's pixels that lie inside the tile (the last tiles of a row or column may be cut short).
+inline unsigned strip_inside(const TileWork& work, int px, int py) {
+  if (py >= work.y1) return 0u;
+  const unsigned row = (1u << std::min(8, work.x1 - px)) - 1u;
+  return row | (py + 1 < work.y1 ? row << 8 : 0u);
+}
+
+// A tile with a pending colour clear writes it itself, with its shaded pixels: each pixel is written once.
+[[gnu::always_inline]] inline void fill_strip(const TileWork& work, int px, int py, unsigned bits) {
+  alignas(64) std::uint32_t colors[simd::kLanes];
+  for (int k = 0; k < simd::kLanes; ++k) colors[k] = work.clear.color_value;
+  store_strip(work, px, py, bits, colors);
 }
 
 // The bits of the lanes of a strip whose triangle reference is `ref` (a loop, vectorised in the clone's ISA).
@@ -134,7 +146,7 @@ inline const TriangleSetup& triangle_at(const TileWork& work, std::uint32_t ref)
 // several triangles in most strips; shading them together costs one interpolation each and one shader call.
 template <LaneShader S>
 [[gnu::always_inline]] inline void shade_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px, int py,
-                                                     const std::uint32_t* refs, unsigned covered) {
+                                                     const std::uint32_t* refs, unsigned covered, unsigned fill) {
   using namespace simd;
   using Varyings = typename S::Varyings;
   constexpr std::size_t kFloats = float_count_v<Varyings>;
@@ -180,7 +192,10 @@ template <LaneShader S>
     interpolate.template operator()<false>(triangle_at(work, ref), same);
   }
   fragment.active = mask_from_bits(covered);
-  store_strip(work, px, py, covered, pack_rgba8(ctx.shader->fragment_lanes(fragment)));
+  alignas(64) std::uint32_t colors[kLanes];
+  store(colors, pack_rgba8(ctx.shader->fragment_lanes(fragment)));
+  for (int k = 0; k < kLanes; ++k) colors[k] = (covered >> k) & 1u ? colors[k] : work.clear.color_value;
+  store_strip(work, px, py, covered | fill, colors);
 }
 
 // Visibility pass of one tile: coverage and depth of all its triangles, in draw order.
@@ -205,7 +220,7 @@ template <Shader S>
   const RenderState& state = *ctx.state;
   TileScratch& scratch = *work.scratch;
   const int width = work.x1 - work.x0, height = work.y1 - work.y0;
-  const bool local_depth = state.depth_test || work.depth_cleared;
+  const bool local_depth = state.depth_test || work.clear.depth;
 
   // The tile's depth comes in from the framebuffer unless it is being cleared.
   if (local_depth) {
@@ -214,7 +229,7 @@ template <Shader S>
         float* local = scratch.depth + scratch_index(x / kScratchBlock, y / kScratchBlock) + (y % kScratchBlock) * kScratchBlock;
         const float* global = work.depth + static_cast<std::size_t>(work.y0 + y) * work.stride + work.x0 + x;
         const int n = std::min(kScratchBlock, width - x);
-        if (work.depth_cleared) std::fill_n(local, n, work.clear_depth);
+        if (work.clear.depth) std::fill_n(local, n, work.clear.depth_value);
         else std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
       }
   }
@@ -233,11 +248,16 @@ template <Shader S>
       for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
         const std::uint32_t* refs = scratch.triangle + scratch_index(block_x, block_y) + strip * simd::kLanes;
         const unsigned covered = ~strip_lanes_equal(refs, kNoTriangle) & 0xffffu;
-        if (!covered) continue;
         const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
+        const unsigned fill = work.clear.color ? strip_inside(work, px, py) & ~covered : 0u;
+        if (!covered) {
+          if (fill) fill_strip(work, px, py, fill);
+          continue;
+        }
         if constexpr (LaneShader<S>) {
-          shade_strip_lanes(shade, work, px, py, refs, covered);
+          shade_strip_lanes(shade, work, px, py, refs, covered, fill);
         } else {
+          if (fill) fill_strip(work, px, py, fill);
           // One triangle at a time, a quad at a time; ctx's state has the depth test off: it is resolved.
           for (unsigned pending = covered; pending;) {
             const std::uint32_t ref = refs[std::countr_zero(pending)];
@@ -248,7 +268,7 @@ template <Shader S>
         }
       }
 
-  if (work.depth_cleared || (state.depth_test && state.depth_write)) {
+  if (work.clear.depth || (state.depth_test && state.depth_write)) {
     for (int y = 0; y < height; ++y)
       for (int x = 0; x < width; x += kScratchBlock) {
         const float* local = scratch.depth + scratch_index(x / kScratchBlock, y / kScratchBlock) + (y % kScratchBlock) * kScratchBlock;
