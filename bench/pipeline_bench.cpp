@@ -1,11 +1,13 @@
-// pipeline_bench.cpp - micro-benchmarks per stage: clipping, setup and binning, block coverage, whole draws, clears.
+// pipeline_bench.cpp - micro-benchmarks per stage: vertex work, clipping, setup and binning, coverage, shading, clears.
 #include <benchmark/benchmark.h>
 
 #include <cstring>
 #include <glm/gtc/matrix_transform.hpp>
 #include <vector>
 
+#include "bench/bench_shader.hpp"
 #include "facet/detail/clip.hpp"
+#include "facet/detail/dispatch.hpp"
 #include "facet/renderer.hpp"
 #include "setup/setup.hpp"
 #include "support/scenes.hpp"
@@ -28,6 +30,81 @@ std::vector<detail::ProjectedVertex> project(const test::ClipMesh& mesh) {
   for (const glm::vec4& c : mesh.clip) projected.push_back(detail::project_vertex(c, kWidth, kHeight));
   return projected;
 }
+
+// The vertex stage's work per vertex: the benchmark shader's vertex(), then outcode, w-divide, viewport and snap.
+void BM_VertexStage(benchmark::State& state) {
+  const test::ClipMesh mesh = sphere(707);
+  std::vector<bench::BenchVertex> vertices;
+  for (const glm::vec4& c : mesh.clip) vertices.push_back({glm::vec3(c), glm::vec3(c), glm::vec2(c)});
+  bench::BenchShader shader;
+  shader.clip_from_world = glm::perspective(glm::radians(45.0f), float(kWidth) / kHeight, 0.1f, 100.0f) *
+                           glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -3));
+  std::vector<bench::BenchShader::Varyings> varyings(vertices.size());
+  std::vector<detail::ProjectedVertex> projected(vertices.size());
+  for (auto _ : state) {
+    for (std::size_t i = 0; i < vertices.size(); ++i) {
+      const VertexOut<bench::BenchShader::Varyings> out = shader.vertex(vertices[i]);
+      varyings[i] = out.varyings;
+      projected[i] = detail::project_vertex(out.clip, kWidth, kHeight);
+    }
+    benchmark::DoNotOptimize(projected.data());
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(vertices.size()));
+}
+BENCHMARK(BM_VertexStage)->Unit(benchmark::kMillisecond);
+
+// Fragment shading alone: the benchmark shader (Lambert + Phong, bilinear 1024^2 texture) on strips of 16 pixels,
+// through fragment_lanes (as the pipeline runs it, in the CPU's dispatch clone) or 16 scalar fragment() calls.
+struct ShadeFixture {
+  Texture texture;
+  bench::BenchShader shader;
+  std::vector<FragmentLanes<bench::BenchShader::Varyings>> strips;
+  ShadeFixture() {
+    std::vector<std::uint32_t> texels(1024 * 1024);
+    for (std::size_t i = 0; i < texels.size(); ++i) texels[i] = static_cast<std::uint32_t>(i * 2654435761u);
+    texture = Texture(1024, 1024, std::move(texels));
+    shader.texture = &texture;
+    strips.resize(4096);
+    for (std::size_t s = 0; s < strips.size(); ++s)
+      for (int k = 0; k < simd::kLanes; ++k) {
+        const float t = static_cast<float>(s * simd::kLanes + static_cast<std::size_t>(k)) * 1e-4f;
+        const float v[8] = {std::sin(t), std::cos(t), 0.5f, std::sin(t), std::cos(t), 0.5f, t, 0.5f * t};
+        for (int f = 0; f < 8; ++f) strips[s].varyings[static_cast<std::size_t>(f)][k] = v[f];
+      }
+  }
+};
+
+FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+std::uint32_t shade_strips_lanes(const ShadeFixture& fx) {
+  simd::UInt sum{};
+  for (const auto& strip : fx.strips) sum += simd::pack_rgba8(fx.shader.fragment_lanes(strip));
+  return sum[0] ^ sum[15];
+}
+
+void BM_ShadeStripLanes(benchmark::State& state) {
+  const ShadeFixture fx;
+  for (auto _ : state) benchmark::DoNotOptimize(shade_strips_lanes(fx));
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(fx.strips.size() * simd::kLanes));
+}
+BENCHMARK(BM_ShadeStripLanes)->Unit(benchmark::kMicrosecond);
+
+void BM_ShadeFragmentsScalar(benchmark::State& state) {
+  const ShadeFixture fx;
+  for (auto _ : state) {
+    std::uint32_t sum = 0;
+    for (const auto& strip : fx.strips)
+      for (int k = 0; k < simd::kLanes; ++k) {
+        Fragment<bench::BenchShader::Varyings> f;
+        FloatArray<bench::BenchShader::Varyings> values;
+        for (std::size_t i = 0; i < values.size(); ++i) values[i] = strip.varyings[i][k];
+        f.varyings = from_floats<bench::BenchShader::Varyings>(values);
+        sum += pack_rgba8(fx.shader.fragment(f));
+      }
+    benchmark::DoNotOptimize(sum);
+  }
+  state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(fx.strips.size() * simd::kLanes));
+}
+BENCHMARK(BM_ShadeFragmentsScalar)->Unit(benchmark::kMicrosecond);
 
 void BM_ClipCrossingTriangle(benchmark::State& state) {
   const glm::vec4 tri[3] = {{0, 0, 0.3f, 0.5f}, {2.2f, 0, -0.7f, -0.5f}, {0, 0.2f, 0.9f, 1.5f}};
