@@ -1,0 +1,35 @@
+#!/usr/bin/env bash
+# perf.sh - reproduces docs/PERFORMANCE.md: facet against llvmpipe on every scene, thread scaling, peak memory, micro-benchmarks.
+# Usage: scripts/perf.sh [ROUNDS]   (default 3). Needs ../shared/peers (the Mesa reference renderer kit).
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+rounds=${1:-3}
+peers=../shared/peers
+[ -x "$peers/compare.sh" ] || { echo "perf.sh: $peers/compare.sh not found" >&2; exit 1; }
+scripts/deps.sh
+cmake --preset release >/dev/null
+cmake --build --preset release -j "$(nproc)" --target facet_cli facet_microbench
+
+scenes=("--sphere 224" "--sphere 707" "--sphere 1414" "--quads 64 --order b2f" "--quads 64 --order f2b"
+        "--mesh /usr/share/assimp/models/OBJ/WusonOBJ.obj")
+
+echo "## facet against llvmpipe, 2 threads each ($(date -u +%F), $(nproc) CPUs)"
+for s in "${scenes[@]}"; do
+  # shellcheck disable=SC2086  # the scene flags are meant to split
+  ROUNDS=$rounds "$peers/compare.sh" ./build/tools/facet build/peers $s --threads 2
+done
+
+echo "## thread scaling (median ms of 30 frames)"
+for s in "--sphere 707" "--quads 64 --order b2f"; do
+  for t in 1 2; do
+    # shellcheck disable=SC2086
+    ms=$(./build/tools/facet bench $s --threads $t --json | sed -n -E 's/.*"median_ms":([0-9.]+).*/\1/p')
+    echo "$s threads=$t median_ms=$ms"
+  done
+done
+
+echo "## peak memory, --sphere 1414, 2 threads"
+/usr/bin/time -v ./build/tools/facet bench --sphere 1414 --threads 2 --frames 5 2>&1 | grep -E "Maximum resident|median"
+
+echo "## micro-benchmarks"
+build/bench/facet_microbench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
