@@ -9,7 +9,9 @@
 // the instruction set of the function it ends up in, so the same shader code becomes one AVX-512 instruction in
 // the x86-64-v4 clone of the tile loop, two AVX2 instructions in the v3 clone and four SSE2 instructions in the
 // baseline (see detail/dispatch.hpp). Passing such vectors by value between functions compiled for different
-// ISAs would change the ABI, hence -Wpsabi is silenced here and everything is always inlined.
+// ISAs would change the ABI, hence -Wpsabi is silenced here and everything is always inlined. GCC 12 lowers a
+// few idioms element by element when they are inlined from the baseline into a clone; docs/ARCHITECTURE.md
+// ("Lane shaders") lists them and what the pipeline uses instead.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
@@ -61,13 +63,8 @@ FACET_LANES_INLINE Float sqrt(Float v) {
 FACET_LANES_INLINE Float to_float(Int v) { return __builtin_convertvector(v, Float); }
 FACET_LANES_INLINE Int truncate(Float v) { return __builtin_convertvector(v, Int); }
 
-// Lanes whose bit is set in a 16-bit coverage mask, and back.
+// Lanes whose bit is set in a 16-bit coverage mask.
 FACET_LANES_INLINE Mask mask_from_bits(unsigned bits) { return (splat(static_cast<std::int32_t>(bits)) & kLaneBit) != 0; }
-FACET_LANES_INLINE unsigned bits_from_mask(Mask m) {
-  unsigned bits = 0;
-  for (int k = 0; k < kLanes; ++k) bits |= static_cast<unsigned>(m[k] & 1) << k;
-  return bits;
-}
 
 template <class V>
 FACET_LANES_INLINE V load(const void* p) {
