@@ -80,7 +80,6 @@ class Framebuffer {
   float* block_max_depth() { return block_max_depth_.data(); }
 
  private:
-  void apply_clear(int tile_index, bool color, bool depth);
   void reset_depth_bounds(int tile_index, float value);
 
   int width_, height_, tiles_x_, tiles_y_, blocks_x_;

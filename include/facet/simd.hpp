@@ -37,17 +37,12 @@ FACET_LANES_INLINE Float splat(float v) { return Float{} + v; }
 FACET_LANES_INLINE Int splat(std::int32_t v) { return Int{} + v; }
 
 FACET_LANES_INLINE Float select(Mask m, Float a, Float b) { return m ? a : b; }
-FACET_LANES_INLINE Int select(Mask m, Int a, Int b) { return m ? a : b; }
-FACET_LANES_INLINE UInt select(Mask m, UInt a, UInt b) { return m ? a : b; }
 // Lanes of a where m is -1, of b where it is 0, by bitwise operations: exact for any bit pattern, and immune to
 // GCC 12 scalarising `m ? a : b` for a mask that was not itself a comparison.
 template <class V>
 FACET_LANES_INLINE V blend(Mask m, V a, V b) {
   return reinterpret_cast<V>((reinterpret_cast<Int>(a) & m) | (reinterpret_cast<Int>(b) & ~m));
 }
-// The same NaN behaviour as `a < b ? a : b` in scalar code, which the scalar paths use.
-FACET_LANES_INLINE Float min(Float a, Float b) { return a < b ? a : b; }
-FACET_LANES_INLINE Float max(Float a, Float b) { return a > b ? a : b; }
 // std::clamp's comparisons, so NaN and the bounds behave exactly as in the scalar paths.
 FACET_LANES_INLINE Float clamp(Float v, float lo, float hi) {
   return select(v < lo, splat(lo), select(hi < v, splat(hi), v));

@@ -75,7 +75,14 @@ void Framebuffer::request_clear(glm::vec4 color, float depth, bool clear_color, 
 void Framebuffer::resolve_clear(int tile_index) {
   if (!tile_needs_clear_[tile_index]) return;
   tile_needs_clear_[tile_index] = 0;
-  apply_clear(tile_index, pending_.color, pending_.depth);
+  const int x0 = (tile_index % tiles_x_) * kTileSize, y0 = (tile_index / tiles_x_) * kTileSize;
+  const int x1 = std::min(x0 + kTileSize, width_), y1 = std::min(y0 + kTileSize, height_);
+  const std::size_t first = static_cast<std::size_t>(y0) * width_ + x0;
+  if (pending_.color) fill_color(color_.data() + first, width_, y1 - y0, x1 - x0, pending_.color_value);
+  if (pending_.depth) {
+    fill_depth(depth_.data() + first, width_, y1 - y0, x1 - x0, pending_.depth_value);
+    reset_depth_bounds(tile_index, pending_.depth_value);
+  }
 }
 
 Framebuffer::PendingClear Framebuffer::take_clear(int tile_index) {
@@ -83,17 +90,6 @@ Framebuffer::PendingClear Framebuffer::take_clear(int tile_index) {
   tile_needs_clear_[tile_index] = 0;
   if (pending_.depth) reset_depth_bounds(tile_index, pending_.depth_value);
   return pending_;
-}
-
-void Framebuffer::apply_clear(int tile_index, bool color, bool depth) {
-  const int x0 = (tile_index % tiles_x_) * kTileSize, y0 = (tile_index / tiles_x_) * kTileSize;
-  const int x1 = std::min(x0 + kTileSize, width_), y1 = std::min(y0 + kTileSize, height_);
-  const std::size_t first = static_cast<std::size_t>(y0) * width_ + x0;
-  if (color) fill_color(color_.data() + first, width_, y1 - y0, x1 - x0, pending_.color_value);
-  if (depth) {
-    fill_depth(depth_.data() + first, width_, y1 - y0, x1 - x0, pending_.depth_value);
-    reset_depth_bounds(tile_index, pending_.depth_value);
-  }
 }
 
 void Framebuffer::reset_depth_bounds(int tile_index, float value) {

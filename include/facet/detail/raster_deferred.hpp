@@ -215,24 +215,30 @@ template <DepthFunc kFunc, bool kDepthTest>
   }
 }
 
+// Calls copy(local, global, n) for each run of n <= 8 pixels that one row of one block of the tile has: its place
+// in the tile's local depth and in the framebuffer's.
+template <class Copy>
+[[gnu::always_inline]] inline void for_each_depth_row(const TileWork& work, Copy&& copy) {
+  const int width = work.x1 - work.x0, height = work.y1 - work.y0;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; x += kScratchBlock)
+      copy(work.scratch->depth + scratch_index(x / kScratchBlock, y / kScratchBlock) + (y % kScratchBlock) * kScratchBlock,
+           work.depth + static_cast<std::size_t>(work.y0 + y) * work.stride + work.x0 + x,
+           std::min(kScratchBlock, width - x));
+}
+
 template <Shader S>
 [[gnu::always_inline]] inline void raster_tile_deferred(const ShadeContext<S>& ctx, const TileWork& work) {
   const RenderState& state = *ctx.state;
   TileScratch& scratch = *work.scratch;
   const int width = work.x1 - work.x0, height = work.y1 - work.y0;
-  const bool local_depth = state.depth_test || work.clear.depth;
 
   // The tile's depth comes in from the framebuffer unless it is being cleared.
-  if (local_depth) {
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; x += kScratchBlock) {
-        float* local = scratch.depth + scratch_index(x / kScratchBlock, y / kScratchBlock) + (y % kScratchBlock) * kScratchBlock;
-        const float* global = work.depth + static_cast<std::size_t>(work.y0 + y) * work.stride + work.x0 + x;
-        const int n = std::min(kScratchBlock, width - x);
-        if (work.clear.depth) std::fill_n(local, n, work.clear.depth_value);
-        else std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
-      }
-  }
+  if (state.depth_test || work.clear.depth)
+    for_each_depth_row(work, [&](float* local, float* global, int n) __attribute__((always_inline)) {
+      if (work.clear.depth) std::fill_n(local, n, work.clear.depth_value);
+      else std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
+    });
   std::fill_n(scratch.triangle, kTileSize * kTileSize, kNoTriangle);
 
   with_depth_func(state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
@@ -250,14 +256,12 @@ template <Shader S>
         const unsigned covered = ~strip_lanes_equal(refs, kNoTriangle) & 0xffffu;
         const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
         const unsigned fill = work.clear.color ? strip_inside(work, px, py) & ~covered : 0u;
-        if (!covered) {
-          if (fill) fill_strip(work, px, py, fill);
-          continue;
-        }
+        // A lane shader's strip stores the clear colour with its shaded pixels; otherwise it is stored first.
+        if (fill && !(LaneShader<S> && covered)) fill_strip(work, px, py, fill);
+        if (!covered) continue;
         if constexpr (LaneShader<S>) {
           shade_strip_lanes(shade, work, px, py, refs, covered, fill);
         } else {
-          if (fill) fill_strip(work, px, py, fill);
           // One triangle at a time, a quad at a time; ctx's state has the depth test off: it is resolved.
           for (unsigned pending = covered; pending;) {
             const std::uint32_t ref = refs[std::countr_zero(pending)];
@@ -268,14 +272,10 @@ template <Shader S>
         }
       }
 
-  if (work.clear.depth || (state.depth_test && state.depth_write)) {
-    for (int y = 0; y < height; ++y)
-      for (int x = 0; x < width; x += kScratchBlock) {
-        const float* local = scratch.depth + scratch_index(x / kScratchBlock, y / kScratchBlock) + (y % kScratchBlock) * kScratchBlock;
-        float* global = work.depth + static_cast<std::size_t>(work.y0 + y) * work.stride + work.x0 + x;
-        std::memcpy(global, local, static_cast<std::size_t>(std::min(kScratchBlock, width - x)) * sizeof(float));
-      }
-  }
+  if (work.clear.depth || (state.depth_test && state.depth_write))
+    for_each_depth_row(work, [&](float* local, float* global, int n) __attribute__((always_inline)) {
+      std::memcpy(global, local, static_cast<std::size_t>(n) * sizeof(float));
+    });
 }
 
 }  // namespace facet::detail
