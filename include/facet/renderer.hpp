@@ -30,9 +30,22 @@ struct DrawStats {
 namespace detail {
 enum class PrimitiveKind { triangles, lines };
 using TileRasterFn = void (*)(const void* draw, const TileWork& work);
+// A draw's shader and vertices, for recomputing clip positions the vertex stage did not keep.
+template <Shader S>
+struct VertexSource {
+  const S* shader;
+  const typename S::Vertex* vertices;
+  static glm::vec4 clip_position(const void* source, std::uint32_t vertex) {
+    const auto& self = *static_cast<const VertexSource*>(source);
+    return self.shader->vertex(self.vertices[vertex]).clip;
+  }
+};
+
 struct DrawRequest {
   PrimitiveKind kind;
-  const glm::vec4* clip;
+  const glm::vec4* clip;  // every vertex's clip position, or nullptr: ask clip_position
+  ClipPositionFn clip_position;
+  const void* clip_source;
   const ProjectedVertex* projected;
   std::size_t vertex_count;
   std::span<const std::uint32_t> indices;
@@ -80,7 +93,7 @@ class Renderer {
   void execute(Framebuffer& target, const detail::DrawRequest& request);
 
   detail::ThreadPool pool_;
-  std::vector<glm::vec4> clip_;     // post-transform positions, one per vertex of the current draw
+  std::vector<glm::vec4> clip_;     // post-transform positions, kept only for lines and the painter's sort
   std::vector<detail::ProjectedVertex> projected_;  // the same after the divide, viewport and snapping
   std::vector<float> varyings_;     // post-transform varyings, float_count floats per vertex
   std::vector<detail::SetupChunk> chunks_;
@@ -116,25 +129,26 @@ void Renderer::draw_primitives(detail::PrimitiveKind kind, Framebuffer& target, 
   using Varyings = typename S::Varyings;
   constexpr std::size_t floats = float_count_v<Varyings>;
   const std::size_t n = vertices.size();
-  if (clip_.size() < n) {
-    clip_.resize(n);
-    projected_.resize(n);
-  }
+  // Triangles need clip positions only to clip the few that cross the frustum, and recompute them for those (see
+  // VertexSource); lines clip every segment and the painter's sort reads every depth, so those keep them all.
+  const bool project = kind == detail::PrimitiveKind::triangles;
+  const bool keep_clip = !project || state.order == DrawOrder::back_to_front;
+  if (keep_clip && clip_.size() < n) clip_.resize(n);
+  if (project && projected_.size() < n) projected_.resize(n);
   if (varyings_.size() < n * floats) varyings_.resize(n * floats);
 
   // Vertex stage: every vertex once, in parallel. Shading the whole span is a post-transform cache that never
   // misses, which suits indexed meshes whose vertices are all referenced.
   constexpr std::size_t kVertexChunk = 2048;
-  glm::vec4* clip = clip_.data();
+  glm::vec4* clip = keep_clip ? clip_.data() : nullptr;
   detail::ProjectedVertex* projected = projected_.data();
   float* varyings = varyings_.data();
   const int width = target.width(), height = target.height();
-  const bool project = kind == detail::PrimitiveKind::triangles;
   pool_.parallel_for((n + kVertexChunk - 1) / kVertexChunk, [&](std::size_t chunk, int) {
     const std::size_t end = std::min(n, (chunk + 1) * kVertexChunk);
     for (std::size_t i = chunk * kVertexChunk; i < end; ++i) {
       const VertexOut<Varyings> out = shader.vertex(vertices[i]);
-      clip[i] = out.clip;
+      if (keep_clip) clip[i] = out.clip;
       if (project) projected[i] = detail::project_vertex(out.clip, width, height);
       const FloatArray<Varyings> f = to_floats(out.varyings);
       std::copy(f.begin(), f.end(), varyings + i * floats);
@@ -142,7 +156,8 @@ void Renderer::draw_primitives(detail::PrimitiveKind kind, Framebuffer& target, 
   });
 
   const detail::ShadeContext<S> context{&shader, varyings, &state};
-  execute(target, {kind, clip, projected, n, indices, &state, &detail::raster_tile<S>, &context,
+  const detail::VertexSource<S> source{&shader, vertices.data()};
+  execute(target, {kind, clip, &detail::VertexSource<S>::clip_position, &source, projected, n, indices, &state, &detail::raster_tile<S>, &context,
                    detail::shades_deferred<S>(state)});
 }
 

@@ -63,7 +63,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       SetupChunk& chunk = chunks_[c];
       chunk.reset();
       const std::size_t first = batch_first + c * kSetupChunk;
-      const SetupInput input{request.clip, request.projected, request.vertex_count, request.indices, order, first,
+      const SetupInput input{request.clip, request.clip_position, request.clip_source, request.projected, request.vertex_count, request.indices, order, first,
                              std::min(kSetupChunk, batch_first + batch_count - first), target.width(), target.height(),
                              target.tiles_x(), state.cull, state.line_width};
       if (triangles) setup_triangles(input, chunk);

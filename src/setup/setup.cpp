@@ -173,7 +173,9 @@ void setup_triangles(const SetupInput& in, SetupChunk& out) {
       ++out.culled;
       continue;
     }
-    const glm::vec4 clip[3] = {in.clip[source[0]], in.clip[source[1]], in.clip[source[2]]};
+    glm::vec4 clip[3];
+    for (int k = 0; k < 3; ++k)
+      clip[k] = in.clip ? in.clip[source[k]] : in.clip_position(in.clip_source, source[k]);
     ClipVertex polygon[kMaxClipVertices];
     const int n = clip_triangle(clip, polygon);
     ++out.clipped;

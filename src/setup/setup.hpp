@@ -9,12 +9,15 @@
 
 #include "facet/render_state.hpp"
 #include "facet/detail/binning.hpp"
+#include "facet/detail/clip.hpp"
 #include "facet/detail/triangle_setup.hpp"
 
 namespace facet::detail {
 
 struct SetupInput {
-  const glm::vec4* clip;                  // post-transform positions
+  const glm::vec4* clip;                  // post-transform positions, or nullptr: ask clip_position
+  ClipPositionFn clip_position;
+  const void* clip_source;                // what clip_position reads
   const ProjectedVertex* projected;       // the same, projected and snapped (triangles only)
   std::size_t vertex_count;
   std::span<const std::uint32_t> indices;  // 3 per triangle or 2 per line
