@@ -122,7 +122,7 @@ void BM_SetupChunk(benchmark::State& state) {
   const std::size_t tiles = static_cast<std::size_t>(fb.tiles_x()) * fb.tiles_y();
   for (auto _ : state) {
     chunk.reset();
-    const detail::SetupInput input{mesh.clip.data(), nullptr, nullptr, projected.data(), mesh.clip.size(), mesh.indices, nullptr, 200000,
+    const detail::SetupInput input{mesh.clip.data(), projected.data(), 0, nullptr, nullptr, mesh.clip.size(), mesh.indices, nullptr, 200000,
                                    detail::kSetupChunk, kWidth, kHeight, fb.tiles_x(), CullMode::back, 1.0f};
     detail::setup_triangles(input, chunk);
     chunk.sort_by_tile(tiles);
@@ -138,7 +138,7 @@ void BM_BlockCoverage(benchmark::State& state) {
   detail::SetupChunk chunk;
   chunk.reset();
   const std::vector<detail::ProjectedVertex> projected = project(mesh);
-  detail::setup_triangles({mesh.clip.data(), nullptr, nullptr, projected.data(), mesh.clip.size(), mesh.indices, nullptr, 0, mesh.indices.size() / 3,
+  detail::setup_triangles({mesh.clip.data(), projected.data(), 0, nullptr, nullptr, mesh.clip.size(), mesh.indices, nullptr, 0, mesh.indices.size() / 3,
                            kWidth, kHeight, fb.tiles_x(), CullMode::back, 1.0f},
                           chunk);
   std::size_t blocks = 0;

@@ -29,19 +29,61 @@ void Renderer::finish(Framebuffer& target) {
   target.resolve_all_clears();
 }
 
+detail::VertexOutputs Renderer::prepare_vertex_outputs(const detail::DrawRequest& request, std::size_t held,
+                                                       std::size_t first, int width, int height) {
+  // Triangles need clip positions only to clip the few that cross the frustum, and recompute those (see
+  // ClipPositionFn); lines clip every segment and the painter's sort reads every depth, so those keep them all.
+  const bool triangles = request.kind == detail::PrimitiveKind::triangles;
+  const bool keep_clip = !triangles || request.state->order == DrawOrder::back_to_front;
+  if (keep_clip && clip_.size() < held) clip_.resize(held);
+  if (triangles && projected_.size() < held) projected_.resize(held);
+  if (varyings_.size() < held * request.varying_floats) varyings_.resize(held * request.varying_floats);
+  return {first, keep_clip ? clip_.data() : nullptr, triangles ? projected_.data() : nullptr, varyings_.data(), width,
+          height};
+}
+
+void Renderer::shade_vertex_range(const detail::DrawRequest& request, const detail::VertexOutputs& out,
+                                  std::size_t begin, std::size_t end) {
+  constexpr std::size_t kVertexChunk = 2048;
+  stats_.vertices_shaded += end - begin;
+  pool_.parallel_for((end - begin + kVertexChunk - 1) / kVertexChunk, [&](std::size_t chunk, int) {
+    const std::size_t first = begin + chunk * kVertexChunk;
+    request.shade_vertices(request.source, first, std::min(end, first + kVertexChunk), out);
+  });
+}
+
 void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) {
   using namespace detail;
   const bool triangles = request.kind == PrimitiveKind::triangles;
   const std::size_t per_primitive = triangles ? 3 : 2;
   const std::size_t count = request.indices.size() / per_primitive;
   const RenderState& state = *request.state;
+  const bool painter = triangles && state.order == DrawOrder::back_to_front;
   stats_ = {};
   stats_.primitives = count;
 
+  // Vertex stage. Meshes whose index order is coherent (grids, strips, any optimised mesh) reference a narrow band
+  // of vertices per batch, so each batch shades just its band and post-transform memory follows the batch, not the
+  // mesh. One batch, the painter's order (its sort reads every vertex first), or bands that overlap too much (a
+  // shuffled index order) shade the whole vertex span once instead. Either way the post-transform cache never
+  // misses: each vertex is shaded at most once per batch.
+  const std::size_t batch = kSetupChunk * kChunksPerBatch;
+  const std::size_t n = request.vertex_count;
+  bool banded = !painter && count > batch;
+  bool whole_shaded = false;
+  VertexOutputs outputs{};
+  const auto shade_whole = [&] {
+    outputs = prepare_vertex_outputs(request, n, 0, target.width(), target.height());
+    stats_.vertices_held = std::max(stats_.vertices_held, n);
+    shade_vertex_range(request, outputs, 0, n);
+    whole_shaded = true;
+  };
+  if (!banded) shade_whole();
+
   const std::uint32_t* order = nullptr;
-  if (triangles && state.order == DrawOrder::back_to_front) {
+  if (painter) {
     sort_keys_.resize(count);
-    setup_depth_keys(request.clip, request.vertex_count, request.indices, sort_keys_);
+    setup_depth_keys(outputs.clip, n, request.indices, sort_keys_);
     // Farthest first; equal depths keep index order. A total order lets std::sort (which, unlike stable_sort,
     // needs no buffer) give the same result every time.
     order_.resize(count);
@@ -53,24 +95,46 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   }
 
   const std::size_t tiles = static_cast<std::size_t>(target.tiles_x()) * target.tiles_y();
-  const std::size_t batch = kSetupChunk * kChunksPerBatch;
   for (std::size_t batch_first = 0; batch_first < count; batch_first += batch) {
     const std::size_t batch_count = std::min(batch, count - batch_first);
     const std::size_t chunk_count = (batch_count + kSetupChunk - 1) / kSetupChunk;
     if (chunks_.size() < chunk_count) chunks_.resize(chunk_count);
+    if (banded) {
+      chunk_bands_.resize(chunk_count);
+      pool_.parallel_for(chunk_count, [&](std::size_t c, int) {
+        const std::size_t first = batch_first + c * kSetupChunk;
+        chunk_bands_[c] = setup_vertex_range(request.indices, per_primitive, n, first,
+                                             std::min(kSetupChunk, batch_first + batch_count - first));
+      });
+      VertexRange band{n, 0};
+      for (const VertexRange& b : chunk_bands_)
+        if (b.first < b.end) band = {std::min(band.first, b.first), std::max(band.end, b.end)};
+      if (band.first >= band.end) band = {};
+      // Shading shared vertices again at batch boundaries is cheap; shading the mesh several times over is not. A
+      // band of most of the mesh is a sign of an incoherent order: the whole span, once, costs little more.
+      const std::size_t width = band.end - band.first;
+      if (width > n / 4 * 3 || stats_.vertices_shaded + width > n + n / 4) {
+        banded = false;
+        shade_whole();
+      } else {
+        outputs = prepare_vertex_outputs(request, width, band.first, target.width(), target.height());
+        stats_.vertices_held = std::max(stats_.vertices_held, width);
+        shade_vertex_range(request, outputs, band.first, band.end);
+      }
+    }
 
     pool_.parallel_for(chunk_count, [&](std::size_t c, int) {
       SetupChunk& chunk = chunks_[c];
       chunk.reset();
       const std::size_t first = batch_first + c * kSetupChunk;
-      const SetupInput input{request.clip, request.clip_position, request.clip_source, request.projected, request.vertex_count, request.indices, order, first,
+      const SetupInput input{outputs.clip, outputs.projected, outputs.first, request.clip_position, request.source,
+                             request.vertex_count, request.indices, order, first,
                              std::min(kSetupChunk, batch_first + batch_count - first), target.width(), target.height(),
                              target.tiles_x(), state.cull, state.line_width};
       if (triangles) setup_triangles(input, chunk);
       else setup_lines(input, chunk);
       chunk.sort_by_tile(tiles);
     });
-
     active_tiles_.clear();
     for (std::size_t t = 0; t < tiles; ++t)
       for (std::size_t c = 0; c < chunk_count; ++c)
@@ -95,7 +159,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       const TileWork work{tile, x0, y0, std::min(x0 + kTileSize, target.width()),
                           std::min(y0 + kTileSize, target.height()), target.width(), target.color().data(),
                           target.depth_storage(), target.block_max_depth(), target.blocks_x(), chunks_.data(),
-                          chunk_count, &scratch_[static_cast<std::size_t>(thread)], clear};
+                          chunk_count, outputs.varyings, &scratch_[static_cast<std::size_t>(thread)], clear};
       request.raster(request.draw, work);
     });
   }

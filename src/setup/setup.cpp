@@ -7,6 +7,7 @@
 
 #include "facet/framebuffer.hpp"
 #include "facet/detail/clip.hpp"
+#include "facet/detail/dispatch.hpp"
 
 namespace facet::detail {
 namespace {
@@ -48,7 +49,7 @@ class Binner {
 
   // Sets up one screen triangle given in the source winding. `facing` is +1 (front), -1 (back) when the caller
   // knows it from the whole clipped polygon, or 0 to take it from this triangle.
-  void triangle(SnappedVertex v[3], const std::uint32_t source[3], std::uint32_t primitive, int facing, bool cull) {
+  void triangle(SnappedVertex v[3], const std::uint32_t vertex[3], std::uint32_t primitive, int facing, bool cull) {
     std::int32_t X[3] = {v[0].x, v[1].x, v[2].x}, Y[3] = {v[0].y, v[1].y, v[2].y};
     // Twice the signed area in 1/256-pixel units; with y down, counter-clockwise in window space is negative.
     std::int64_t area = std::int64_t{X[1] - X[0]} * (Y[2] - Y[0]) - std::int64_t{X[2] - X[0]} * (Y[1] - Y[0]);
@@ -114,7 +115,7 @@ class Binner {
     t.inv_w = make_plane(v[0].inv_w, v[1].inv_w, v[2].inv_w, dx1, dy1, dx2, dy2, inv_det);
     t.b1_over_w = make_plane(v[0].b1_w, v[1].b1_w, v[2].b1_w, dx1, dy1, dx2, dy2, inv_det);
     t.b2_over_w = make_plane(v[0].b2_w, v[1].b2_w, v[2].b2_w, dx1, dy1, dx2, dy2, inv_det);
-    for (int k = 0; k < 3; ++k) t.vertex[k] = source[k];
+    for (int k = 0; k < 3; ++k) t.vertex[k] = vertex[k];
     t.primitive = primitive;
     t.front_facing = front;
     bin(t, index);
@@ -149,6 +150,25 @@ class Binner {
 
 }  // namespace
 
+// A pass over the batch's indices ahead of setup, so it should run at memory speed: plain min/max loops that the
+// vectoriser turns into unsigned min/max instructions, which need SSE4.1 or later, hence the clones.
+FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+VertexRange setup_vertex_range(std::span<const std::uint32_t> indices, std::size_t per_primitive,
+                               std::size_t vertex_count, std::size_t first, std::size_t count) {
+  const std::uint32_t* index = indices.data() + first * per_primitive;
+  const std::size_t total = count * per_primitive;
+  const std::uint32_t limit = static_cast<std::uint32_t>(std::min<std::size_t>(vertex_count, 0xffffffffu));
+  std::uint32_t lowest = 0xffffffffu, highest = 0;
+  for (std::size_t i = 0; i < total; ++i) {
+    const std::uint32_t v = index[i];
+    const std::uint32_t valid = 0u - static_cast<std::uint32_t>(v < limit);  // all ones or zero, no branch
+    lowest = std::min(lowest, v | ~valid);
+    highest = std::max(highest, v & valid);
+  }
+  // A valid index is below 0xffffffff, so lowest > highest means there was none.
+  return lowest <= highest ? VertexRange{lowest, std::size_t{highest} + 1} : VertexRange{};
+}
+
 void setup_triangles(const SetupInput& in, SetupChunk& out) {
   Binner binner(in, out);
   const bool culling = in.cull != CullMode::none;
@@ -159,14 +179,18 @@ void setup_triangles(const SetupInput& in, SetupChunk& out) {
       ++out.invalid;
       continue;
     }
-    const ProjectedVertex* corner[3] = {&in.projected[source[0]], &in.projected[source[1]], &in.projected[source[2]]};
+    // Set-up triangles name their vertices within the shaded range, where rasterization finds their varyings.
+    const std::uint32_t slot[3] = {static_cast<std::uint32_t>(source[0] - in.vertex_first),
+                                   static_cast<std::uint32_t>(source[1] - in.vertex_first),
+                                   static_cast<std::uint32_t>(source[2] - in.vertex_first)};
+    const ProjectedVertex* corner[3] = {&in.projected[slot[0]], &in.projected[slot[1]], &in.projected[slot[2]]};
     const auto primitive = static_cast<std::uint32_t>(tri);
     const std::uint32_t any_outside = corner[0]->outcode | corner[1]->outcode | corner[2]->outcode;
     if (any_outside == 0) {
       SnappedVertex v[3];
       for (int k = 0; k < 3; ++k)
         v[k] = {corner[k]->x, corner[k]->y, corner[k]->z, corner[k]->inv_w, k == 1 ? corner[k]->inv_w : 0.0f, k == 2 ? corner[k]->inv_w : 0.0f};
-      binner.triangle(v, source, primitive, 0, culling);
+      binner.triangle(v, slot, primitive, 0, culling);
       continue;
     }
     if ((corner[0]->outcode & corner[1]->outcode & corner[2]->outcode) || (any_outside & kNonFinite)) {
@@ -175,7 +199,7 @@ void setup_triangles(const SetupInput& in, SetupChunk& out) {
     }
     glm::vec4 clip[3];
     for (int k = 0; k < 3; ++k)
-      clip[k] = in.clip ? in.clip[source[k]] : in.clip_position(in.clip_source, source[k]);
+      clip[k] = in.clip ? in.clip[slot[k]] : in.clip_position(in.clip_source, source[k]);
     ClipVertex polygon[kMaxClipVertices];
     const int n = clip_triangle(clip, polygon);
     ++out.clipped;
@@ -197,7 +221,7 @@ void setup_triangles(const SetupInput& in, SetupChunk& out) {
     for (int k = 1; k + 1 < n; ++k) {
       SnappedVertex fan[3] = {snap(v[0], in.width, in.height), snap(v[k], in.width, in.height),
                               snap(v[k + 1], in.width, in.height)};
-      binner.triangle(fan, source, primitive, facing, false);
+      binner.triangle(fan, slot, primitive, facing, false);
     }
   }
 }
@@ -211,14 +235,15 @@ void setup_lines(const SetupInput& in, SetupChunk& out) {
       ++out.invalid;
       continue;
     }
+    const glm::vec4 clip_a = in.clip[a - in.vertex_first], clip_b = in.clip[b - in.vertex_first];
     float t0, t1;
-    if (!clip_line(in.clip[a], in.clip[b], t0, t1)) {
+    if (!clip_line(clip_a, clip_b, t0, t1)) {
       ++out.culled;
       continue;
     }
-    const glm::vec4 delta = in.clip[b] - in.clip[a];
-    const ScreenVertex s0 = to_screen(in.clip[a] + t0 * delta, glm::vec3(1.0f - t0, t0, 0.0f), in.width, in.height);
-    const ScreenVertex s1 = to_screen(in.clip[a] + t1 * delta, glm::vec3(1.0f - t1, t1, 0.0f), in.width, in.height);
+    const glm::vec4 delta = clip_b - clip_a;
+    const ScreenVertex s0 = to_screen(clip_a + t0 * delta, glm::vec3(1.0f - t0, t0, 0.0f), in.width, in.height);
+    const ScreenVertex s1 = to_screen(clip_a + t1 * delta, glm::vec3(1.0f - t1, t1, 0.0f), in.width, in.height);
     // A line is a screen-aligned rectangle half_width to each side and beyond each end (square caps), drawn as two
     // triangles that share their diagonal, so the fill rule covers each pixel once.
     float dx = s1.x - s0.x, dy = s1.y - s0.y;
@@ -237,14 +262,15 @@ void setup_lines(const SetupInput& in, SetupChunk& out) {
       s.y += oy;
       return s;
     };
-    const std::uint32_t source[3] = {a, b, b};
+    const auto slot_a = static_cast<std::uint32_t>(a - in.vertex_first), slot_b = static_cast<std::uint32_t>(b - in.vertex_first);
+    const std::uint32_t vertex[3] = {slot_a, slot_b, slot_b};
     const auto primitive = static_cast<std::uint32_t>(p);
     ScreenVertex first[3] = {corner(s0, -ax + nx, -ay + ny), corner(s1, ax + nx, ay + ny), corner(s1, ax - nx, ay - ny)};
     ScreenVertex second[3] = {corner(s0, -ax + nx, -ay + ny), corner(s1, ax - nx, ay - ny), corner(s0, -ax - nx, -ay - ny)};
     for (ScreenVertex* quad_half : {first, second}) {
       SnappedVertex snapped[3] = {snap(quad_half[0], in.width, in.height), snap(quad_half[1], in.width, in.height),
                                   snap(quad_half[2], in.width, in.height)};
-      binner.triangle(snapped, source, primitive, 0, false);
+      binner.triangle(snapped, vertex, primitive, 0, false);
     }
   }
 }

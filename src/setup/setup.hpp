@@ -11,15 +11,18 @@
 #include "facet/detail/binning.hpp"
 #include "facet/detail/clip.hpp"
 #include "facet/detail/triangle_setup.hpp"
+#include "facet/detail/vertex_stage.hpp"
 
 namespace facet::detail {
 
 struct SetupInput {
-  const glm::vec4* clip;                  // post-transform positions, or nullptr: ask clip_position
+  // Post-transform vertices of the range [vertex_first, ...) (see VertexOutputs): vertex i is at i - vertex_first.
+  const glm::vec4* clip;                  // clip positions, or nullptr: ask clip_position
+  const ProjectedVertex* projected;       // projected and snapped (triangles only)
+  std::size_t vertex_first;
   ClipPositionFn clip_position;
   const void* clip_source;                // what clip_position reads
-  const ProjectedVertex* projected;       // the same, projected and snapped (triangles only)
-  std::size_t vertex_count;
+  std::size_t vertex_count;                // of the whole draw: indices at or above it are invalid
   std::span<const std::uint32_t> indices;  // 3 per triangle or 2 per line
   const std::uint32_t* order;              // primitive permutation (painter's algorithm) or nullptr
   std::size_t first, count;                // primitives of this chunk, in draw order
@@ -27,6 +30,11 @@ struct SetupInput {
   CullMode cull;
   float line_width;
 };
+
+// The vertices that primitives [first, first + count) reference, ignoring indices at or above vertex_count (setup
+// skips those primitives).
+VertexRange setup_vertex_range(std::span<const std::uint32_t> indices, std::size_t per_primitive,
+                               std::size_t vertex_count, std::size_t first, std::size_t count);
 
 void setup_triangles(const SetupInput& input, SetupChunk& out);
 void setup_lines(const SetupInput& input, SetupChunk& out);

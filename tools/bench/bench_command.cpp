@@ -209,9 +209,11 @@ int run(const Options& o, const BenchGeometry& g) {
   const Timings t = summarize(ms);
 
   if (o.stats)
-    std::fprintf(stderr, "facet: frame 0 statistics: primitives=%zu culled=%zu clipped=%zu invalid=%zu binned=%zu\n",
+    std::fprintf(stderr,
+                 "facet: frame 0 statistics: primitives=%zu culled=%zu clipped=%zu invalid=%zu binned=%zu "
+                 "vertices_shaded=%zu vertices_held=%zu\n",
                  frame0_stats.primitives, frame0_stats.culled, frame0_stats.clipped, frame0_stats.invalid,
-                 frame0_stats.binned);
+                 frame0_stats.binned, frame0_stats.vertices_shaded, frame0_stats.vertices_held);
   if (!o.png.empty()) write_png(o.png, o.width, o.height, frame0_rgba);
   if (!o.depth.empty()) write_npy(o.depth, o.width, o.height, frame0_depth);
 

@@ -89,6 +89,7 @@ struct TileWork {
   int blocks_x;
   const SetupChunk* chunks;
   std::size_t chunk_count;
+  const float* varyings;  // post-transform varyings, indexed by TriangleSetup::vertex
   TileScratch* scratch;  // the running thread's, for deferred shading
   Framebuffer::PendingClear clear;  // deferred shading: the clear the tile applies itself as it writes its pixels
 };

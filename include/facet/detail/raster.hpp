@@ -19,7 +19,6 @@ inline constexpr int kBlockSize = 8;  // one 64-bit coverage mask per block, bit
 template <Shader S>
 struct ShadeContext {
   const S* shader;
-  const float* varyings;  // float_count_v<Varyings> floats per source vertex
   const RenderState* state;
 };
 
@@ -99,9 +98,9 @@ template <Shader S>
 
   // Perspective-correct weights of the source vertices: b/w and 1/w are linear in screen space.
   FloatArray<Varyings> value[4];
-  const float* v0 = ctx.varyings + std::size_t{tri.vertex[0]} * kFloats;
-  const float* v1 = ctx.varyings + std::size_t{tri.vertex[1]} * kFloats;
-  const float* v2 = ctx.varyings + std::size_t{tri.vertex[2]} * kFloats;
+  const float* v0 = work.varyings + std::size_t{tri.vertex[0]} * kFloats;
+  const float* v1 = work.varyings + std::size_t{tri.vertex[1]} * kFloats;
+  const float* v2 = work.varyings + std::size_t{tri.vertex[2]} * kFloats;
   for (int k = 0; k < 4; ++k) {
     if (!kDerivatives && !(covered & (1u << k))) continue;
     const float dx = static_cast<float>(px + (k & 1)) + 0.5f - tri.origin_x;

@@ -169,9 +169,9 @@ template <LaneShader S>
     // Perspective-correct weights of the source vertices: b/w and 1/w are linear in screen space.
     const Float w = 1.0f / at(tri.inv_w);
     const Float b1 = at(tri.b1_over_w) * w, b2 = at(tri.b2_over_w) * w;
-    const float* v0 = ctx.varyings + std::size_t{tri.vertex[0]} * kFloats;
-    const float* v1 = ctx.varyings + std::size_t{tri.vertex[1]} * kFloats;
-    const float* v2 = ctx.varyings + std::size_t{tri.vertex[2]} * kFloats;
+    const float* v0 = work.varyings + std::size_t{tri.vertex[0]} * kFloats;
+    const float* v1 = work.varyings + std::size_t{tri.vertex[1]} * kFloats;
+    const float* v2 = work.varyings + std::size_t{tri.vertex[2]} * kFloats;
     for (std::size_t f = 0; f < kFloats; ++f) {
       const Float value = v0[f] + b1 * (v1[f] - v0[f]) + b2 * (v2[f] - v0[f]);
       put(fragment.varyings[f], value);
@@ -248,7 +248,7 @@ template <Shader S>
 
   RenderState resolved = state;
   resolved.depth_test = false;
-  const ShadeContext<S> shade{ctx.shader, ctx.varyings, &resolved};
+  const ShadeContext<S> shade{ctx.shader, &resolved};
   for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
     for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
       for (int strip = 0; strip < kScratchBlock / 2; ++strip) {

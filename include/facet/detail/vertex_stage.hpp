@@ -1,0 +1,84 @@
+// vertex_stage.hpp - the shader-specific vertex stage behind a function pointer, and the draw it feeds.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include <glm/glm.hpp>
+
+#include "facet/render_state.hpp"
+#include "facet/shader.hpp"
+#include "facet/detail/binning.hpp"
+#include "facet/detail/clip.hpp"
+#include "facet/detail/triangle_setup.hpp"
+
+namespace facet::detail {
+
+enum class PrimitiveKind { triangles, lines };
+
+// Where the vertex stage writes. The buffers hold the range of vertices [first, first + held): vertex i of the draw
+// lands at index i - first, so a batch of primitives that references a narrow band of a large mesh needs post-transform
+// memory for that band only.
+struct VertexOutputs {
+  std::size_t first;
+  glm::vec4* clip;             // clip positions, or nullptr when the draw does not keep them
+  ProjectedVertex* projected;  // projected and snapped positions, or nullptr (lines)
+  float* varyings;             // `floats` per vertex
+  int width, height;
+};
+
+// Vertices [first, end) of a draw; empty when first >= end.
+struct VertexRange {
+  std::size_t first = 0, end = 0;
+};
+
+// Shades vertices [begin, end) of the draw into `out`.
+using VertexStageFn = void (*)(const void* source, std::size_t begin, std::size_t end, const VertexOutputs& out);
+
+// A draw's shader and vertices: the typed half of the vertex stage, reached through plain function pointers once
+// per chunk of vertices (the loop inside is inlined and specialised for the shader).
+template <Shader S>
+struct VertexSource {
+  const S* shader;
+  const typename S::Vertex* vertices;
+
+  static void shade(const void* source, std::size_t begin, std::size_t end, const VertexOutputs& out) {
+    using Varyings = typename S::Varyings;
+    constexpr std::size_t kFloats = float_count_v<Varyings>;
+    const auto& self = *static_cast<const VertexSource*>(source);
+    for (std::size_t i = begin; i < end; ++i) {
+      const VertexOut<Varyings> shaded = self.shader->vertex(self.vertices[i]);
+      const std::size_t slot = i - out.first;
+      if (out.clip) out.clip[slot] = shaded.clip;
+      if (out.projected) out.projected[slot] = project_vertex(shaded.clip, out.width, out.height);
+      const FloatArray<Varyings> f = to_floats(shaded.varyings);
+      std::copy(f.begin(), f.end(), out.varyings + slot * kFloats);
+    }
+  }
+
+  // The same clip position again, for the few triangles that cross the frustum (see ClipPositionFn).
+  static glm::vec4 clip_position(const void* source, std::uint32_t vertex) {
+    const auto& self = *static_cast<const VertexSource*>(source);
+    return self.shader->vertex(self.vertices[vertex]).clip;
+  }
+};
+
+using TileRasterFn = void (*)(const void* draw, const TileWork& work);
+
+struct DrawRequest {
+  PrimitiveKind kind;
+  std::size_t vertex_count;
+  std::size_t varying_floats;  // per vertex
+  VertexStageFn shade_vertices;
+  ClipPositionFn clip_position;
+  const void* source;  // what shade_vertices and clip_position read
+  std::span<const std::uint32_t> indices;
+  const RenderState* state;
+  TileRasterFn raster;
+  const void* draw;  // what `raster` reads: shader and state
+  bool deferred;     // tiles keep their depth locally (see raster_deferred.hpp)
+};
+
+}  // namespace facet::detail
