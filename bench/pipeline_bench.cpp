@@ -31,7 +31,8 @@ std::vector<detail::ProjectedVertex> project(const test::ClipMesh& mesh) {
   return projected;
 }
 
-// The vertex stage's work per vertex: the benchmark shader's vertex(), then outcode, w-divide, viewport and snap.
+// The vertex stage as the pipeline runs it (VertexSource::shade, in the CPU's dispatch clone): the benchmark
+// shader's vertex(), then outcode, w-divide, viewport and snap, and the varyings stored as floats.
 void BM_VertexStage(benchmark::State& state) {
   const test::ClipMesh mesh = sphere(707);
   std::vector<bench::BenchVertex> vertices;
@@ -39,14 +40,12 @@ void BM_VertexStage(benchmark::State& state) {
   bench::BenchShader shader;
   shader.clip_from_world = glm::perspective(glm::radians(45.0f), float(kWidth) / kHeight, 0.1f, 100.0f) *
                            glm::translate(glm::mat4(1.0f), glm::vec3(0, 0, -3));
-  std::vector<bench::BenchShader::Varyings> varyings(vertices.size());
+  std::vector<float> varyings(vertices.size() * float_count_v<bench::BenchShader::Varyings>);
   std::vector<detail::ProjectedVertex> projected(vertices.size());
+  const detail::VertexSource<bench::BenchShader> source{&shader, vertices.data()};
+  const detail::VertexOutputs out{0, nullptr, projected.data(), varyings.data(), kWidth, kHeight};
   for (auto _ : state) {
-    for (std::size_t i = 0; i < vertices.size(); ++i) {
-      const VertexOut<bench::BenchShader::Varyings> out = shader.vertex(vertices[i]);
-      varyings[i] = out.varyings;
-      projected[i] = detail::project_vertex(out.clip, kWidth, kHeight);
-    }
+    detail::VertexSource<bench::BenchShader>::shade(&source, 0, vertices.size(), out);
     benchmark::DoNotOptimize(projected.data());
   }
   state.SetItemsProcessed(state.iterations() * static_cast<std::int64_t>(vertices.size()));

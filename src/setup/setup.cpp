@@ -47,45 +47,64 @@ class Binner {
  public:
   Binner(const SetupInput& in, SetupChunk& out) : in_(in), out_(out) {}
 
-  // Sets up one screen triangle given in the source winding. `facing` is +1 (front), -1 (back) when the caller
-  // knows it from the whole clipped polygon, or 0 to take it from this triangle.
-  void triangle(SnappedVertex v[3], const std::uint32_t vertex[3], std::uint32_t primitive, int facing, bool cull) {
-    std::int32_t X[3] = {v[0].x, v[1].x, v[2].x}, Y[3] = {v[0].y, v[1].y, v[2].y};
-    // Twice the signed area in 1/256-pixel units; with y down, counter-clockwise in window space is negative.
-    std::int64_t area = std::int64_t{X[1] - X[0]} * (Y[2] - Y[0]) - std::int64_t{X[2] - X[0]} * (Y[1] - Y[0]);
-    if (area == 0) {
-      ++out_.culled;
-      return;
-    }
-    const bool front = facing != 0 ? facing > 0 : area < 0;
-    if (facing != 0 && (area < 0) != front) {  // a sliver of a clipped polygon flipped by snapping
-      ++out_.culled;
-      return;
-    }
-    if (cull && ((in_.cull == CullMode::back && !front) || (in_.cull == CullMode::front && front))) {
-      ++out_.culled;
-      return;
-    }
-    if (area < 0) {  // rasterize every triangle clockwise on screen, so inside is positive for all edges
-      std::swap(v[1], v[2]);
-      std::swap(X[1], X[2]);
-      std::swap(Y[1], Y[2]);
-      area = -area;
-    }
+  // A screen triangle that survived the cheap tests, clockwise on screen, with its pixel bounds.
+  struct Shape {
+    std::int32_t X[3], Y[3];
+    bool flipped;  // X[1], Y[1] and X[2], Y[2] were swapped to make it clockwise
+    bool front;
+    int px0, py0, px1, py1;
+  };
 
-    // Pixels whose centres (i + 0.5) * 256 lie within the snapped bounds. Most triangles of a dense mesh hold
-    // no pixel centre at all: they leave here, before any edge or plane is set up.
-    const std::int32_t min_x = std::min({X[0], X[1], X[2]}), max_x = std::max({X[0], X[1], X[2]});
-    const std::int32_t min_y = std::min({Y[0], Y[1], Y[2]}), max_y = std::max({Y[0], Y[1], Y[2]});
-    const int half = kSubpixelScale / 2;
-    const int px0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_x - half + kSubpixelScale - 1)));
-    const int py0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_y - half + kSubpixelScale - 1)));
-    const int px1 = std::min<int>(in_.width - 1, static_cast<int>(floor_div_subpixel(max_x - half)));
-    const int py1 = std::min<int>(in_.height - 1, static_cast<int>(floor_div_subpixel(max_y - half)));
-    if (px0 > px1 || py0 > py1) {
+  // The tests that need only snapped positions: zero area, facing, culling, and pixel centres inside the bounds.
+  // Most triangles of a dense mesh fail one of them, so they run before anything else of the triangle is read.
+  // `facing` is +1 (front), -1 (back) when the caller knows it from the whole clipped polygon, or 0 to take it
+  // from this triangle. Counts the triangle as culled and returns false when it fails.
+  [[gnu::always_inline]] bool classify(const std::int32_t x[3], const std::int32_t y[3], int facing, bool cull,
+                                       Shape& s) {
+    // Twice the signed area in 1/256-pixel units; with y down, counter-clockwise in window space is negative.
+    const std::int64_t area = std::int64_t{x[1] - x[0]} * (y[2] - y[0]) - std::int64_t{x[2] - x[0]} * (y[1] - y[0]);
+    s.front = facing != 0 ? facing > 0 : area < 0;
+    const bool sliver = facing != 0 && (area < 0) != s.front;  // a clipped polygon's piece flipped by snapping
+    if (area == 0 || sliver || (cull && ((in_.cull == CullMode::back && !s.front) ||
+                                         (in_.cull == CullMode::front && s.front)))) {
       ++out_.culled;
-      return;
+      return false;
     }
+    // Pixels whose centres (i + 0.5) * 256 lie within the snapped bounds.
+    const std::int32_t min_x = std::min({x[0], x[1], x[2]}), max_x = std::max({x[0], x[1], x[2]});
+    const std::int32_t min_y = std::min({y[0], y[1], y[2]}), max_y = std::max({y[0], y[1], y[2]});
+    const int half = kSubpixelScale / 2;
+    s.px0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_x - half + kSubpixelScale - 1)));
+    s.py0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_y - half + kSubpixelScale - 1)));
+    s.px1 = std::min<int>(in_.width - 1, static_cast<int>(floor_div_subpixel(max_x - half)));
+    s.py1 = std::min<int>(in_.height - 1, static_cast<int>(floor_div_subpixel(max_y - half)));
+    if (s.px0 > s.px1 || s.py0 > s.py1) {
+      ++out_.culled;
+      return false;
+    }
+    // Rasterize every triangle clockwise on screen, so that inside is positive for all edges.
+    s.flipped = area < 0;
+    const int second = s.flipped ? 2 : 1, third = s.flipped ? 1 : 2;
+    s.X[0] = x[0], s.X[1] = x[second], s.X[2] = x[third];
+    s.Y[0] = y[0], s.Y[1] = y[second], s.Y[2] = y[third];
+    return true;
+  }
+
+  // Sets up one screen triangle given in the source winding.
+  void triangle(SnappedVertex v[3], const std::uint32_t vertex[3], std::uint32_t primitive, int facing, bool cull) {
+    const std::int32_t x[3] = {v[0].x, v[1].x, v[2].x}, y[3] = {v[0].y, v[1].y, v[2].y};
+    Shape s;
+    if (classify(x, y, facing, cull, s)) set_up(s, v, vertex, primitive);
+  }
+
+  // Edges, bounds, planes and bins of a triangle that passed classify; v in the source winding.
+  [[gnu::noinline]] void set_up(const Shape& s, SnappedVertex v[3], const std::uint32_t vertex[3],
+                                std::uint32_t primitive) {
+    if (s.flipped) std::swap(v[1], v[2]);
+    const std::int32_t* X = s.X;
+    const std::int32_t* Y = s.Y;
+    const int px0 = s.px0, py0 = s.py0, px1 = s.px1, py1 = s.py1;
+    const bool front = s.front;
 
     // Built in place in the chunk's array (capacity reserved once): no copy of the set-up triangle.
     const auto index = static_cast<std::uint32_t>(out_.triangles.size());
@@ -187,10 +206,14 @@ void setup_triangles(const SetupInput& in, SetupChunk& out) {
     const auto primitive = static_cast<std::uint32_t>(tri);
     const std::uint32_t any_outside = corner[0]->outcode | corner[1]->outcode | corner[2]->outcode;
     if (any_outside == 0) {
+      const std::int32_t x[3] = {corner[0]->x, corner[1]->x, corner[2]->x};
+      const std::int32_t y[3] = {corner[0]->y, corner[1]->y, corner[2]->y};
+      Binner::Shape shape;
+      if (!binner.classify(x, y, 0, culling, shape)) continue;
       SnappedVertex v[3];
       for (int k = 0; k < 3; ++k)
         v[k] = {corner[k]->x, corner[k]->y, corner[k]->z, corner[k]->inv_w, k == 1 ? corner[k]->inv_w : 0.0f, k == 2 ? corner[k]->inv_w : 0.0f};
-      binner.triangle(v, slot, primitive, 0, culling);
+      binner.set_up(shape, v, slot, primitive);
       continue;
     }
     if ((corner[0]->outcode & corner[1]->outcode & corner[2]->outcode) || (any_outside & kNonFinite)) {

@@ -9,6 +9,7 @@
 #include "facet/fragment_lanes.hpp"
 #include "facet/simd.hpp"
 #include "facet/detail/raster.hpp"
+#include "facet/detail/raster_visibility.hpp"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -24,78 +25,6 @@ namespace facet::detail {
 // its triangles, in draw order, keeping per pixel the triangle that passed last; then it shades each pixel once,
 // with that triangle. The image (colours, depth, derivatives, fill rule) is bit-identical to shading as the
 // triangles come, but overdraw costs a depth test instead of a fragment shader.
-
-inline std::size_t scratch_index(int block_x, int block_y) {
-  return static_cast<std::size_t>(block_y * (kTileSize / kScratchBlock) + block_x) * kScratchBlock * kScratchBlock;
-}
-
-// Calls body.template operator()<F>() with the state's depth function as a constant, so the per-pixel depth test
-// of the visibility pass has no switch inside its loop.
-template <class Body>
-[[gnu::always_inline]] inline void with_depth_func(DepthFunc func, Body&& body) {
-  switch (func) {
-    case DepthFunc::never: return body.template operator()<DepthFunc::never>();
-    case DepthFunc::less: return body.template operator()<DepthFunc::less>();
-    case DepthFunc::equal: return body.template operator()<DepthFunc::equal>();
-    case DepthFunc::lequal: return body.template operator()<DepthFunc::lequal>();
-    case DepthFunc::greater: return body.template operator()<DepthFunc::greater>();
-    case DepthFunc::notequal: return body.template operator()<DepthFunc::notequal>();
-    case DepthFunc::gequal: return body.template operator()<DepthFunc::gequal>();
-    case DepthFunc::always: return body.template operator()<DepthFunc::always>();
-  }
-}
-
-// Visibility pass, one block: the depth test of the covered pixels against the tile's local depth, and the
-// triangle reference of those that pass. Written as plain loops over the 16 pixels of a strip rather than with
-// the lane types: the loop vectoriser runs after inlining, inside each dispatch clone, and so emits that clone's
-// mask instructions, where GCC 12 lowers some lane-type idioms (broadcasts, -1/0 masks) element by element.
-template <DepthFunc kFunc, bool kDepthTest>
-[[gnu::always_inline]] inline void raster_block_visibility(const TriangleSetup& tri, const RenderState& state,
-                                                           const TileWork& work, int bx, int by, std::uint64_t mask,
-                                                           std::uint32_t ref) {
-  const std::size_t block = scratch_index((bx - work.x0) / kScratchBlock, (by - work.y0) / kScratchBlock);
-  const bool depth_write = state.depth_write;
-  const float offset = state.depth_offset;
-  for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
-    const unsigned bits = static_cast<unsigned>(mask >> (strip * simd::kLanes)) & 0xffffu;
-    if (!bits) continue;
-    float* depth = work.scratch->depth + block + static_cast<std::size_t>(strip) * simd::kLanes;
-    std::uint32_t* triangle = work.scratch->triangle + block + static_cast<std::size_t>(strip) * simd::kLanes;
-    const int py = by + 2 * strip;
-    // Branch-free, so that the loop vectorises: bitwise &, selects, and stores of the old value where nothing passes.
-    const auto lane_pass = [&](int k, float& z) __attribute__((always_inline)) {
-      const unsigned covered = (bits >> k) & 1u;
-      if constexpr (!kDepthTest) return covered;
-      const float dx = static_cast<float>(bx + (k & 7)) + 0.5f - tri.origin_x;
-      const float dy = static_cast<float>(py + (k >> 3)) + 0.5f - tri.origin_y;
-      z = evaluate(tri.depth, dx, dy) + offset;
-      z = z < 0.0f ? 0.0f : (1.0f < z ? 1.0f : z);  // std::clamp(z, 0, 1), NaN kept, as shade_quad
-      const float stored = depth[k];
-      unsigned passes = 0;
-      if constexpr (kFunc == DepthFunc::less) passes = z < stored;
-      else if constexpr (kFunc == DepthFunc::equal) passes = z == stored;
-      else if constexpr (kFunc == DepthFunc::lequal) passes = z <= stored;
-      else if constexpr (kFunc == DepthFunc::greater) passes = z > stored;
-      else if constexpr (kFunc == DepthFunc::notequal) passes = z != stored;
-      else if constexpr (kFunc == DepthFunc::gequal) passes = z >= stored;
-      else if constexpr (kFunc == DepthFunc::always) passes = 1;
-      return covered & passes;
-    };
-    if (kDepthTest && depth_write) {
-      for (int k = 0; k < simd::kLanes; ++k) {
-        float z = 0.0f;
-        const unsigned pass = lane_pass(k, z);
-        depth[k] = pass ? z : depth[k];
-        triangle[k] = pass ? ref : triangle[k];
-      }
-    } else {
-      for (int k = 0; k < simd::kLanes; ++k) {
-        float z = 0.0f;
-        triangle[k] = lane_pass(k, z) ? ref : triangle[k];
-      }
-    }
-  }
-}
 
 // Writes colours[k] for the lanes k set in `bits` to the strip's two framebuffer rows.
 [[gnu::always_inline]] inline void store_strip(const TileWork& work, int px, int py, unsigned bits,
@@ -196,23 +125,6 @@ template <LaneShader S>
   store(colors, pack_rgba8(ctx.shader->fragment_lanes(fragment)));
   for (int k = 0; k < kLanes; ++k) colors[k] = (covered >> k) & 1u ? colors[k] : work.clear.color_value;
   store_strip(work, px, py, covered | fill, colors);
-}
-
-// Visibility pass of one tile: coverage and depth of all its triangles, in draw order.
-template <DepthFunc kFunc, bool kDepthTest>
-[[gnu::always_inline]] inline void raster_tile_visibility(const RenderState& state, const TileWork& work) {
-  for (std::size_t c = 0; c < work.chunk_count; ++c) {
-    const SetupChunk& chunk = work.chunks[c];
-    for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i) {
-      const std::uint32_t index = chunk.binned[i];
-      const TriangleSetup& tri = chunk.triangles[index];
-      const std::uint32_t ref = triangle_ref(c, index);
-      raster_triangle_blocks<false>(
-          tri, work, state, [&](int bx, int by, std::uint64_t mask) __attribute__((always_inline)) {
-            raster_block_visibility<kFunc, kDepthTest>(tri, state, work, bx, by, mask, ref);
-          });
-    }
-  }
 }
 
 // Calls copy(local, global, n) for each run of n <= 8 pixels that one row of one block of the tile has: its place

@@ -12,6 +12,7 @@
 #include "facet/shader.hpp"
 #include "facet/detail/binning.hpp"
 #include "facet/detail/clip.hpp"
+#include "facet/detail/dispatch.hpp"
 #include "facet/detail/triangle_setup.hpp"
 
 namespace facet::detail {
@@ -44,6 +45,7 @@ struct VertexSource {
   const S* shader;
   const typename S::Vertex* vertices;
 
+  // Compiled per CPU level like raster_tile, so the shader's matrix work can use the wider units.
   static void shade(const void* source, std::size_t begin, std::size_t end, const VertexOutputs& out) {
     using Varyings = typename S::Varyings;
     constexpr std::size_t kFloats = float_count_v<Varyings>;
