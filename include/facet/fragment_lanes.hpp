@@ -59,6 +59,17 @@ concept LaneShader = Shader<S> && !S::may_discard &&
                        { shader.fragment_lanes(fragment) } -> std::same_as<simd::Color>;
                      };
 
+// A LaneShader may also have
+//     void prefetch_lanes(const FragmentLanes<Varyings>&) const;
+// which the pipeline calls with each strip's fragments a few strips before it calls fragment_lanes with them, so
+// that the memory the shader will read (texture lines, mostly: see Texture::prefetch_lanes) is on its way by then.
+// It must not change anything the shader computes; it only hides memory latency.
+template <class S>
+concept PrefetchingLaneShader =
+    LaneShader<S> && requires(const S& shader, const FragmentLanes<typename S::Varyings>& fragment) {
+                       { shader.prefetch_lanes(fragment) } -> std::same_as<void>;
+                     };
+
 }  // namespace facet
 
 #pragma GCC diagnostic pop

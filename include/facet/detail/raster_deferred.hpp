@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
 
 #include "facet/fragment_lanes.hpp"
 #include "facet/simd.hpp"
@@ -14,7 +15,7 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 // GCC 12 reports the strip's FragmentLanes members as maybe-uninitialized where the first triangle writes them;
-// shade_strip_lanes fills every lane of every member before the shader reads it.
+// prepare_strip_lanes fills every lane of every member before the shader reads it.
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
 
 namespace facet::detail {
@@ -73,13 +74,14 @@ inline const TriangleSetup& triangle_at(const TileWork& work, std::uint32_t ref)
 // them. Each triangle of the strip interpolates its varyings at all 16 centres, exactly as shade_quad would (its
 // quads' helper pixels included, so derivatives are its own), and its lanes take those values. Dense meshes put
 // several triangles in most strips; shading them together costs one interpolation each and one shader call.
+// prepare_strip_lanes interpolates, finish_strip_lanes shades and stores.
 template <LaneShader S>
-[[gnu::always_inline]] inline void shade_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px, int py,
-                                                     const std::uint32_t* refs, unsigned covered, unsigned fill) {
+[[gnu::always_inline]] inline void prepare_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px,
+                                                       int py, const std::uint32_t* refs, unsigned covered,
+                                                       FragmentLanes<typename S::Varyings>& fragment) {
   using namespace simd;
   using Varyings = typename S::Varyings;
   constexpr std::size_t kFloats = float_count_v<Varyings>;
-  FragmentLanes<Varyings> fragment;
   fragment.screen_x = to_float(kLaneX + px) + 0.5f;
   fragment.screen_y = to_float(kLaneY + py) + 0.5f;
   const float offset = ctx.state->depth_offset;
@@ -121,11 +123,29 @@ template <LaneShader S>
     interpolate.template operator()<false>(triangle_at(work, ref), same);
   }
   fragment.active = mask_from_bits(covered);
-  alignas(64) std::uint32_t colors[kLanes];
-  store(colors, pack_rgba8(ctx.shader->fragment_lanes(fragment)));
-  for (int k = 0; k < kLanes; ++k) colors[k] = (covered >> k) & 1u ? colors[k] : work.clear.color_value;
+}
+
+template <LaneShader S>
+[[gnu::always_inline]] inline void finish_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px, int py,
+                                                      unsigned covered, unsigned fill,
+                                                      const FragmentLanes<typename S::Varyings>& fragment) {
+  alignas(64) std::uint32_t colors[simd::kLanes];
+  simd::store(colors, simd::pack_rgba8(ctx.shader->fragment_lanes(fragment)));
+  for (int k = 0; k < simd::kLanes; ++k) colors[k] = (covered >> k) & 1u ? colors[k] : work.clear.color_value;
   store_strip(work, px, py, covered | fill, colors);
 }
+
+// A strip prepared ahead of its shading, for shaders that prefetch.
+template <Shader S>
+struct PreparedStrip {
+  FragmentLanes<typename S::Varyings> fragment;
+  int px, py;
+  unsigned covered, fill;
+};
+
+// Strips prepared before the first is shaded: prefetch_lanes sees each strip this many strips (a few hundred
+// nanoseconds of shading) before fragment_lanes reads what it asked for, about one trip to memory.
+inline constexpr unsigned kPrefetchDistance = 4;
 
 // Calls copy(local, global, n) for each run of n <= 8 pixels that one row of one block of the tile has: its place
 // in the tile's local depth and in the framebuffer's.
@@ -161,6 +181,8 @@ template <Shader S>
   RenderState resolved = state;
   resolved.depth_test = false;
   const ShadeContext<S> shade{ctx.shader, &resolved};
+  [[maybe_unused]] std::conditional_t<PrefetchingLaneShader<S>, PreparedStrip<S>[kPrefetchDistance], char> ahead;
+  [[maybe_unused]] unsigned prepared = 0;
   for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
     for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
       for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
@@ -171,8 +193,18 @@ template <Shader S>
         // A lane shader's strip stores the clear colour with its shaded pixels; otherwise it is stored first.
         if (fill && !(LaneShader<S> && covered)) fill_strip(work, px, py, fill);
         if (!covered) continue;
-        if constexpr (LaneShader<S>) {
-          shade_strip_lanes(shade, work, px, py, refs, covered, fill);
+        if constexpr (PrefetchingLaneShader<S>) {
+          // Shade the strip prepared kPrefetchDistance strips ago, then prepare this one in its slot.
+          PreparedStrip<S>& slot = ahead[prepared % kPrefetchDistance];
+          if (prepared >= kPrefetchDistance) finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
+          prepare_strip_lanes(shade, work, px, py, refs, covered, slot.fragment);
+          slot.px = px, slot.py = py, slot.covered = covered, slot.fill = fill;
+          ctx.shader->prefetch_lanes(slot.fragment);
+          ++prepared;
+        } else if constexpr (LaneShader<S>) {
+          FragmentLanes<typename S::Varyings> fragment;
+          prepare_strip_lanes(shade, work, px, py, refs, covered, fragment);
+          finish_strip_lanes(shade, work, px, py, covered, fill, fragment);
         } else {
           // One triangle at a time, a quad at a time; ctx's state has the depth test off: it is resolved.
           for (unsigned pending = covered; pending;) {
@@ -183,6 +215,11 @@ template <Shader S>
           }
         }
       }
+  if constexpr (PrefetchingLaneShader<S>)
+    for (unsigned n = prepared > kPrefetchDistance ? prepared - kPrefetchDistance : 0; n < prepared; ++n) {
+      const PreparedStrip<S>& slot = ahead[n % kPrefetchDistance];
+      finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
+    }
 
   if (work.clear.depth || (state.depth_test && state.depth_write))
     for_each_depth_row(work, [&](float* local, float* global, int n) __attribute__((always_inline)) {
