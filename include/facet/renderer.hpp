@@ -67,6 +67,8 @@ class Renderer {
   void execute(Framebuffer& target, const detail::DrawRequest& request);
   detail::VertexOutputs prepare_vertex_outputs(const detail::DrawRequest& request, std::size_t held,
                                                std::size_t first, int width, int height);
+  detail::VertexRange batch_vertex_band(const detail::DrawRequest& request, std::size_t batch_first,
+                                        std::size_t batch_count);
   void shade_vertex_range(const detail::DrawRequest& request, const detail::VertexOutputs& out, std::size_t begin,
                           std::size_t end);
 

@@ -42,6 +42,24 @@ detail::VertexOutputs Renderer::prepare_vertex_outputs(const detail::DrawRequest
           height};
 }
 
+// The vertices that a batch's primitives reference (empty if none is valid), from a scan per setup chunk.
+detail::VertexRange Renderer::batch_vertex_band(const detail::DrawRequest& request, std::size_t batch_first,
+                                                std::size_t batch_count) {
+  using namespace detail;
+  const std::size_t per_primitive = request.kind == PrimitiveKind::triangles ? 3 : 2;
+  const std::size_t chunk_count = (batch_count + kSetupChunk - 1) / kSetupChunk;
+  chunk_bands_.resize(chunk_count);
+  pool_.parallel_for(chunk_count, [&](std::size_t c, int) {
+    const std::size_t first = batch_first + c * kSetupChunk;
+    chunk_bands_[c] = setup_vertex_range(request.indices, per_primitive, request.vertex_count, first,
+                                         std::min(kSetupChunk, batch_first + batch_count - first));
+  });
+  VertexRange band{request.vertex_count, 0};
+  for (const VertexRange& b : chunk_bands_)
+    if (b.first < b.end) band = {std::min(band.first, b.first), std::max(band.end, b.end)};
+  return band.first < band.end ? band : VertexRange{};
+}
+
 void Renderer::shade_vertex_range(const detail::DrawRequest& request, const detail::VertexOutputs& out,
                                   std::size_t begin, std::size_t end) {
   constexpr std::size_t kVertexChunk = 2048;
@@ -70,15 +88,13 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   const std::size_t batch = kSetupChunk * kChunksPerBatch;
   const std::size_t n = request.vertex_count;
   bool banded = !painter && count > batch;
-  bool whole_shaded = false;
   VertexOutputs outputs{};
-  const auto shade_whole = [&] {
-    outputs = prepare_vertex_outputs(request, n, 0, target.width(), target.height());
-    stats_.vertices_held = std::max(stats_.vertices_held, n);
-    shade_vertex_range(request, outputs, 0, n);
-    whole_shaded = true;
+  const auto shade_band = [&](VertexRange band) {
+    outputs = prepare_vertex_outputs(request, band.end - band.first, band.first, target.width(), target.height());
+    stats_.vertices_held = std::max(stats_.vertices_held, band.end - band.first);
+    shade_vertex_range(request, outputs, band.first, band.end);
   };
-  if (!banded) shade_whole();
+  if (!banded) shade_band({0, n});
 
   const std::uint32_t* order = nullptr;
   if (painter) {
@@ -100,27 +116,12 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     const std::size_t chunk_count = (batch_count + kSetupChunk - 1) / kSetupChunk;
     if (chunks_.size() < chunk_count) chunks_.resize(chunk_count);
     if (banded) {
-      chunk_bands_.resize(chunk_count);
-      pool_.parallel_for(chunk_count, [&](std::size_t c, int) {
-        const std::size_t first = batch_first + c * kSetupChunk;
-        chunk_bands_[c] = setup_vertex_range(request.indices, per_primitive, n, first,
-                                             std::min(kSetupChunk, batch_first + batch_count - first));
-      });
-      VertexRange band{n, 0};
-      for (const VertexRange& b : chunk_bands_)
-        if (b.first < b.end) band = {std::min(band.first, b.first), std::max(band.end, b.end)};
-      if (band.first >= band.end) band = {};
+      const VertexRange band = batch_vertex_band(request, batch_first, batch_count);
       // Shading shared vertices again at batch boundaries is cheap; shading the mesh several times over is not. A
       // band of most of the mesh is a sign of an incoherent order: the whole span, once, costs little more.
       const std::size_t width = band.end - band.first;
-      if (width > n / 4 * 3 || stats_.vertices_shaded + width > n + n / 4) {
-        banded = false;
-        shade_whole();
-      } else {
-        outputs = prepare_vertex_outputs(request, width, band.first, target.width(), target.height());
-        stats_.vertices_held = std::max(stats_.vertices_held, width);
-        shade_vertex_range(request, outputs, band.first, band.end);
-      }
+      banded = width <= n / 4 * 3 && stats_.vertices_shaded + width <= n + n / 4;
+      shade_band(banded ? band : VertexRange{0, n});
     }
 
     pool_.parallel_for(chunk_count, [&](std::size_t c, int) {

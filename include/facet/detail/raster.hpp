@@ -166,20 +166,29 @@ inline DepthRange raster_block_depth_range(const TriangleSetup& tri, float depth
           std::clamp(std::max(std::max(z[0], z[1]), std::max(z[2], z[3])) + depth_offset, 0.0f, 1.0f)};
 }
 
+// What a block's pixel pass reports to the block walk: whether it drew any pixel, and whether the triangle covers
+// every pixel of the block (then, under LESS or LEQUAL, each stored depth ends at most the plane's farthest, whether
+// the triangle passed there or not).
+struct BlockCoverage {
+  bool any, full;
+};
+
 // Walks the 8x8 blocks of the triangle's bounds within the tile: hierarchical depth rejects hidden blocks, then
-// visit(bx, by, coverage) handles the covered pixels, and the block's depth bound follows the writes. Shared by
-// immediate shading and the visibility pass of deferred shading, which must reject and bound blocks alike.
-template <bool kMayDiscard, class Visit>
-[[gnu::always_inline]] inline void raster_triangle_blocks(const TriangleSetup& tri, const TileWork& work,
-                                                          const RenderState& state, Visit&& visit) {
+// cover(bx, by, i0, i1, j0, j1) handles the pixels of the block's rectangle [i0, i1] x [j0, j1] and returns a
+// BlockCoverage, and the block's depth bound follows the writes. Shared by immediate shading and the visibility
+// pass of deferred shading, which must reject and bound blocks alike. depth_test is the state's (the visibility
+// pass passes it as a constant).
+template <class Cover>
+[[gnu::always_inline]] inline void raster_blocks(const TriangleSetup& tri, const TileWork& work, bool depth_test,
+                                                 const RenderState& state, Cover&& cover) {
   const int x0 = std::max<int>(tri.min_x, work.x0), x1 = std::min<int>(tri.max_x, work.x1 - 1);
   const int y0 = std::max<int>(tri.min_y, work.y0), y1 = std::min<int>(tri.max_y, work.y1 - 1);
   if (x0 > x1 || y0 > y1) return;
   const bool less = state.depth_func == DepthFunc::less, lequal = state.depth_func == DepthFunc::lequal;
   // Writes under LESS or LEQUAL only lower stored depth, so a full block tightens its bound; writes under any other
   // function may raise it, so the bound must follow them up.
-  const bool reject_hidden = state.depth_test && (less || lequal);
-  const bool writes_depth = state.depth_test && state.depth_write;
+  const bool reject_hidden = depth_test && (less || lequal);
+  const bool writes_depth = depth_test && state.depth_write;
   for (int by = y0 & ~(kBlockSize - 1); by <= y1; by += kBlockSize) {
     for (int bx = x0 & ~(kBlockSize - 1); bx <= x1; bx += kBlockSize) {
       const int i0 = std::max(x0 - bx, 0), i1 = std::min(x1 - bx, kBlockSize - 1);
@@ -192,13 +201,14 @@ template <bool kMayDiscard, class Visit>
                                    : range.nearest - kDepthBoundMargin > bound))
           continue;
       }
-      const std::uint64_t mask = raster_block_coverage(tri, bx, by, i0, i1, j0, j1);
-      if (!mask) continue;
-      visit(bx, by, mask);
+      const BlockCoverage covered = cover(bx, by, i0, i1, j0, j1);
       if (writes_depth) {
         const float farthest = std::min(range.farthest + kDepthBoundMargin, 1.0f);
-        if (!reject_hidden) bound = std::max(bound, farthest);
-        else if (mask == ~std::uint64_t{0} && !kMayDiscard) bound = std::min(bound, farthest);
+        if (!reject_hidden) {
+          if (covered.any) bound = std::max(bound, farthest);
+        } else if (covered.full) {
+          bound = std::min(bound, farthest);
+        }
       }
     }
   }
@@ -223,9 +233,14 @@ template <Shader S>
 template <Shader S>
 [[gnu::always_inline]] inline void raster_triangle(const ShadeContext<S>& ctx, const TriangleSetup& tri,
                                                    const TileWork& work) {
-  raster_triangle_blocks<S::may_discard>(tri, work, *ctx.state, [&](int bx, int by, std::uint64_t mask) __attribute__((always_inline)) {
-    shade_block_quads(ctx, tri, work, bx, by, mask);
-  });
+  const RenderState& state = *ctx.state;
+  raster_blocks(tri, work, state.depth_test, state,
+                [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
+                  const std::uint64_t mask = raster_block_coverage(tri, bx, by, i0, i1, j0, j1);
+                  if (mask) shade_block_quads(ctx, tri, work, bx, by, mask);
+                  // A discarding shader may leave covered pixels unwritten: its blocks never count as full.
+                  return BlockCoverage{mask != 0, mask == ~std::uint64_t{0} && !S::may_discard};
+                });
 }
 
 }  // namespace facet::detail

@@ -54,109 +54,81 @@ inline constexpr std::int32_t kEdgeInside = 1 << 30;
 template <DepthFunc kFunc, bool kDepthTest>
 [[gnu::always_inline]] inline void raster_triangle_visibility(const TriangleSetup& tri, const RenderState& state,
                                                               const TileWork& work, std::uint32_t ref) {
-  const int x0 = std::max<int>(tri.min_x, work.x0), x1 = std::min<int>(tri.max_x, work.x1 - 1);
-  const int y0 = std::max<int>(tri.min_y, work.y0), y1 = std::min<int>(tri.max_y, work.y1 - 1);
-  if (x0 > x1 || y0 > y1) return;
-  // As raster_triangle_blocks: LESS and LEQUAL writes only lower stored depth (a full block tightens its bound);
-  // other functions may raise it, so the bound follows them up.
-  const bool less = state.depth_func == DepthFunc::less, lequal = state.depth_func == DepthFunc::lequal;
-  const bool reject_hidden = kDepthTest && (less || lequal);
   const bool depth_write = kDepthTest && state.depth_write;
   const float offset = state.depth_offset;
-
   const std::int32_t a0 = tri.edge[0].a, b0 = tri.edge[0].b, a1 = tri.edge[1].a, b1 = tri.edge[1].b;
   const std::int32_t a2 = tri.edge[2].a, b2 = tri.edge[2].b;
   const float origin_x = tri.origin_x, origin_y = tri.origin_y;
   const Plane plane = tri.depth;
 
-  for (int by = y0 & ~(kBlockSize - 1); by <= y1; by += kBlockSize) {
-    for (int bx = x0 & ~(kBlockSize - 1); bx <= x1; bx += kBlockSize) {
-      const int i0 = std::max(x0 - bx, 0), i1 = std::min(x1 - bx, kBlockSize - 1);
-      const int j0 = std::max(y0 - by, 0), j1 = std::min(y1 - by, kBlockSize - 1);
-      float& bound = work.block_max_depth[static_cast<std::size_t>(by / kBlockSize) * work.blocks_x + bx / kBlockSize];
-      DepthRange range{0.0f, 1.0f};
-      if (reject_hidden || depth_write) {
-        range = raster_block_depth_range(tri, offset, bx + i0, by + j0, bx + i1, by + j1);
-        if (reject_hidden &&
-            (less ? range.nearest - kDepthBoundMargin >= bound : range.nearest - kDepthBoundMargin > bound))
-          continue;
-      }
-      // Each edge on the block's rectangle [i0, i1] x [j0, j1]: its extremes are at corners (exact in 64 bits).
-      std::int32_t base[3];
-      bool outside = false, all_inside = true;
-      for (int e = 0; e < 3; ++e) {
-        const Edge& edge = tri.edge[e];
-        const std::int64_t at_block = std::int64_t{edge.a} * bx + std::int64_t{edge.b} * by + edge.q;
-        const std::int64_t at_corner = at_block + std::int64_t{edge.a} * i0 + std::int64_t{edge.b} * j0;
-        const std::int64_t step_a = std::int64_t{edge.a} * (i1 - i0), step_b = std::int64_t{edge.b} * (j1 - j0);
-        const std::int64_t lowest = at_corner + std::min<std::int64_t>(0, step_a) + std::min<std::int64_t>(0, step_b);
-        const std::int64_t highest = at_corner + std::max<std::int64_t>(0, step_a) + std::max<std::int64_t>(0, step_b);
-        outside |= highest < 0;
-        all_inside &= lowest >= 0;
-        base[e] = lowest >= 0 ? kEdgeInside : static_cast<std::int32_t>(at_block);
-      }
-      if (outside) continue;
+  raster_blocks(tri, work, kDepthTest, state,
+                [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
+    // Each edge on the block's rectangle [i0, i1] x [j0, j1]: its extremes are at corners (exact in 64 bits).
+    std::int32_t base[3];
+    bool outside = false, all_inside = true;
+    for (int e = 0; e < 3; ++e) {
+      const Edge& edge = tri.edge[e];
+      const std::int64_t at_block = std::int64_t{edge.a} * bx + std::int64_t{edge.b} * by + edge.q;
+      const std::int64_t at_corner = at_block + std::int64_t{edge.a} * i0 + std::int64_t{edge.b} * j0;
+      const std::int64_t step_a = std::int64_t{edge.a} * (i1 - i0), step_b = std::int64_t{edge.b} * (j1 - j0);
+      const std::int64_t lowest = at_corner + std::min<std::int64_t>(0, step_a) + std::min<std::int64_t>(0, step_b);
+      const std::int64_t highest = at_corner + std::max<std::int64_t>(0, step_a) + std::max<std::int64_t>(0, step_b);
+      outside |= highest < 0;
+      all_inside &= lowest >= 0;
+      base[e] = lowest >= 0 ? kEdgeInside : static_cast<std::int32_t>(at_block);
+    }
+    if (outside) return BlockCoverage{false, false};
 
-      const std::uint64_t row_bits = ((std::uint64_t{1} << (i1 + 1)) - 1) & ~((std::uint64_t{1} << i0) - 1);
-      std::uint64_t rect = 0;
-      for (int j = j0; j <= j1; ++j) rect |= row_bits << (j * kBlockSize);
-      const std::size_t block = scratch_index((bx - work.x0) / kScratchBlock, (by - work.y0) / kScratchBlock);
-      unsigned any = 0;
-      for (int strip = j0 / 2; strip <= j1 / 2; ++strip) {
-        const unsigned bits = static_cast<unsigned>(rect >> (strip * simd::kLanes)) & 0xffffu;
-        float* depth = work.scratch->depth + block + static_cast<std::size_t>(strip) * simd::kLanes;
-        std::uint32_t* triangle = work.scratch->triangle + block + static_cast<std::size_t>(strip) * simd::kLanes;
-        const int py = by + 2 * strip;
-        // Only locals inside the loops: the triangle's fields, read there, might alias the stores through depth[]
-        // and triangle[] as far as GCC knows, and that keeps it from vectorising.
-        const auto strip_base = [&](int e) {
-          return base[e] == kEdgeInside ? kEdgeInside : base[e] + 2 * strip * tri.edge[e].b;
-        };
-        const std::int32_t e0 = strip_base(0), e1 = strip_base(1), e2 = strip_base(2);
-        // Branch-free, so that the loops vectorise: bitwise &, selects, and stores of the old value where nothing
-        // passes.
-        const auto lane_pass = [&](int k, float& z) __attribute__((always_inline)) {
-          // Inside all three edges when no value has its sign bit set. Bit arithmetic rather than compares: GCC
-          // turns a chain of boolean &s into branches, which the vectoriser cannot take.
-          const int i = k & 7, j = k >> 3;
-          const std::int32_t signs = (e0 + a0 * i + b0 * j) | (e1 + a1 * i + b1 * j) | (e2 + a2 * i + b2 * j);
-          unsigned pass = (bits >> k) & (~static_cast<std::uint32_t>(signs) >> 31);
-          if constexpr (kDepthTest) {
-            const float dx = static_cast<float>(bx + (k & 7)) + 0.5f - origin_x;
-            const float dy = static_cast<float>(py + (k >> 3)) + 0.5f - origin_y;
-            z = evaluate(plane, dx, dy) + offset;
-            z = z < 0.0f ? 0.0f : (1.0f < z ? 1.0f : z);  // std::clamp(z, 0, 1), NaN kept, as shade_quad
-            pass &= depth_test_passes<kFunc>(z, depth[k]);
-          }
-          return pass;
-        };
-        if (depth_write) {
-          for (int k = 0; k < simd::kLanes; ++k) {
-            float z = 0.0f;
-            const unsigned pass = lane_pass(k, z);
-            any |= pass;
-            depth[k] = pass ? z : depth[k];
-            triangle[k] = pass ? ref : triangle[k];
-          }
-        } else {
-          for (int k = 0; k < simd::kLanes; ++k) {
-            float z = 0.0f;
-            triangle[k] = lane_pass(k, z) ? ref : triangle[k];
-          }
+    const std::uint64_t row_bits = ((std::uint64_t{1} << (i1 + 1)) - 1) & ~((std::uint64_t{1} << i0) - 1);
+    std::uint64_t rect = 0;
+    for (int j = j0; j <= j1; ++j) rect |= row_bits << (j * kBlockSize);
+    const std::size_t block = scratch_index((bx - work.x0) / kScratchBlock, (by - work.y0) / kScratchBlock);
+    unsigned any = 0;
+    for (int strip = j0 / 2; strip <= j1 / 2; ++strip) {
+      const unsigned bits = static_cast<unsigned>(rect >> (strip * simd::kLanes)) & 0xffffu;
+      float* depth = work.scratch->depth + block + static_cast<std::size_t>(strip) * simd::kLanes;
+      std::uint32_t* triangle = work.scratch->triangle + block + static_cast<std::size_t>(strip) * simd::kLanes;
+      const int py = by + 2 * strip;
+      // Only locals inside the loops: the triangle's fields, read there, might alias the stores through depth[]
+      // and triangle[] as far as GCC knows, and that keeps it from vectorising.
+      const auto strip_base = [&](int e) {
+        return base[e] == kEdgeInside ? kEdgeInside : base[e] + 2 * strip * tri.edge[e].b;
+      };
+      const std::int32_t e0 = strip_base(0), e1 = strip_base(1), e2 = strip_base(2);
+      // Branch-free, so that the loops vectorise: bitwise &, selects, and stores of the old value where nothing
+      // passes.
+      const auto lane_pass = [&](int k, float& z) __attribute__((always_inline)) {
+        // Inside all three edges when no value has its sign bit set. Bit arithmetic rather than compares: GCC
+        // turns a chain of boolean &s into branches, which the vectoriser cannot take.
+        const int i = k & 7, j = k >> 3;
+        const std::int32_t signs = (e0 + a0 * i + b0 * j) | (e1 + a1 * i + b1 * j) | (e2 + a2 * i + b2 * j);
+        unsigned pass = (bits >> k) & (~static_cast<std::uint32_t>(signs) >> 31);
+        if constexpr (kDepthTest) {
+          const float dx = static_cast<float>(bx + (k & 7)) + 0.5f - origin_x;
+          const float dy = static_cast<float>(py + (k >> 3)) + 0.5f - origin_y;
+          z = evaluate(plane, dx, dy) + offset;
+          z = z < 0.0f ? 0.0f : (1.0f < z ? 1.0f : z);  // std::clamp(z, 0, 1), NaN kept, as shade_quad
+          pass &= depth_test_passes<kFunc>(z, depth[k]);
         }
-      }
-      // Under LESS or LEQUAL a fully covered block ends with every stored depth at most the plane's farthest,
-      // passed or not; otherwise only the depths actually written can raise the bound.
+        return pass;
+      };
       if (depth_write) {
-        const float farthest = std::min(range.farthest + kDepthBoundMargin, 1.0f);
-        if (!reject_hidden) {
-          if (any) bound = std::max(bound, farthest);
-        } else if (all_inside && rect == ~std::uint64_t{0}) {
-          bound = std::min(bound, farthest);
+        for (int k = 0; k < simd::kLanes; ++k) {
+          float z = 0.0f;
+          const unsigned pass = lane_pass(k, z);
+          any |= pass;
+          depth[k] = pass ? z : depth[k];
+          triangle[k] = pass ? ref : triangle[k];
+        }
+      } else {
+        for (int k = 0; k < simd::kLanes; ++k) {
+          float z = 0.0f;
+          triangle[k] = lane_pass(k, z) ? ref : triangle[k];
         }
       }
     }
-  }
+    return BlockCoverage{any != 0, all_inside && rect == ~std::uint64_t{0}};
+  });
 }
 
 // Visibility pass of one tile: coverage and depth of all its triangles, in draw order, keeping per pixel the
