@@ -24,6 +24,12 @@ struct SnappedVertex {
   float z, inv_w, b1_w, b2_w;
 };
 
+// What a set-up triangle's planes interpolate, per corner in clockwise order: window z, 1/w, and the source
+// barycentric weights 1 and 2 over w.
+struct CornerValues {
+  float value[4][3];
+};
+
 // Division by the sub-pixel scale rounding towards minus infinity: C++20 defines >> on negative values as an
 // arithmetic shift, which is exactly that.
 std::int64_t floor_div_subpixel(std::int64_t a) { return a >> kSubpixelBits; }
@@ -38,9 +44,11 @@ SnappedVertex snap(const ScreenVertex& v, int width, int height) {
   return {snap_to_subpixel(v.x, width), snap_to_subpixel(v.y, height), v.z, v.inv_w, v.b1_w, v.b2_w};
 }
 
-Plane make_plane(float f0, float f1, float f2, double dx1, double dy1, double dx2, double dy2, double inv_det) {
-  const double d1 = double{f1} - f0, d2 = double{f2} - f0;
-  return {f0, static_cast<float>((d1 * dy2 - d2 * dy1) * inv_det), static_cast<float>((d2 * dx1 - d1 * dx2) * inv_det)};
+// The plane through (0, 0, f[0]), (dx1, dy1, f[1]) and (dx2, dy2, f[2]), relative to the first corner. Double
+// precision: the corner differences and products are exact, so the gradients are correctly rounded once.
+Plane make_plane(const float f[3], double dx1, double dy1, double dx2, double dy2, double inv_det) {
+  const double d1 = double{f[1]} - f[0], d2 = double{f[2]} - f[0];
+  return {f[0], static_cast<float>((d1 * dy2 - d2 * dy1) * inv_det), static_cast<float>((d2 * dx1 - d1 * dx2) * inv_det)};
 }
 
 class Binner {
@@ -50,7 +58,8 @@ class Binner {
   // A screen triangle that survived the cheap tests, clockwise on screen, with its pixel bounds.
   struct Shape {
     std::int32_t X[3], Y[3];
-    bool flipped;  // X[1], Y[1] and X[2], Y[2] were swapped to make it clockwise
+    std::int64_t area;  // twice the signed area of the clockwise triangle in 1/256-pixel units: positive
+    bool flipped;       // X[1], Y[1] and X[2], Y[2] were swapped to make it clockwise
     bool front;
     int px0, py0, px1, py1;
   };
@@ -84,6 +93,7 @@ class Binner {
     }
     // Rasterize every triangle clockwise on screen, so that inside is positive for all edges.
     s.flipped = area < 0;
+    s.area = s.flipped ? -area : area;
     const int second = s.flipped ? 2 : 1, third = s.flipped ? 1 : 2;
     s.X[0] = x[0], s.X[1] = x[second], s.X[2] = x[third];
     s.Y[0] = y[0], s.Y[1] = y[second], s.Y[2] = y[third];
@@ -91,56 +101,79 @@ class Binner {
   }
 
   // Sets up one screen triangle given in the source winding.
-  void triangle(SnappedVertex v[3], const std::uint32_t vertex[3], std::uint32_t primitive, int facing, bool cull) {
+  void triangle(const SnappedVertex v[3], const std::uint32_t vertex[3], std::uint32_t primitive, int facing,
+                bool cull) {
     const std::int32_t x[3] = {v[0].x, v[1].x, v[2].x}, y[3] = {v[0].y, v[1].y, v[2].y};
     Shape s;
-    if (classify(x, y, facing, cull, s)) set_up(s, v, vertex, primitive);
+    if (!classify(x, y, facing, cull, s)) return;
+    CornerValues c;
+    for (int k = 0; k < 3; ++k) {
+      const SnappedVertex& corner = v[clockwise_source(s, k)];
+      c.value[0][k] = corner.z, c.value[1][k] = corner.inv_w, c.value[2][k] = corner.b1_w, c.value[3][k] = corner.b2_w;
+    }
+    set_up(s, c, vertex, primitive);
   }
 
-  // Edges, bounds, planes and bins of a triangle that passed classify; v in the source winding.
-  [[gnu::noinline]] void set_up(const Shape& s, SnappedVertex v[3], const std::uint32_t vertex[3],
-                                std::uint32_t primitive) {
-    if (s.flipped) std::swap(v[1], v[2]);
+  // A triangle of projected vertices (none outside the frustum) that passed classify; corner in the source winding.
+  // Reads the corners' depth and 1/w from the vertex stage's output, long since stored, rather than from copies
+  // just made: loading values that are still in the store buffer through wider loads stalls.
+  [[gnu::noinline]] void set_up_projected(const Shape& s, const ProjectedVertex* const corner[3],
+                                          const std::uint32_t vertex[3], std::uint32_t primitive) {
+    CornerValues c;
+    for (int k = 0; k < 3; ++k) {
+      const int source = clockwise_source(s, k);
+      const float inv_w = corner[source]->inv_w;
+      c.value[0][k] = corner[source]->z, c.value[1][k] = inv_w;
+      c.value[2][k] = source == 1 ? inv_w : 0.0f, c.value[3][k] = source == 2 ? inv_w : 0.0f;
+    }
+    set_up(s, c, vertex, primitive);
+  }
+
+ private:
+  // The source corner at clockwise position k.
+  static int clockwise_source(const Shape& s, int k) { return s.flipped && k != 0 ? 3 - k : k; }
+
+  // Edges, bounds, planes and bins of a triangle that passed classify, with its corner values in clockwise order.
+  [[gnu::always_inline]] void set_up(const Shape& s, const CornerValues& c, const std::uint32_t vertex[3],
+                                     std::uint32_t primitive) {
     const std::int32_t* X = s.X;
     const std::int32_t* Y = s.Y;
-    const int px0 = s.px0, py0 = s.py0, px1 = s.px1, py1 = s.py1;
-    const bool front = s.front;
-
-    // Built in place in the chunk's array (capacity reserved once): no copy of the set-up triangle.
-    const auto index = static_cast<std::uint32_t>(out_.triangles.size());
-    TriangleSetup& t = out_.triangles.emplace_back();
+    // Built whole, then appended: emplace_back() would first zero the 136 bytes.
+    TriangleSetup t;
     for (int k = 0; k < 3; ++k) {
       const int a = k, b = (k + 1) % 3;
       const std::int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
       // Top-left rule, clockwise on screen with y down: a top edge is horizontal going right, a left edge goes up.
       const bool top_left = (dy == 0 && dx > 0) || dy < 0;
-      const std::int64_t c = dy * X[a] - dx * Y[a];
-      const std::int64_t k_centre = (kSubpixelScale / 2) * (-dy + dx) + c + (top_left ? 0 : -1);
+      const std::int64_t c0 = dy * X[a] - dx * Y[a];
+      const std::int64_t k_centre = (kSubpixelScale / 2) * (-dy + dx) + c0 + (top_left ? 0 : -1);
       t.edge[k] = {static_cast<std::int32_t>(-dy), static_cast<std::int32_t>(dx), floor_div_subpixel(k_centre)};
     }
-    t.min_x = static_cast<std::int16_t>(px0);
-    t.min_y = static_cast<std::int16_t>(py0);
-    t.max_x = static_cast<std::int16_t>(px1);
-    t.max_y = static_cast<std::int16_t>(py1);
+    t.min_x = static_cast<std::int16_t>(s.px0);
+    t.min_y = static_cast<std::int16_t>(s.py0);
+    t.max_x = static_cast<std::int16_t>(s.px1);
+    t.max_y = static_cast<std::int16_t>(s.py1);
 
-    // Interpolation planes from the snapped positions, so that they agree with coverage.
+    // Interpolation planes from the snapped positions, so that they agree with coverage. The determinant in
+    // pixels is the area classify computed, exactly.
     const double scale = 1.0 / kSubpixelScale;
     const double dx1 = (X[1] - X[0]) * scale, dy1 = (Y[1] - Y[0]) * scale;
     const double dx2 = (X[2] - X[0]) * scale, dy2 = (Y[2] - Y[0]) * scale;
-    const double inv_det = 1.0 / (dx1 * dy2 - dx2 * dy1);
+    const double inv_det = double{kSubpixelScale * kSubpixelScale} / static_cast<double>(s.area);
     t.origin_x = static_cast<float>(X[0] * scale);
     t.origin_y = static_cast<float>(Y[0] * scale);
-    t.depth = make_plane(v[0].z, v[1].z, v[2].z, dx1, dy1, dx2, dy2, inv_det);
-    t.inv_w = make_plane(v[0].inv_w, v[1].inv_w, v[2].inv_w, dx1, dy1, dx2, dy2, inv_det);
-    t.b1_over_w = make_plane(v[0].b1_w, v[1].b1_w, v[2].b1_w, dx1, dy1, dx2, dy2, inv_det);
-    t.b2_over_w = make_plane(v[0].b2_w, v[1].b2_w, v[2].b2_w, dx1, dy1, dx2, dy2, inv_det);
+    t.depth = make_plane(c.value[0], dx1, dy1, dx2, dy2, inv_det);
+    t.inv_w = make_plane(c.value[1], dx1, dy1, dx2, dy2, inv_det);
+    t.b1_over_w = make_plane(c.value[2], dx1, dy1, dx2, dy2, inv_det);
+    t.b2_over_w = make_plane(c.value[3], dx1, dy1, dx2, dy2, inv_det);
     for (int k = 0; k < 3; ++k) t.vertex[k] = vertex[k];
     t.primitive = primitive;
-    t.front_facing = front;
+    t.front_facing = s.front;
+    const auto index = static_cast<std::uint32_t>(out_.triangles.size());
+    out_.triangles.push_back(t);
     bin(t, index);
   }
 
- private:
   void bin(const TriangleSetup& t, std::uint32_t index) {
     const int tx0 = t.min_x / kTileSize, tx1 = t.max_x / kTileSize;
     const int ty0 = t.min_y / kTileSize, ty1 = t.max_y / kTileSize;
@@ -209,11 +242,7 @@ void setup_triangles(const SetupInput& in, SetupChunk& out) {
       const std::int32_t x[3] = {corner[0]->x, corner[1]->x, corner[2]->x};
       const std::int32_t y[3] = {corner[0]->y, corner[1]->y, corner[2]->y};
       Binner::Shape shape;
-      if (!binner.classify(x, y, 0, culling, shape)) continue;
-      SnappedVertex v[3];
-      for (int k = 0; k < 3; ++k)
-        v[k] = {corner[k]->x, corner[k]->y, corner[k]->z, corner[k]->inv_w, k == 1 ? corner[k]->inv_w : 0.0f, k == 2 ? corner[k]->inv_w : 0.0f};
-      binner.set_up(shape, v, slot, primitive);
+      if (binner.classify(x, y, 0, culling, shape)) binner.set_up_projected(shape, corner, slot, primitive);
       continue;
     }
     if ((corner[0]->outcode & corner[1]->outcode & corner[2]->outcode) || (any_outside & kNonFinite)) {
