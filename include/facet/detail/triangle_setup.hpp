@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -68,6 +69,7 @@ inline glm::vec3 screen_from_clip(const glm::vec4& clip, float inv_w, int width,
           (ndc.z + 1.0f) * 0.5f};
 }
 
+// The definition of a projected vertex, one at a time; project_vertices below must agree with it bit for bit.
 inline ProjectedVertex project_vertex(const glm::vec4& clip, int width, int height) {
   const std::uint32_t code = outcode(clip);
   if (code) return {0, 0, 0.0f, 0.0f, code};
@@ -75,5 +77,19 @@ inline ProjectedVertex project_vertex(const glm::vec4& clip, int width, int heig
   const glm::vec3 screen = screen_from_clip(clip, inv_w, width, height);
   return {snap_to_subpixel(screen.x, width), snap_to_subpixel(screen.y, height), screen.z, inv_w, 0};
 }
+
+// Clip positions of up to kProjectBlock vertices, one array per coordinate: the vertex stage gathers each block's
+// positions here, so that project_vertices runs over whole vectors of vertices.
+inline constexpr std::size_t kProjectBlock = 64;
+struct ClipBlock {
+  alignas(64) float x[kProjectBlock];
+  alignas(64) float y[kProjectBlock];
+  alignas(64) float z[kProjectBlock];
+  alignas(64) float w[kProjectBlock];
+};
+
+// project_vertex of clip positions [0, count) of the block into out[0, count), branch-free and vectorised in each
+// dispatch clone; compiled once (src/setup/project.cpp), not per shader.
+void project_vertices(const ClipBlock& clip, std::size_t count, ProjectedVertex* out, int width, int height);
 
 }  // namespace facet::detail

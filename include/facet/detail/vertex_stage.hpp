@@ -45,18 +45,23 @@ struct VertexSource {
   const S* shader;
   const typename S::Vertex* vertices;
 
-  // Compiled per CPU level like raster_tile, so the shader's matrix work can use the wider units.
+  // The shader runs one vertex at a time; each block's clip positions are then projected together (see ClipBlock).
   static void shade(const void* source, std::size_t begin, std::size_t end, const VertexOutputs& out) {
     using Varyings = typename S::Varyings;
     constexpr std::size_t kFloats = float_count_v<Varyings>;
     const auto& self = *static_cast<const VertexSource*>(source);
-    for (std::size_t i = begin; i < end; ++i) {
-      const VertexOut<Varyings> shaded = self.shader->vertex(self.vertices[i]);
-      const std::size_t slot = i - out.first;
-      if (out.clip) out.clip[slot] = shaded.clip;
-      if (out.projected) out.projected[slot] = project_vertex(shaded.clip, out.width, out.height);
-      const FloatArray<Varyings> f = to_floats(shaded.varyings);
-      std::copy(f.begin(), f.end(), out.varyings + slot * kFloats);
+    ClipBlock block;
+    for (std::size_t first = begin; first < end; first += kProjectBlock) {
+      const std::size_t count = std::min(kProjectBlock, end - first);
+      for (std::size_t k = 0; k < count; ++k) {
+        const VertexOut<Varyings> shaded = self.shader->vertex(self.vertices[first + k]);
+        const std::size_t slot = first + k - out.first;
+        if (out.clip) out.clip[slot] = shaded.clip;
+        block.x[k] = shaded.clip.x, block.y[k] = shaded.clip.y, block.z[k] = shaded.clip.z, block.w[k] = shaded.clip.w;
+        const FloatArray<Varyings> f = to_floats(shaded.varyings);
+        std::copy(f.begin(), f.end(), out.varyings + slot * kFloats);
+      }
+      if (out.projected) project_vertices(block, count, out.projected + (first - out.first), out.width, out.height);
     }
   }
 
