@@ -97,6 +97,19 @@ class Binner {
     const int second = s.flipped ? 2 : 1, third = s.flipped ? 1 : 2;
     s.X[0] = x[0], s.X[1] = x[second], s.X[2] = x[third];
     s.Y[0] = y[0], s.Y[1] = y[second], s.Y[2] = y[third];
+    // Dense meshes make many triangles whose bounds hold one pixel centre, and about half of those miss it: test
+    // that centre now rather than set up a triangle that covers nothing.
+    if (s.px0 == s.px1 && s.py0 == s.py1) {
+      const std::int64_t cx = std::int64_t{s.px0} * kSubpixelScale + half, cy = std::int64_t{s.py0} * kSubpixelScale + half;
+      for (int k = 0; k < 3; ++k) {
+        const int a = k, b = (k + 1) % 3;
+        const std::int64_t dx = s.X[b] - s.X[a], dy = s.Y[b] - s.Y[a];
+        if (dx * (cy - s.Y[a]) - dy * (cx - s.X[a]) + top_left_bias(dx, dy) < 0) {
+          ++out_.culled;
+          return false;
+        }
+      }
+    }
     return true;
   }
 
@@ -130,6 +143,11 @@ class Binner {
   }
 
  private:
+  // The edge function of clockwise edge (dx, dy) at a point is dx * (y - y_a) - dy * (x - x_a) plus this bias, and
+  // the point is inside when that is >= 0. Top-left rule, with y down: a top edge is horizontal going right, a
+  // left edge goes up; a point exactly on any other edge is outside.
+  static std::int64_t top_left_bias(std::int64_t dx, std::int64_t dy) { return (dy == 0 && dx > 0) || dy < 0 ? 0 : -1; }
+
   // The source corner at clockwise position k.
   static int clockwise_source(const Shape& s, int k) { return s.flipped && k != 0 ? 3 - k : k; }
 
@@ -145,10 +163,8 @@ class Binner {
     for (int k = 0; k < 3; ++k) {
       const int a = k, b = (k + 1) % 3;
       const std::int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
-      // Top-left rule, clockwise on screen with y down: a top edge is horizontal going right, a left edge goes up.
-      const bool top_left = (dy == 0 && dx > 0) || dy < 0;
       const std::int64_t c0 = dy * X[a] - dx * Y[a];
-      const std::int64_t k_centre = (kSubpixelScale / 2) * (-dy + dx) + c0 + (top_left ? 0 : -1);
+      const std::int64_t k_centre = (kSubpixelScale / 2) * (-dy + dx) + c0 + top_left_bias(dx, dy);
       t.edge[k] = {static_cast<std::int32_t>(-dy), static_cast<std::int32_t>(dx), floor_div_subpixel(k_centre)};
     }
     t.min_x = static_cast<std::int16_t>(s.px0);
