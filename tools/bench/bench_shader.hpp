@@ -8,6 +8,7 @@
 #include "facet/fragment_lanes.hpp"
 #include "facet/shader.hpp"
 #include "facet/texture.hpp"
+#include "facet/vertex_lanes.hpp"
 
 namespace facet::bench {
 
@@ -53,6 +54,29 @@ struct BenchShader {
   VertexOut<Varyings> vertex(const Vertex& v) const {
     const glm::vec4 world = world_from_object * glm::vec4(v.pos, 1.0f);
     return {clip_from_world * world, {glm::vec3(world), normal_matrix * v.normal, v.uv}};
+  }
+
+  // vertex() for 16 vertices at once, in glm's order: M * v is (m0 x + m1 y) + (m2 z + m3 w) per row, a mat3
+  // product m0 x + m1 y + m2 z; w = 1 makes m3 w exactly m3.
+  FACET_LANES_INLINE VertexOutLanes<Varyings> vertex_lanes(const VertexLanes<Vertex>& v) const {
+    using simd::Float;
+    const simd::Vec3 pos = v.get(&Vertex::pos), normal = v.get(&Vertex::normal);
+    const auto transform = [](const glm::mat4& m, int row, Float x, Float y, Float z, Float w) __attribute__((always_inline)) {
+      return (m[0][row] * x + m[1][row] * y) + (m[2][row] * z + m[3][row] * w);
+    };
+    const Float one = simd::splat(1.0f);
+    Float world[4], clip[4];
+    for (int row = 0; row < 4; ++row) world[row] = transform(world_from_object, row, pos.x, pos.y, pos.z, one);
+    for (int row = 0; row < 4; ++row) clip[row] = transform(clip_from_world, row, world[0], world[1], world[2], world[3]);
+    const auto rotate = [&](int row) __attribute__((always_inline)) {
+      return normal_matrix[0][row] * normal.x + normal_matrix[1][row] * normal.y + normal_matrix[2][row] * normal.z;
+    };
+    VertexOutLanes<Varyings> out;
+    out.clip_x = clip[0], out.clip_y = clip[1], out.clip_z = clip[2], out.clip_w = clip[3];
+    out.set(&Varyings::world_pos, simd::Vec3{world[0], world[1], world[2]});
+    out.set(&Varyings::world_normal, simd::Vec3{rotate(0), rotate(1), rotate(2)});
+    out.set(&Varyings::uv, v.get(&Vertex::uv));
+    return out;
   }
 
   glm::vec4 fragment(const Fragment<Varyings>& f) const {
@@ -105,5 +129,6 @@ struct BenchShader {
 };
 
 static_assert(PrefetchingLaneShader<BenchShader>);
+static_assert(LaneVertexShader<BenchShader>);
 
 }  // namespace facet::bench

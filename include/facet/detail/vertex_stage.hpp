@@ -10,10 +10,15 @@
 
 #include "facet/render_state.hpp"
 #include "facet/shader.hpp"
+#include "facet/simd.hpp"
+#include "facet/vertex_lanes.hpp"
 #include "facet/detail/binning.hpp"
 #include "facet/detail/clip.hpp"
 #include "facet/detail/dispatch.hpp"
 #include "facet/detail/triangle_setup.hpp"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
 
 namespace facet::detail {
 
@@ -45,7 +50,9 @@ struct VertexSource {
   const S* shader;
   const typename S::Vertex* vertices;
 
-  // The shader runs one vertex at a time; each block's clip positions are then projected together (see ClipBlock).
+  // The shader runs on 16 vertices per call if it has vertex_lanes, else on one; each block's clip positions are
+  // then projected together (see ClipBlock). Compiled per CPU level like raster_tile, for the lane types.
+  FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
   static void shade(const void* source, std::size_t begin, std::size_t end, const VertexOutputs& out) {
     using Varyings = typename S::Varyings;
     constexpr std::size_t kFloats = float_count_v<Varyings>;
@@ -53,14 +60,25 @@ struct VertexSource {
     ClipBlock block;
     for (std::size_t first = begin; first < end; first += kProjectBlock) {
       const std::size_t count = std::min(kProjectBlock, end - first);
-      for (std::size_t k = 0; k < count; ++k) {
+      std::size_t k = 0;
+      if constexpr (LaneVertexShader<S>) {
+        for (; k + simd::kLanes <= count; k += simd::kLanes) {
+          const VertexOutLanes<Varyings> shaded = self.shader->vertex_lanes({self.vertices + first + k});
+          simd::store(block.x + k, shaded.clip_x), simd::store(block.y + k, shaded.clip_y);
+          simd::store(block.z + k, shaded.clip_z), simd::store(block.w + k, shaded.clip_w);
+          float* varyings = out.varyings + (first + k - out.first) * kFloats;
+          for (int lane = 0; lane < simd::kLanes; ++lane)
+            for (std::size_t f = 0; f < kFloats; ++f) varyings[lane * kFloats + f] = shaded.varyings[f][lane];
+        }
+      }
+      for (; k < count; ++k) {
         const VertexOut<Varyings> shaded = self.shader->vertex(self.vertices[first + k]);
-        const std::size_t slot = first + k - out.first;
-        if (out.clip) out.clip[slot] = shaded.clip;
         block.x[k] = shaded.clip.x, block.y[k] = shaded.clip.y, block.z[k] = shaded.clip.z, block.w[k] = shaded.clip.w;
         const FloatArray<Varyings> f = to_floats(shaded.varyings);
-        std::copy(f.begin(), f.end(), out.varyings + slot * kFloats);
+        std::copy(f.begin(), f.end(), out.varyings + (first + k - out.first) * kFloats);
       }
+      if (out.clip)
+        for (std::size_t j = 0; j < count; ++j) out.clip[first + j - out.first] = {block.x[j], block.y[j], block.z[j], block.w[j]};
       if (out.projected) project_vertices(block, count, out.projected + (first - out.first), out.width, out.height);
     }
   }
@@ -89,3 +107,5 @@ struct DrawRequest {
 };
 
 }  // namespace facet::detail
+
+#pragma GCC diagnostic pop

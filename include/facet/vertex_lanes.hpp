@@ -1,0 +1,76 @@
+// vertex_lanes.hpp - the optional 16-lane vertex function: a shader that has one shades 16 vertices per call.
+#pragma once
+
+#include <array>
+#include <concepts>
+#include <cstddef>
+
+#include <glm/glm.hpp>
+
+#include "facet/fragment_lanes.hpp"
+#include "facet/shader.hpp"
+#include "facet/simd.hpp"
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+namespace facet {
+
+// Sixteen consecutive vertices of a draw: lane k is vertices[k]. Read them by member with get().
+template <class Vertex>
+struct VertexLanes {
+  const Vertex* vertices;
+
+  FACET_LANES_INLINE simd::Float get(float Vertex::*member) const {
+    simd::Float r;
+    for (int k = 0; k < simd::kLanes; ++k) r[k] = vertices[k].*member;
+    return r;
+  }
+  FACET_LANES_INLINE simd::Vec2 get(glm::vec2 Vertex::*member) const {
+    simd::Vec2 r;
+    for (int k = 0; k < simd::kLanes; ++k) r.x[k] = (vertices[k].*member).x, r.y[k] = (vertices[k].*member).y;
+    return r;
+  }
+  FACET_LANES_INLINE simd::Vec3 get(glm::vec3 Vertex::*member) const {
+    simd::Vec3 r;
+    for (int k = 0; k < simd::kLanes; ++k) {
+      const glm::vec3& v = vertices[k].*member;
+      r.x[k] = v.x, r.y[k] = v.y, r.z[k] = v.z;
+    }
+    return r;
+  }
+};
+
+// What vertex_lanes returns: sixteen clip positions and sets of varyings, one simd::Float per coordinate and per
+// float of the Varyings struct. Write varyings by member with set().
+template <Interpolatable V>
+struct VertexOutLanes {
+  static constexpr std::size_t kFloats = float_count_v<V>;
+  simd::Float clip_x, clip_y, clip_z, clip_w;
+  std::array<simd::Float, kFloats> varyings;
+
+  FACET_LANES_INLINE void set(float V::*member, simd::Float v) { varyings[FragmentLanes<V>::float_index(member)] = v; }
+  FACET_LANES_INLINE void set(glm::vec2 V::*member, const simd::Vec2& v) {
+    const std::size_t i = FragmentLanes<V>::float_index(member);
+    varyings[i] = v.x, varyings[i + 1] = v.y;
+  }
+  FACET_LANES_INLINE void set(glm::vec3 V::*member, const simd::Vec3& v) {
+    const std::size_t i = FragmentLanes<V>::float_index(member);
+    varyings[i] = v.x, varyings[i + 1] = v.y, varyings[i + 2] = v.z;
+  }
+};
+
+// A LaneVertexShader is a Shader that also has
+//     VertexOutLanes<Varyings> vertex_lanes(const VertexLanes<Vertex>&) const;
+// computing, lane for lane, what vertex() computes, with the same operations in the same order (then both give
+// identical images: facet builds without floating-point contraction). The vertex stage then shades 16 vertices
+// per call and the rest of a draw one at a time; vertex() stays the definition. Declare it FACET_LANES_INLINE,
+// like fragment_lanes, so that it is compiled inside each CPU-level clone of the vertex stage.
+template <class S>
+concept LaneVertexShader = Shader<S> && requires(const S& shader, const VertexLanes<typename S::Vertex>& vertices) {
+  { shader.vertex_lanes(vertices) } -> std::same_as<VertexOutLanes<typename S::Varyings>>;
+};
+
+}  // namespace facet
+
+#pragma GCC diagnostic pop
