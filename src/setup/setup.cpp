@@ -97,18 +97,11 @@ class Binner {
     const int second = s.flipped ? 2 : 1, third = s.flipped ? 1 : 2;
     s.X[0] = x[0], s.X[1] = x[second], s.X[2] = x[third];
     s.Y[0] = y[0], s.Y[1] = y[second], s.Y[2] = y[third];
-    // Dense meshes make many triangles whose bounds hold one pixel centre, and about half of those miss it: test
-    // that centre now rather than set up a triangle that covers nothing.
-    if (s.px0 == s.px1 && s.py0 == s.py1) {
-      const std::int64_t cx = std::int64_t{s.px0} * kSubpixelScale + half, cy = std::int64_t{s.py0} * kSubpixelScale + half;
-      for (int k = 0; k < 3; ++k) {
-        const int a = k, b = (k + 1) % 3;
-        const std::int64_t dx = s.X[b] - s.X[a], dy = s.Y[b] - s.Y[a];
-        if (dx * (cy - s.Y[a]) - dy * (cx - s.X[a]) + top_left_bias(dx, dy) < 0) {
-          ++out_.culled;
-          return false;
-        }
-      }
+    // Dense meshes make many triangles whose bounds hold a pixel centre or two, and many of those cover none of
+    // them: test those centres now rather than set up a triangle that covers nothing.
+    if ((s.px1 - s.px0 + 1) * (s.py1 - s.py0 + 1) <= 4 && !covers_a_centre(s)) {
+      ++out_.culled;
+      return false;
     }
     return true;
   }
@@ -147,6 +140,23 @@ class Binner {
   // the point is inside when that is >= 0. Top-left rule, with y down: a top edge is horizontal going right, a
   // left edge goes up; a point exactly on any other edge is outside.
   static std::int64_t top_left_bias(std::int64_t dx, std::int64_t dy) { return (dy == 0 && dx > 0) || dy < 0 ? 0 : -1; }
+
+  // Whether any pixel centre within the bounds is inside all three clockwise edges (the fill rule included).
+  static bool covers_a_centre(const Shape& s) {
+    const std::int64_t half = kSubpixelScale / 2;
+    for (int py = s.py0; py <= s.py1; ++py)
+      for (int px = s.px0; px <= s.px1; ++px) {
+        const std::int64_t cx = std::int64_t{px} * kSubpixelScale + half, cy = std::int64_t{py} * kSubpixelScale + half;
+        bool inside = true;
+        for (int k = 0; k < 3; ++k) {
+          const int a = k, b = (k + 1) % 3;
+          const std::int64_t dx = s.X[b] - s.X[a], dy = s.Y[b] - s.Y[a];
+          inside &= dx * (cy - s.Y[a]) - dy * (cx - s.X[a]) + top_left_bias(dx, dy) >= 0;
+        }
+        if (inside) return true;
+      }
+    return false;
+  }
 
   // The source corner at clockwise position k.
   static int clockwise_source(const Shape& s, int k) { return s.flipped && k != 0 ? 3 - k : k; }
