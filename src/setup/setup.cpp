@@ -64,8 +64,9 @@ class Binner {
     int px0, py0, px1, py1;
   };
 
-  // The tests that need only snapped positions: zero area, facing, culling, and pixel centres inside the bounds.
-  // Most triangles of a dense mesh fail one of them, so they run before anything else of the triangle is read.
+  // The tests that need only snapped positions: zero area, facing, culling, pixel centres inside the bounds and,
+  // when the bounds hold at most four, whether the triangle covers any of them. Most triangles of a dense mesh
+  // fail one of these, so they run before anything else of the triangle is read.
   // `facing` is +1 (front), -1 (back) when the caller knows it from the whole clipped polygon, or 0 to take it
   // from this triangle. Counts the triangle as culled and returns false when it fails.
   [[gnu::always_inline]] bool classify(const std::int32_t x[3], const std::int32_t y[3], int facing, bool cull,

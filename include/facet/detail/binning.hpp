@@ -21,7 +21,7 @@ namespace facet::detail {
 inline constexpr std::size_t kSetupChunk = 4096;     // primitives per setup task
 // Setup memory is bounded by one batch at a time. 16 chunks (65,536 primitives) keep a dense mesh's set-up
 // triangles and varyings of a batch near the cache while its tiles read them back: on sphere:1414, 64 chunks were
-// 14% slower at 2 threads, 8 chunks 2% slower (more tile visits per frame).
+// 14% slower at 2 threads, 8 chunks 2-5% slower (more tile visits and barriers per frame).
 inline constexpr std::size_t kChunksPerBatch = 16;
 
 // An allocator whose emplace_back() leaves a new element default-initialised: setup writes every field of a
