@@ -103,7 +103,27 @@ void Framebuffer::resolve_clear_tile_row(int tile_row) {
   const bool whole_row = std::all_of(tile_needs_clear_.begin() + first, tile_needs_clear_.begin() + first + tiles_x_,
                                      [](std::uint8_t pending) { return pending != 0; });
   if (!whole_row) {
-    for (int t = first; t < first + tiles_x_; ++t) resolve_clear(t);
+    // Runs of neighbouring tiles still to clear (beside a model that covers the middle of the row, say): each
+    // pixel row of a run is one contiguous fill, rather than a strided fill per tile.
+    for (int t = first; t < first + tiles_x_;) {
+      int end = t;
+      while (end < first + tiles_x_ && tile_needs_clear_[end]) ++end;
+      if (end == t) {
+        ++t;
+        continue;
+      }
+      const int x0 = (t - first) * kTileSize, x1 = std::min((end - first) * kTileSize, width_);
+      const int y0 = tile_row * kTileSize, y1 = std::min(y0 + kTileSize, height_);
+      for (int y = y0; y < y1; ++y) {
+        const std::size_t offset = static_cast<std::size_t>(y) * width_ + x0, count = static_cast<std::size_t>(x1 - x0);
+        if (pending_.color) fill_words(color_.data() + offset, count, pending_.color_value);
+        if (pending_.depth) fill_words(depth_.data() + offset, count, std::bit_cast<std::uint32_t>(pending_.depth_value));
+      }
+      for (; t < end; ++t) {
+        tile_needs_clear_[t] = 0;
+        if (pending_.depth) reset_depth_bounds(t, pending_.depth_value);
+      }
+    }
     return;
   }
   const int y0 = tile_row * kTileSize, rows = std::min(kTileSize, height_ - y0);
