@@ -67,7 +67,8 @@ class Framebuffer {
   PendingClear take_clear(int tile_index);
   // Applies the pending clear to every tile of one row of tiles that still needs it. When all of them do (the
   // common case at finish() after an empty or sparse frame), the row's pixels are contiguous in memory and are
-  // filled in one pass, near memset speed. Only the owner of that row of tiles calls it.
+  // filled in one pass, near memset speed; otherwise each run of neighbouring tiles that need it is filled one
+  // pixel row at a time. Only the owner of that row of tiles calls it.
   void resolve_clear_tile_row(int tile_row);
   void resolve_all_clears();
 
