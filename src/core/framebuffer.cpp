@@ -99,41 +99,31 @@ void Framebuffer::reset_depth_bounds(int tile_index, float value) {
 }
 
 void Framebuffer::resolve_clear_tile_row(int tile_row) {
-  const int first = tile_row * tiles_x_;
-  const bool whole_row = std::all_of(tile_needs_clear_.begin() + first, tile_needs_clear_.begin() + first + tiles_x_,
-                                     [](std::uint8_t pending) { return pending != 0; });
-  if (!whole_row) {
-    // Runs of neighbouring tiles still to clear (beside a model that covers the middle of the row, say): each
-    // pixel row of a run is one contiguous fill, rather than a strided fill per tile.
-    for (int t = first; t < first + tiles_x_;) {
-      int end = t;
-      while (end < first + tiles_x_ && tile_needs_clear_[end]) ++end;
-      if (end == t) {
-        ++t;
-        continue;
-      }
-      const int x0 = (t - first) * kTileSize, x1 = std::min((end - first) * kTileSize, width_);
-      const int y0 = tile_row * kTileSize, y1 = std::min(y0 + kTileSize, height_);
-      for (int y = y0; y < y1; ++y) {
-        const std::size_t offset = static_cast<std::size_t>(y) * width_ + x0, count = static_cast<std::size_t>(x1 - x0);
-        if (pending_.color) fill_words(color_.data() + offset, count, pending_.color_value);
-        if (pending_.depth) fill_words(depth_.data() + offset, count, std::bit_cast<std::uint32_t>(pending_.depth_value));
-      }
-      for (; t < end; ++t) {
-        tile_needs_clear_[t] = 0;
-        if (pending_.depth) reset_depth_bounds(t, pending_.depth_value);
-      }
+  const int first = tile_row * tiles_x_, last = first + tiles_x_;
+  const int y0 = tile_row * kTileSize, y1 = std::min(y0 + kTileSize, height_);
+  // Runs of neighbouring tiles still to clear. A run across the whole width (the common case at finish() after an
+  // empty or sparse frame) is contiguous in memory and takes one fill; a run beside drawn tiles takes one fill per
+  // pixel row, rather than a strided fill per tile.
+  for (int t = first; t < last;) {
+    if (!tile_needs_clear_[t]) {
+      ++t;
+      continue;
     }
-    return;
-  }
-  const int y0 = tile_row * kTileSize, rows = std::min(kTileSize, height_ - y0);
-  const std::size_t offset = static_cast<std::size_t>(y0) * width_, count = static_cast<std::size_t>(rows) * width_;
-  // One "row" of rows * width pixels: contiguous, so the fill runs without a stride.
-  if (pending_.color) fill_words(color_.data() + offset, count, pending_.color_value);
-  if (pending_.depth) fill_words(depth_.data() + offset, count, std::bit_cast<std::uint32_t>(pending_.depth_value));
-  for (int t = first; t < first + tiles_x_; ++t) {
-    tile_needs_clear_[t] = 0;
-    if (pending_.depth) reset_depth_bounds(t, pending_.depth_value);
+    int end = t + 1;
+    while (end < last && tile_needs_clear_[end]) ++end;
+    const int x0 = (t - first) * kTileSize, x1 = std::min((end - first) * kTileSize, width_);
+    const bool whole_rows = x0 == 0 && x1 == width_;
+    const int fills = whole_rows ? 1 : y1 - y0;
+    const std::size_t count = static_cast<std::size_t>(x1 - x0) * (whole_rows ? y1 - y0 : 1);
+    for (int y = y0; y < y0 + fills; ++y) {
+      const std::size_t offset = static_cast<std::size_t>(y) * width_ + x0;
+      if (pending_.color) fill_words(color_.data() + offset, count, pending_.color_value);
+      if (pending_.depth) fill_words(depth_.data() + offset, count, std::bit_cast<std::uint32_t>(pending_.depth_value));
+    }
+    for (; t < end; ++t) {
+      tile_needs_clear_[t] = 0;
+      if (pending_.depth) reset_depth_bounds(t, pending_.depth_value);
+    }
   }
 }
 
