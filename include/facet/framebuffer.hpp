@@ -2,7 +2,9 @@
 #pragma once
 
 #include <algorithm>
+#include <cstddef>
 #include <cstdint>
+#include <new>
 #include <span>
 #include <vector>
 
@@ -24,6 +26,22 @@ inline std::uint32_t pack_rgba8(glm::vec4 color) {
 inline glm::vec4 unpack_rgba8(std::uint32_t rgba) {
   return glm::vec4(rgba & 0xff, (rgba >> 8) & 0xff, (rgba >> 16) & 0xff, rgba >> 24) / 255.0f;
 }
+
+// Storage aligned to a cache line. Two threads rasterizing neighbouring tiles write the pixels on either side of
+// their shared boundary at the same time; with rows of 64-byte multiples (widths that are multiples of 16) and an
+// aligned start, no cache line holds pixels of two tiles, so those writes never contend for a line.
+template <class T>
+struct CacheAlignedAllocator {
+  using value_type = T;
+  static constexpr std::align_val_t kAlignment{64};
+  CacheAlignedAllocator() = default;
+  template <class U>
+  CacheAlignedAllocator(const CacheAlignedAllocator<U>&) noexcept {}
+  T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
+  void deallocate(T* p, std::size_t) noexcept { ::operator delete(p, kAlignment); }
+  template <class U>
+  bool operator==(const CacheAlignedAllocator<U>&) const noexcept { return true; }
+};
 
 class Framebuffer {
  public:
@@ -72,21 +90,24 @@ class Framebuffer {
   void resolve_clear_tile_row(int tile_row);
   void resolve_all_clears();
 
-  // For the rasterizer. Hierarchical depth: one upper bound on the stored depth per 8x8 block (row-major over
-  // blocks_x() blocks per row); a triangle whose nearest point in a block is behind the bound is rejected for
-  // the whole block without a per-pixel test.
+  // For the rasterizer. Hierarchical depth: one upper bound on the stored depth per 8x8 block; a triangle whose
+  // nearest point in a block is behind the bound is rejected for the whole block without a per-pixel test. Each
+  // tile's kTileBlocks bounds are contiguous (row-major over its 8x8 grid of blocks) and start a cache line, so
+  // threads updating the bounds of neighbouring tiles never share a line.
   static constexpr float kUnknownDepthBound = 3.402823466e+38f;
-  int blocks_x() const { return blocks_x_; }
+  static constexpr int kTileBlocks = (kTileSize / 8) * (kTileSize / 8);
   float* depth_storage() { return depth_.data(); }
-  float* block_max_depth() { return block_max_depth_.data(); }
+  float* tile_depth_bounds(int tile_index) {
+    return block_max_depth_.data() + static_cast<std::size_t>(tile_index) * kTileBlocks;
+  }
 
  private:
   void reset_depth_bounds(int tile_index, float value);
 
-  int width_, height_, tiles_x_, tiles_y_, blocks_x_;
-  std::vector<std::uint32_t> color_;
-  std::vector<float> depth_;
-  std::vector<float> block_max_depth_;
+  int width_, height_, tiles_x_, tiles_y_;
+  std::vector<std::uint32_t, CacheAlignedAllocator<std::uint32_t>> color_;
+  std::vector<float, CacheAlignedAllocator<float>> depth_;
+  std::vector<float, CacheAlignedAllocator<float>> block_max_depth_;
   PendingClear pending_;
   std::vector<std::uint8_t> tile_needs_clear_;
 };

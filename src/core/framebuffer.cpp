@@ -52,8 +52,7 @@ Framebuffer::Framebuffer(int width, int height) : width_(width), height_(height)
   tiles_y_ = (height + kTileSize - 1) / kTileSize;
   color_.assign(static_cast<std::size_t>(width) * height, 0);
   depth_.assign(static_cast<std::size_t>(width) * height, 1.0f);
-  blocks_x_ = tiles_x_ * (kTileSize / 8);
-  block_max_depth_.assign(static_cast<std::size_t>(blocks_x_) * tiles_y_ * (kTileSize / 8), 1.0f);
+  block_max_depth_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y_ * kTileBlocks, 1.0f);
   tile_needs_clear_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y_, 0);
 }
 
@@ -93,9 +92,7 @@ Framebuffer::PendingClear Framebuffer::take_clear(int tile_index) {
 }
 
 void Framebuffer::reset_depth_bounds(int tile_index, float value) {
-  const int x0 = (tile_index % tiles_x_) * kTileSize, y0 = (tile_index / tiles_x_) * kTileSize;
-  for (int by = y0 / 8; by < y0 / 8 + kTileSize / 8; ++by)
-    std::fill_n(block_max_depth_.begin() + static_cast<std::ptrdiff_t>(by) * blocks_x_ + x0 / 8, kTileSize / 8, value);
+  std::fill_n(tile_depth_bounds(tile_index), kTileBlocks, value);
 }
 
 void Framebuffer::resolve_clear_tile_row(int tile_row) {

@@ -159,7 +159,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       const int x0 = (tile % target.tiles_x()) * kTileSize, y0 = (tile / target.tiles_x()) * kTileSize;
       const TileWork work{tile, x0, y0, std::min(x0 + kTileSize, target.width()),
                           std::min(y0 + kTileSize, target.height()), target.width(), target.color().data(),
-                          target.depth_storage(), target.block_max_depth(), target.blocks_x(), chunks_.data(),
+                          target.depth_storage(), target.tile_depth_bounds(tile), chunks_.data(),
                           chunk_count, outputs.varyings, &scratch_[static_cast<std::size_t>(thread)], clear};
       request.raster(request.draw, work);
     });

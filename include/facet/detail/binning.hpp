@@ -45,8 +45,10 @@ struct DefaultInitAllocator : std::allocator<T> {
 
 // A chunk's bins are one flat array sorted by tile (a counting sort after setup): tile t's triangles are
 // binned[first[t]] .. binned[first[t + 1] - 1], in draw order. Flat arrays only grow with the number of
-// (triangle, tile) pairs, so steady-state frames reuse their memory instead of allocating.
-struct SetupChunk {
+// (triangle, tile) pairs, so steady-state frames reuse their memory instead of allocating. Neighbouring chunks are
+// set up by different threads at once, and each bumps its own vectors' ends and counters per triangle: a chunk
+// starts a cache line so that those writes do not contend.
+struct alignas(64) SetupChunk {
   std::vector<TriangleSetup, DefaultInitAllocator<TriangleSetup>> triangles;
   std::vector<std::uint32_t> pair_tile, pair_triangle;  // (tile, triangle) pairs in the order setup emits them
   std::vector<std::uint32_t> first;                      // per tile, plus one end marker
@@ -111,8 +113,7 @@ struct TileWork {
   int stride;          // pixels per framebuffer row
   std::uint32_t* color;
   float* depth;
-  float* block_max_depth;  // see Framebuffer::block_max_depth
-  int blocks_x;
+  float* depth_bounds;  // the tile's, see Framebuffer::tile_depth_bounds
   const SetupChunk* chunks;
   std::size_t chunk_count;
   const float* varyings;  // post-transform varyings, indexed by TriangleSetup::vertex

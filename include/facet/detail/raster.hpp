@@ -193,7 +193,7 @@ template <class Cover>
     for (int bx = x0 & ~(kBlockSize - 1); bx <= x1; bx += kBlockSize) {
       const int i0 = std::max(x0 - bx, 0), i1 = std::min(x1 - bx, kBlockSize - 1);
       const int j0 = std::max(y0 - by, 0), j1 = std::min(y1 - by, kBlockSize - 1);
-      float& bound = work.block_max_depth[static_cast<std::size_t>(by / kBlockSize) * work.blocks_x + bx / kBlockSize];
+      float& bound = work.depth_bounds[(by - work.y0) / kBlockSize * (kTileSize / kBlockSize) + (bx - work.x0) / kBlockSize];
       DepthRange range{0.0f, 1.0f};
       if (reject_hidden || writes_depth) {
         range = raster_block_depth_range(tri, state.depth_offset, bx + i0, by + j0, bx + i1, by + j1);
