@@ -53,12 +53,16 @@ class Framebuffer {
   int tiles_x() const { return tiles_x_; }
   int tiles_y() const { return tiles_y_; }
 
-  // Rows are top to bottom; x grows to the right. Valid after Renderer::finish().
-  std::span<std::uint32_t> color() { return color_; }
+  // Rows are top to bottom; x grows to the right. Valid after Renderer::finish(). Writable access means the
+  // caller may store anything: the next clear then rewrites every tile (see request_clear).
+  std::span<std::uint32_t> color() {
+    contents_exposed_ = true;
+    return color_;
+  }
   std::span<const std::uint32_t> color() const { return color_; }
-  // Writable access to depth voids the hierarchical depth bounds (they become "unknown"), since the caller may
-  // store anything there.
+  // Writable access to depth also voids the hierarchical depth bounds (they become "unknown").
   std::span<float> depth() {
+    contents_exposed_ = true;
     std::fill(block_max_depth_.begin(), block_max_depth_.end(), kUnknownDepthBound);
     return depth_;
   }
@@ -70,7 +74,9 @@ class Framebuffer {
   std::vector<std::uint8_t> rgba8() const;
 
   // A clear is recorded and applied to each tile just before the tile is first drawn (while it is in cache), or
-  // at Renderer::finish() for tiles nothing touched.
+  // at Renderer::finish() for tiles nothing touched. A tile that received the same colour and depth clear and
+  // has not been written since (no draw touched it, no writable color() or depth() access) still holds it, and
+  // is skipped: a model that covers part of the frame leaves the rest of the next frame's clear nothing to write.
   struct PendingClear {
     bool color = false, depth = false;
     std::uint32_t color_value = 0;
@@ -79,10 +85,11 @@ class Framebuffer {
   void request_clear(glm::vec4 color, float depth, bool clear_color = true, bool clear_depth = true);
   // Applies the pending clear to one tile if it has not been applied yet. Only the tile's owner thread calls it.
   void resolve_clear(int tile_index);
-  // For a tile that writes every one of its pixels itself (deferred shading): marks the pending clear as applied
-  // and returns it, leaving the colour and depth writes to the caller (no clear when nothing was pending); depth
-  // bounds are reset here. Only the tile's owner thread calls it.
-  PendingClear take_clear(int tile_index);
+  // For the renderer, before a draw writes to a tile; only the tile's owner thread calls it. deferred = false
+  // applies the pending clear first. deferred = true is for a draw that writes every pixel of the tile itself
+  // (deferred shading): it marks the pending clear as applied and returns it, leaving the colour and depth writes
+  // to the caller (no clear when nothing was pending); depth bounds are reset here.
+  PendingClear begin_tile_draw(int tile_index, bool deferred);
   // Applies the pending clear to every tile of one row of tiles that still needs it. When all of them do (the
   // common case at finish() after an empty or sparse frame), the row's pixels are contiguous in memory and are
   // filled in one pass, near memset speed; otherwise each run of neighbouring tiles that need it is filled one
@@ -96,6 +103,7 @@ class Framebuffer {
   // threads updating the bounds of neighbouring tiles never share a line.
   static constexpr float kUnknownDepthBound = 3.402823466e+38f;
   static constexpr int kTileBlocks = (kTileSize / 8) * (kTileSize / 8);
+  std::uint32_t* color_storage() { return color_.data(); }
   float* depth_storage() { return depth_.data(); }
   float* tile_depth_bounds(int tile_index) {
     return block_max_depth_.data() + static_cast<std::size_t>(tile_index) * kTileBlocks;
@@ -110,6 +118,10 @@ class Framebuffer {
   std::vector<float, CacheAlignedAllocator<float>> block_max_depth_;
   PendingClear pending_;
   std::vector<std::uint8_t> tile_needs_clear_;
+  // Per tile: it holds `held_` (a colour and depth clear) in every pixel. Tiles drawn into lose the mark.
+  std::vector<std::uint8_t> tile_holds_clear_;
+  PendingClear held_;
+  bool contents_exposed_ = false;  // writable color() or depth() since the last request_clear
 };
 
 }  // namespace facet

@@ -54,6 +54,7 @@ Framebuffer::Framebuffer(int width, int height) : width_(width), height_(height)
   depth_.assign(static_cast<std::size_t>(width) * height, 1.0f);
   block_max_depth_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y_ * kTileBlocks, 1.0f);
   tile_needs_clear_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y_, 0);
+  tile_holds_clear_.assign(tile_needs_clear_.size(), 0);
 }
 
 std::vector<std::uint8_t> Framebuffer::rgba8() const {
@@ -68,7 +69,15 @@ void Framebuffer::request_clear(glm::vec4 color, float depth, bool clear_color, 
   const bool any_pending = std::find(tile_needs_clear_.begin(), tile_needs_clear_.end(), 1) != tile_needs_clear_.end();
   if (any_pending && (pending_.color != clear_color || pending_.depth != clear_depth)) resolve_all_clears();
   pending_ = {clear_color, clear_depth, pack_rgba8(color), depth};
-  std::fill(tile_needs_clear_.begin(), tile_needs_clear_.end(), std::uint8_t{1});
+  // Tiles keep their mark only for a clear of both channels to the very values they hold, and only if nobody
+  // could have written to them since. Depths compare bit for bit.
+  const bool same_as_held = !contents_exposed_ && clear_color && clear_depth && held_.color && held_.depth &&
+                            held_.color_value == pending_.color_value &&
+                            std::bit_cast<std::uint32_t>(held_.depth_value) == std::bit_cast<std::uint32_t>(depth);
+  if (!same_as_held) std::fill(tile_holds_clear_.begin(), tile_holds_clear_.end(), std::uint8_t{0});
+  held_ = clear_color && clear_depth ? pending_ : PendingClear{};
+  contents_exposed_ = false;
+  for (std::size_t t = 0; t < tile_needs_clear_.size(); ++t) tile_needs_clear_[t] = tile_holds_clear_[t] ? 0 : 1;
 }
 
 void Framebuffer::resolve_clear(int tile_index) {
@@ -82,10 +91,13 @@ void Framebuffer::resolve_clear(int tile_index) {
     fill_depth(depth_.data() + first, width_, y1 - y0, x1 - x0, pending_.depth_value);
     reset_depth_bounds(tile_index, pending_.depth_value);
   }
+  tile_holds_clear_[tile_index] = held_.color;
 }
 
-Framebuffer::PendingClear Framebuffer::take_clear(int tile_index) {
-  if (!tile_needs_clear_[tile_index]) return {};
+Framebuffer::PendingClear Framebuffer::begin_tile_draw(int tile_index, bool deferred) {
+  if (!deferred) resolve_clear(tile_index);
+  tile_holds_clear_[tile_index] = 0;
+  if (!deferred || !tile_needs_clear_[tile_index]) return {};
   tile_needs_clear_[tile_index] = 0;
   if (pending_.depth) reset_depth_bounds(tile_index, pending_.depth_value);
   return pending_;
@@ -119,6 +131,7 @@ void Framebuffer::resolve_clear_tile_row(int tile_row) {
     }
     for (; t < end; ++t) {
       tile_needs_clear_[t] = 0;
+      tile_holds_clear_[t] = held_.color;
       if (pending_.depth) reset_depth_bounds(t, pending_.depth_value);
     }
   }

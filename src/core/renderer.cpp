@@ -153,12 +153,10 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     // One owner per tile: no two threads ever write the same pixel, so the tile loop needs no locks.
     pool_.parallel_for(active_tiles_.size(), [&](std::size_t i, int thread) {
       const int tile = active_tiles_[i];
-      Framebuffer::PendingClear clear;
-      if (request.deferred) clear = target.take_clear(tile);
-      else target.resolve_clear(tile);
+      const Framebuffer::PendingClear clear = target.begin_tile_draw(tile, request.deferred);
       const int x0 = (tile % target.tiles_x()) * kTileSize, y0 = (tile / target.tiles_x()) * kTileSize;
       const TileWork work{tile, x0, y0, std::min(x0 + kTileSize, target.width()),
-                          std::min(y0 + kTileSize, target.height()), target.width(), target.color().data(),
+                          std::min(y0 + kTileSize, target.height()), target.width(), target.color_storage(),
                           target.depth_storage(), target.tile_depth_bounds(tile), chunks_.data(),
                           chunk_count, outputs.varyings, &scratch_[static_cast<std::size_t>(thread)], clear};
       request.raster(request.draw, work);

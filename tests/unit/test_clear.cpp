@@ -1,8 +1,10 @@
 // test_clear.cpp - deferred clears reach every pixel: whole tile rows, runs of tiles beside drawn ones, cut tiles.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "support/draw_helpers.hpp"
@@ -57,6 +59,56 @@ TEST(Clear, EveryPixelReceivesTheNewClear) {
     // Three triangles of about 200 pixels and one of about 18.
     EXPECT_GT(drawn, 3 * 180 + 10) << "the four triangles were drawn";
     EXPECT_LT(drawn, 3 * 220 + 30);
+  }
+}
+
+// Frame after frame with the same clear, as an animation renders: tiles that still hold the clear are skipped, so
+// each frame must equal the same frame drawn on a fresh target, whatever earlier frames or the caller wrote.
+TEST(Clear, RepeatedClearsMatchAFreshTarget) {
+  const int width = 300, height = 200;
+  ClipMesh first, second;
+  add_triangle_in_tile(first, 1, 1, width, height);
+  add_triangle_in_tile(second, 3, 2, width, height);
+  const std::vector<ColorShader::Vertex> first_vertices = color_vertices(first), second_vertices = color_vertices(second);
+  const glm::vec4 blue(0.0f, 0.0f, 1.0f, 1.0f);
+  for (const bool deferred : {true, false}) {
+    RenderState state = no_depth_no_cull();
+    state.depth_test = true;
+    state.defer_shading = deferred;
+    const auto frame = [&](Framebuffer& fb, Renderer& renderer, const ClipMesh* m,
+                           const std::vector<ColorShader::Vertex>* vertices) {
+      renderer.clear(fb, blue, 0.75f);
+      if (m) renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(*vertices), m->indices, state);
+      renderer.finish(fb);
+    };
+    const auto same = [](const Framebuffer& a, const Framebuffer& b) {
+      return std::equal(a.color().begin(), a.color().end(), b.color().begin()) &&
+             std::equal(a.depth().begin(), a.depth().end(), b.depth().begin());
+    };
+    Renderer renderer(2);
+    Framebuffer fb(width, height), fresh_second(width, height), fresh_empty(width, height);
+    frame(fresh_second, renderer, &second, &second_vertices);
+    frame(fresh_empty, renderer, nullptr, nullptr);
+
+    frame(fb, renderer, &first, &first_vertices);
+    frame(fb, renderer, &second, &second_vertices);  // the first frame's triangle must be cleared away
+    EXPECT_TRUE(same(std::as_const(fb), fresh_second)) << (deferred ? "deferred" : "immediate");
+
+    // A write through color(), then one through depth(), into tiles no draw touches, each before an empty frame.
+    fb.color()[5] = 0x12345678u;
+    frame(fb, renderer, nullptr, nullptr);
+    EXPECT_TRUE(same(std::as_const(fb), fresh_empty)) << (deferred ? "deferred" : "immediate");
+    fb.depth()[static_cast<std::size_t>(150) * width + 40] = 0.125f;
+    frame(fb, renderer, nullptr, nullptr);
+    EXPECT_TRUE(same(std::as_const(fb), fresh_empty)) << (deferred ? "deferred" : "immediate");
+
+    // A different clear reaches tiles that held the previous one.
+    renderer.clear(fb, glm::vec4(1.0f, 0.0f, 0.0f, 1.0f), 0.5f);
+    renderer.finish(fb);
+    const Framebuffer& view = fb;
+    EXPECT_TRUE(std::all_of(view.color().begin(), view.color().end(),
+                            [](std::uint32_t c) { return c == pack_rgba8(glm::vec4(1.0f, 0.0f, 0.0f, 1.0f)); }));
+    EXPECT_TRUE(std::all_of(view.depth().begin(), view.depth().end(), [](float z) { return z == 0.5f; }));
   }
 }
 

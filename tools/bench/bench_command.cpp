@@ -14,6 +14,7 @@
 #include <stdexcept>
 #include <string>
 #include <thread>
+#include <utility>
 #include <vector>
 
 #include "bench/bench_scenes.hpp"
@@ -202,7 +203,8 @@ int run(const Options& o, const BenchGeometry& g) {
       frame0_stats = renderer.last_stats();
       if (keep_frame0) {
         frame0_rgba = target.rgba8();
-        frame0_depth.assign(target.depth().begin(), target.depth().end());
+        const std::span<const float> depth = std::as_const(target).depth();
+        frame0_depth.assign(depth.begin(), depth.end());
       }
     }
   }
