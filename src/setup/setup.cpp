@@ -2,6 +2,7 @@
 #include "setup/setup.hpp"
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <utility>
 
@@ -248,61 +249,77 @@ VertexRange setup_vertex_range(std::span<const std::uint32_t> indices, std::size
   return lowest <= highest ? VertexRange{lowest, std::size_t{highest} + 1} : VertexRange{};
 }
 
+namespace {
+
+// One triangle, in full: clipping when it crosses the frustum, culling, set-up and binning.
+[[gnu::always_inline]] inline void setup_triangle(const SetupInput& in, SetupChunk& out, Binner& binner, std::size_t i) {
+  const bool culling = in.cull != CullMode::none;
+  const std::size_t tri = in.order ? in.order[i] : i;
+  const std::uint32_t source[3] = {in.indices[3 * tri], in.indices[3 * tri + 1], in.indices[3 * tri + 2]};
+  if (source[0] >= in.vertex_count || source[1] >= in.vertex_count || source[2] >= in.vertex_count) {
+    ++out.invalid;
+    return;
+  }
+  // Set-up triangles name their vertices within the shaded range, where rasterization finds their varyings.
+  const std::uint32_t slot[3] = {static_cast<std::uint32_t>(source[0] - in.vertex_first),
+                                 static_cast<std::uint32_t>(source[1] - in.vertex_first),
+                                 static_cast<std::uint32_t>(source[2] - in.vertex_first)};
+  const ProjectedVertex* corner[3] = {&in.projected[slot[0]], &in.projected[slot[1]], &in.projected[slot[2]]};
+  const auto primitive = static_cast<std::uint32_t>(tri);
+  const std::uint32_t any_outside = corner[0]->outcode | corner[1]->outcode | corner[2]->outcode;
+  if (any_outside == 0) {
+    const std::int32_t x[3] = {corner[0]->x, corner[1]->x, corner[2]->x};
+    const std::int32_t y[3] = {corner[0]->y, corner[1]->y, corner[2]->y};
+    Binner::Shape shape;
+    if (binner.classify(x, y, 0, culling, shape)) binner.set_up_projected(shape, corner, slot, primitive);
+    return;
+  }
+  if ((corner[0]->outcode & corner[1]->outcode & corner[2]->outcode) || (any_outside & kNonFinite)) {
+    ++out.culled;
+    return;
+  }
+  glm::vec4 clip[3];
+  for (int k = 0; k < 3; ++k)
+    clip[k] = in.clip ? in.clip[slot[k]] : in.clip_position(in.clip_source, source[k]);
+  ClipVertex polygon[kMaxClipVertices];
+  const int n = clip_triangle(clip, polygon);
+  ++out.clipped;
+  if (n < 3) return;
+  ScreenVertex v[kMaxClipVertices];
+  double area = 0.0;
+  for (int k = 0; k < n; ++k) v[k] = to_screen(polygon[k].position, polygon[k].weights, in.width, in.height);
+  for (int k = 1; k + 1 < n; ++k)
+    area += double{v[k].x - v[0].x} * (v[k + 1].y - v[0].y) - double{v[k + 1].x - v[0].x} * (v[k].y - v[0].y);
+  if (area == 0.0) {
+    ++out.culled;
+    return;
+  }
+  const int facing = area < 0.0 ? 1 : -1;
+  if (culling && ((in.cull == CullMode::back && facing < 0) || (in.cull == CullMode::front && facing > 0))) {
+    ++out.culled;
+    return;
+  }
+  for (int k = 1; k + 1 < n; ++k) {
+    SnappedVertex fan[3] = {snap(v[0], in.width, in.height), snap(v[k], in.width, in.height),
+                            snap(v[k + 1], in.width, in.height)};
+    binner.triangle(fan, slot, primitive, facing, false);
+  }
+}
+
+}  // namespace
+
 void setup_triangles(const SetupInput& in, SetupChunk& out) {
   Binner binner(in, out);
-  const bool culling = in.cull != CullMode::none;
-  for (std::size_t i = in.first; i < in.first + in.count; ++i) {
-    const std::size_t tri = in.order ? in.order[i] : i;
-    const std::uint32_t source[3] = {in.indices[3 * tri], in.indices[3 * tri + 1], in.indices[3 * tri + 2]};
-    if (source[0] >= in.vertex_count || source[1] >= in.vertex_count || source[2] >= in.vertex_count) {
-      ++out.invalid;
-      continue;
+  const std::size_t end = in.first + in.count;
+  std::size_t i = in.first;
+  // Whole runs of kCullLanes triangles in index order go through the branch-free culling pass first.
+  if (!in.order)
+    for (; i + kCullLanes <= end; i += kCullLanes) {
+      const std::uint32_t keep = setup_cull_lanes(in, i);
+      out.culled += static_cast<std::size_t>(kCullLanes - std::popcount(keep));
+      for (std::uint32_t bits = keep; bits; bits &= bits - 1) setup_triangle(in, out, binner, i + std::countr_zero(bits));
     }
-    // Set-up triangles name their vertices within the shaded range, where rasterization finds their varyings.
-    const std::uint32_t slot[3] = {static_cast<std::uint32_t>(source[0] - in.vertex_first),
-                                   static_cast<std::uint32_t>(source[1] - in.vertex_first),
-                                   static_cast<std::uint32_t>(source[2] - in.vertex_first)};
-    const ProjectedVertex* corner[3] = {&in.projected[slot[0]], &in.projected[slot[1]], &in.projected[slot[2]]};
-    const auto primitive = static_cast<std::uint32_t>(tri);
-    const std::uint32_t any_outside = corner[0]->outcode | corner[1]->outcode | corner[2]->outcode;
-    if (any_outside == 0) {
-      const std::int32_t x[3] = {corner[0]->x, corner[1]->x, corner[2]->x};
-      const std::int32_t y[3] = {corner[0]->y, corner[1]->y, corner[2]->y};
-      Binner::Shape shape;
-      if (binner.classify(x, y, 0, culling, shape)) binner.set_up_projected(shape, corner, slot, primitive);
-      continue;
-    }
-    if ((corner[0]->outcode & corner[1]->outcode & corner[2]->outcode) || (any_outside & kNonFinite)) {
-      ++out.culled;
-      continue;
-    }
-    glm::vec4 clip[3];
-    for (int k = 0; k < 3; ++k)
-      clip[k] = in.clip ? in.clip[slot[k]] : in.clip_position(in.clip_source, source[k]);
-    ClipVertex polygon[kMaxClipVertices];
-    const int n = clip_triangle(clip, polygon);
-    ++out.clipped;
-    if (n < 3) continue;
-    ScreenVertex v[kMaxClipVertices];
-    double area = 0.0;
-    for (int k = 0; k < n; ++k) v[k] = to_screen(polygon[k].position, polygon[k].weights, in.width, in.height);
-    for (int k = 1; k + 1 < n; ++k)
-      area += double{v[k].x - v[0].x} * (v[k + 1].y - v[0].y) - double{v[k + 1].x - v[0].x} * (v[k].y - v[0].y);
-    if (area == 0.0) {
-      ++out.culled;
-      continue;
-    }
-    const int facing = area < 0.0 ? 1 : -1;
-    if (culling && ((in.cull == CullMode::back && facing < 0) || (in.cull == CullMode::front && facing > 0))) {
-      ++out.culled;
-      continue;
-    }
-    for (int k = 1; k + 1 < n; ++k) {
-      SnappedVertex fan[3] = {snap(v[0], in.width, in.height), snap(v[k], in.width, in.height),
-                              snap(v[k + 1], in.width, in.height)};
-      binner.triangle(fan, slot, primitive, facing, false);
-    }
-  }
+  for (; i < end; ++i) setup_triangle(in, out, binner, i);
 }
 
 void setup_lines(const SetupInput& in, SetupChunk& out) {

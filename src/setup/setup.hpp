@@ -37,6 +37,12 @@ VertexRange setup_vertex_range(std::span<const std::uint32_t> indices, std::size
                                std::size_t vertex_count, std::size_t first, std::size_t count);
 
 void setup_triangles(const SetupInput& input, SetupChunk& out);
+
+// Triangles [first, first + kCullLanes) in index order (no `order`): bit i is clear when triangle first + i is one
+// that setup would cull (facing, zero area, no pixel centre covered) with all corners inside the frustum, and set
+// when it needs the full setup. Never clears the bit of a triangle setup would keep.
+inline constexpr int kCullLanes = 16;
+std::uint32_t setup_cull_lanes(const SetupInput& input, std::size_t first);
 void setup_lines(const SetupInput& input, SetupChunk& out);
 
 // Depth key of every triangle for the painter's algorithm: the mean NDC depth of its corners (larger is farther).

@@ -1,0 +1,88 @@
+// cull.cpp - the culling tests of setup for 16 triangles at once, branch-free, so dense meshes drop most triangles fast.
+#include <algorithm>
+#include <cstdint>
+
+#include "facet/detail/dispatch.hpp"
+#include "setup/setup.hpp"
+
+namespace facet::detail {
+
+// Why a separate pass: in a mesh of millions of triangles most are back faces or too small to hold a pixel centre,
+// and which ones is a coin toss per triangle, so a per-triangle branch on it mispredicts about every other
+// triangle and throws away the loads already under way for the next ones. Here the tests are plain loops over 16
+// triangles that the vectoriser turns into mask operations (64-bit lanes for the exact products), and the only
+// branch left is the scalar setup of each survivor, which Binner::classify then checks again in full. So this pass
+// may keep a triangle classify rejects, but must never reject one it keeps: it repeats classify's tests exactly,
+// in the same integer arithmetic, for triangles whose corners are all inside the frustum.
+FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+std::uint32_t setup_cull_lanes(const SetupInput& in, std::size_t first) {
+  constexpr int N = kCullLanes;
+  const std::uint32_t* index = in.indices.data() + 3 * first;
+  // An index outside the draw has no projected vertex to read: the scalar path counts such triangles as invalid.
+  std::uint32_t highest = 0;
+  for (int i = 0; i < 3 * N; ++i) highest = std::max(highest, index[i]);
+  if (highest >= in.vertex_count) return (std::uint32_t{1} << N) - 1;
+
+  std::int32_t x[3][N], y[3][N];
+  std::uint32_t outside[N];
+  for (int i = 0; i < N; ++i) {
+    std::uint32_t code = 0;
+    for (int k = 0; k < 3; ++k) {
+      const ProjectedVertex& v = in.projected[index[3 * i + k] - in.vertex_first];
+      x[k][i] = v.x, y[k][i] = v.y;
+      code |= v.outcode;
+    }
+    outside[i] = code;
+  }
+
+  const std::int32_t cull_back = in.cull == CullMode::back, cull_front = in.cull == CullMode::front;
+  const std::int32_t last_x = in.width - 1, last_y = in.height - 1;
+  constexpr std::int32_t half = kSubpixelScale / 2;
+  std::uint32_t keep = 0;
+  for (int i = 0; i < N; ++i) {
+    // Values, not references into the arrays: std::min of references becomes a conditional load, which stops the
+    // vectoriser.
+    const std::int32_t x0 = x[0][i], x1 = x[1][i], x2 = x[2][i], y0 = y[0][i], y1 = y[1][i], y2 = y[2][i];
+    // classify: twice the signed area; counter-clockwise on screen (y down) is negative and front-facing.
+    const std::int64_t area = std::int64_t{x1 - x0} * (y2 - y0) - std::int64_t{x2 - x0} * (y1 - y0);
+    const std::int32_t front = area < 0;
+    const std::int32_t faced_away = (area == 0) | (cull_back & (front ^ 1)) | (cull_front & front);
+    // Pixels whose centres lie within the snapped bounds (floor division by 256 is an arithmetic shift).
+    const std::int32_t min_x = std::min(std::min(x0, x1), x2), max_x = std::max(std::max(x0, x1), x2);
+    const std::int32_t min_y = std::min(std::min(y0, y1), y2), max_y = std::max(std::max(y0, y1), y2);
+    const std::int32_t px0 = std::max(0, (min_x - half + kSubpixelScale - 1) >> kSubpixelBits);
+    const std::int32_t py0 = std::max(0, (min_y - half + kSubpixelScale - 1) >> kSubpixelBits);
+    const std::int32_t px1 = std::min(last_x, (max_x - half) >> kSubpixelBits);
+    const std::int32_t py1 = std::min(last_y, (max_y - half) >> kSubpixelBits);
+    const std::int32_t empty = (px0 > px1) | (py0 > py1);
+    // Bounds holding at most four centres: does any lie inside all three clockwise edges (fill rule included)?
+    const std::int32_t columns = px1 - px0 + 1, centres = columns * (py1 - py0 + 1);
+    const std::int32_t few = (empty ^ 1) & (centres <= 4);
+    const std::int32_t X[3] = {x0, front ? x2 : x1, front ? x1 : x2};
+    const std::int32_t Y[3] = {y0, front ? y2 : y1, front ? y1 : y2};
+    std::int32_t covered = 0;
+    for (std::int32_t c = 0; c < 4; ++c) {
+      // Centre c of the bounds in row order, for bounds 1 to 4 columns wide.
+      const std::int32_t row = columns == 1 ? c : (columns == 2 ? c >> 1 : (columns == 3 ? (c == 3) : 0));
+      const std::int32_t column = c - row * columns;
+      const std::int32_t cx = (px0 + column) * kSubpixelScale + half, cy = (py0 + row) * kSubpixelScale + half;
+      std::int32_t inside = c < centres;
+      for (int k = 0; k < 3; ++k) {
+        const int a = k, b = (k + 1) % 3;
+        const std::uint32_t dx = static_cast<std::uint32_t>(X[b] - X[a]), dy = static_cast<std::uint32_t>(Y[b] - Y[a]);
+        // The top-left rule, as classify: a point on an edge is inside only for top and left edges.
+        const std::uint32_t bias = ((dy == 0) & (static_cast<std::int32_t>(dx) > 0)) | (static_cast<std::int32_t>(dy) < 0) ? 0u : ~0u;
+        // 32 bits are exact here: bounds of at most four centres span under 7 pixels (1792 units) each way, so
+        // every product stays below 2^22. Other lanes may wrap (unsigned, so defined) and are masked by `few`.
+        const std::uint32_t edge = dx * static_cast<std::uint32_t>(cy - Y[a]) - dy * static_cast<std::uint32_t>(cx - X[a]) + bias;
+        inside &= static_cast<std::int32_t>(edge) >= 0;
+      }
+      covered |= inside;
+    }
+    const std::int32_t rejected = faced_away | empty | (few & (covered ^ 1));
+    keep |= static_cast<std::uint32_t>((outside[i] != 0) | (rejected ^ 1)) << i;
+  }
+  return keep;
+}
+
+}  // namespace facet::detail
