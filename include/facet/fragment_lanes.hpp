@@ -19,7 +19,7 @@ namespace facet {
 // Each lane holds the triangle that is visible there; lanes where none is (see active) hold another of the
 // strip's triangles, as helper lanes, and their results are discarded.
 template <Interpolatable V>
-struct FragmentLanes {
+struct alignas(simd::kLaneAlign) FragmentLanes {
   static constexpr std::size_t kFloats = float_count_v<V>;
   std::array<simd::Float, kFloats> varyings;
   std::array<simd::Float, kFloats> ddx, ddy;  // coarse, per 2x2 quad; filled only when needs_derivatives

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cmath>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 
@@ -25,6 +26,10 @@ inline constexpr int kLanes = 16;
 using Float = float __attribute__((vector_size(kLanes * sizeof(float))));
 using Int = std::int32_t __attribute__((vector_size(kLanes * sizeof(std::int32_t))));
 using UInt = std::uint32_t __attribute__((vector_size(kLanes * sizeof(std::uint32_t))));
+// GCC aligns a 64-byte vector type to the widest vector of the code that names it: 64 bytes inside the AVX-512
+// clone, 16 in the baseline. A FragmentLanes allocated in baseline code (in a std::vector, say) would then be
+// under-aligned for the aligned loads the clone emits, so every struct of lane values states its alignment.
+inline constexpr std::size_t kLaneAlign = kLanes * sizeof(float);
 // Comparisons of Float or Int give an Int mask per lane: -1 where true, 0 where false.
 using Mask = Int;
 
@@ -78,11 +83,11 @@ inline constexpr Int kQuadTopLeft = (kLaneIndex & ~9);        // lane of each qu
 inline constexpr Int kQuadTopRight = (kLaneIndex & ~9) | 1;   // ... (1, 0)
 inline constexpr Int kQuadBottomLeft = (kLaneIndex & ~9) | 8;  // ... (0, 1)
 
-struct Vec2 {
+struct alignas(kLaneAlign) Vec2 {
   Float x, y;
 };
 
-struct Vec3 {
+struct alignas(kLaneAlign) Vec3 {
   Float x, y, z;
   FACET_LANES_INLINE friend Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
   FACET_LANES_INLINE friend Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
@@ -96,7 +101,7 @@ FACET_LANES_INLINE Float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + 
 FACET_LANES_INLINE Vec3 normalize(const Vec3& v) { return v * (1.0f / sqrt(dot(v, v))); }
 
 // What a lane fragment shader returns: straight (not premultiplied) RGBA in [0, 1].
-struct Color {
+struct alignas(kLaneAlign) Color {
   Float r, g, b, a;
 };
 

@@ -44,7 +44,7 @@ struct VertexLanes {
 // What vertex_lanes returns: sixteen clip positions and sets of varyings, one simd::Float per coordinate and per
 // float of the Varyings struct. Write varyings by member with set().
 template <Interpolatable V>
-struct VertexOutLanes {
+struct alignas(simd::kLaneAlign) VertexOutLanes {
   static constexpr std::size_t kFloats = float_count_v<V>;
   simd::Float clip_x, clip_y, clip_z, clip_w;
   std::array<simd::Float, kFloats> varyings;

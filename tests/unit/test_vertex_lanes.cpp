@@ -1,4 +1,4 @@
-// test_vertex_lanes.cpp - the vertex stage's 16-lane path gives exactly what vertex() and project_vertex give.
+// test_vertex_lanes.cpp - the vertex stage's 16-lane path gives exactly what vertex() and project_vertex give; lane structs are aligned.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -80,3 +80,21 @@ TEST(VertexLanes, AnyRangeMixesLaneGroupsAndSingleVertices) {
 
 }  // namespace
 }  // namespace facet::detail
+
+namespace facet {
+namespace {
+
+// Lane structs made in baseline code (this test is compiled without AVX-512) are read by the AVX-512 clones with
+// aligned 64-byte loads, so they must be 64-byte aligned wherever they are allocated.
+TEST(LaneTypes, StructsOfLanesAre64ByteAlignedInAnyCode) {
+  using Varyings = bench::BenchShader::Varyings;
+  static_assert(alignof(FragmentLanes<Varyings>) == 64 && alignof(VertexOutLanes<Varyings>) == 64);
+  static_assert(alignof(simd::Vec2) == 64 && alignof(simd::Vec3) == 64 && alignof(simd::Color) == 64);
+  for (const std::size_t n : {std::size_t{1}, std::size_t{3}, std::size_t{100}, std::size_t{4096}}) {
+    const std::vector<FragmentLanes<Varyings>> strips(n);
+    EXPECT_EQ(reinterpret_cast<std::uintptr_t>(strips.data()) % 64, 0u) << n;
+  }
+}
+
+}  // namespace
+}  // namespace facet
