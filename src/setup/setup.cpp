@@ -315,9 +315,10 @@ void setup_triangles(const SetupInput& in, SetupChunk& out) {
   // Whole runs of kCullLanes triangles in index order go through the branch-free culling pass first.
   if (!in.order)
     for (; i + kCullLanes <= end; i += kCullLanes) {
-      const std::uint32_t keep = setup_cull_lanes(in, i);
-      out.culled += static_cast<std::size_t>(kCullLanes - std::popcount(keep));
-      for (std::uint32_t bits = keep; bits; bits &= bits - 1) setup_triangle(in, out, binner, i + std::countr_zero(bits));
+      std::size_t kept = 0;
+      for (std::uint32_t bits = setup_cull_lanes(in, i); bits; bits &= bits - 1, ++kept)
+        setup_triangle(in, out, binner, i + std::countr_zero(bits));
+      out.culled += static_cast<std::size_t>(kCullLanes) - kept;
     }
   for (; i < end; ++i) setup_triangle(in, out, binner, i);
 }
