@@ -15,13 +15,17 @@ namespace facet::detail {
 // may keep a triangle classify rejects, but must never reject one it keeps: it repeats classify's tests exactly,
 // in the same integer arithmetic, for triangles whose corners are all inside the frustum.
 FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
-std::uint32_t setup_cull_lanes(const SetupInput& in, std::size_t first) {
+void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
   constexpr int N = kCullLanes;
   const std::uint32_t* index = in.indices.data() + 3 * first;
   // An index outside the draw has no projected vertex to read: the scalar path counts such triangles as invalid.
   std::uint32_t highest = 0;
   for (int i = 0; i < 3 * N; ++i) highest = std::max(highest, index[i]);
-  if (highest >= in.vertex_count) return (std::uint32_t{1} << N) - 1;
+  if (highest >= in.vertex_count) {
+    out.keep = (std::uint32_t{1} << N) - 1;
+    out.accepted = 0;
+    return;
+  }
 
   std::int32_t x[3][N], y[3][N];
   std::uint32_t outside[N];
@@ -38,7 +42,7 @@ std::uint32_t setup_cull_lanes(const SetupInput& in, std::size_t first) {
   const std::int32_t cull_back = in.cull == CullMode::back, cull_front = in.cull == CullMode::front;
   const std::int32_t last_x = in.width - 1, last_y = in.height - 1;
   constexpr std::int32_t half = kSubpixelScale / 2;
-  std::uint32_t keep = 0;
+  std::uint32_t keep = 0, accepted = 0;
   for (int i = 0; i < N; ++i) {
     // Values, not references into the arrays: std::min of references becomes a conditional load, which stops the
     // vectoriser.
@@ -81,8 +85,14 @@ std::uint32_t setup_cull_lanes(const SetupInput& in, std::size_t first) {
     }
     const std::int32_t rejected = faced_away | empty | (few & (covered ^ 1));
     keep |= static_cast<std::uint32_t>((outside[i] != 0) | (rejected ^ 1)) << i;
+    accepted |= static_cast<std::uint32_t>((outside[i] == 0) & (rejected ^ 1)) << i;
+    for (int k = 0; k < 3; ++k) out.x[k][i] = X[k], out.y[k][i] = Y[k];
+    out.area[i] = front ? -area : area;
+    out.px0[i] = px0, out.py0[i] = py0, out.px1[i] = px1, out.py1[i] = py1;
+    out.front[i] = front;
   }
-  return keep;
+  out.keep = keep;
+  out.accepted = accepted;
 }
 
 }  // namespace facet::detail

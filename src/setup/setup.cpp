@@ -306,6 +306,21 @@ namespace {
   }
 }
 
+// A triangle the culling pass accepted (see CullLanes): its shape is known, so setup starts at set_up_projected.
+[[gnu::always_inline]] inline void set_up_accepted(const SetupInput& in, Binner& binner, const CullLanes& lanes,
+                                                   int lane, std::size_t tri) {
+  const std::uint32_t slot[3] = {static_cast<std::uint32_t>(in.indices[3 * tri] - in.vertex_first),
+                                 static_cast<std::uint32_t>(in.indices[3 * tri + 1] - in.vertex_first),
+                                 static_cast<std::uint32_t>(in.indices[3 * tri + 2] - in.vertex_first)};
+  const ProjectedVertex* corner[3] = {&in.projected[slot[0]], &in.projected[slot[1]], &in.projected[slot[2]]};
+  Binner::Shape shape;
+  for (int k = 0; k < 3; ++k) shape.X[k] = lanes.x[k][lane], shape.Y[k] = lanes.y[k][lane];
+  shape.area = lanes.area[lane];
+  shape.front = shape.flipped = lanes.front[lane] != 0;
+  shape.px0 = lanes.px0[lane], shape.py0 = lanes.py0[lane], shape.px1 = lanes.px1[lane], shape.py1 = lanes.py1[lane];
+  binner.set_up_projected(shape, corner, slot, static_cast<std::uint32_t>(tri));
+}
+
 }  // namespace
 
 void setup_triangles(const SetupInput& in, SetupChunk& out) {
@@ -313,11 +328,16 @@ void setup_triangles(const SetupInput& in, SetupChunk& out) {
   const std::size_t end = in.first + in.count;
   std::size_t i = in.first;
   // Whole runs of kCullLanes triangles in index order go through the branch-free culling pass first.
+  CullLanes lanes;
   if (!in.order)
     for (; i + kCullLanes <= end; i += kCullLanes) {
+      setup_cull_lanes(in, i, lanes);
       std::size_t kept = 0;
-      for (std::uint32_t bits = setup_cull_lanes(in, i); bits; bits &= bits - 1, ++kept)
-        setup_triangle(in, out, binner, i + std::countr_zero(bits));
+      for (std::uint32_t bits = lanes.keep; bits; bits &= bits - 1, ++kept) {
+        const int lane = std::countr_zero(bits);
+        if (lanes.accepted >> lane & 1u) set_up_accepted(in, binner, lanes, lane, i + static_cast<std::size_t>(lane));
+        else setup_triangle(in, out, binner, i + static_cast<std::size_t>(lane));
+      }
       out.culled += static_cast<std::size_t>(kCullLanes) - kept;
     }
   for (; i < end; ++i) setup_triangle(in, out, binner, i);

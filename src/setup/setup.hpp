@@ -38,11 +38,20 @@ VertexRange setup_vertex_range(std::span<const std::uint32_t> indices, std::size
 
 void setup_triangles(const SetupInput& input, SetupChunk& out);
 
-// Triangles [first, first + kCullLanes) in index order (no `order`): bit i is clear when triangle first + i is one
-// that setup would cull (facing, zero area, no pixel centre covered) with all corners inside the frustum, and set
-// when it needs the full setup. Never clears the bit of a triangle setup would keep.
+// The culling pass's verdict on triangles [first, first + kCullLanes) in index order (no `order`). Bit i of
+// `keep` is clear when triangle first + i is one that setup would cull (facing, zero area, no pixel centre
+// covered) with all corners inside the frustum, and set when it needs setup; a triangle setup would keep is never
+// cleared. Bit i of `accepted` is set when the triangle is valid, inside the frustum and passes every culling
+// test: its clockwise corners, area and pixel bounds below are then exactly what setup's own tests would find.
 inline constexpr int kCullLanes = 16;
-std::uint32_t setup_cull_lanes(const SetupInput& input, std::size_t first);
+struct CullLanes {
+  std::uint32_t keep, accepted;
+  std::int32_t x[3][kCullLanes], y[3][kCullLanes];  // snapped corners, clockwise on screen
+  std::int64_t area[kCullLanes];                     // twice the area, positive
+  std::int32_t px0[kCullLanes], py0[kCullLanes], px1[kCullLanes], py1[kCullLanes];  // pixel bounds
+  std::int32_t front[kCullLanes];                    // 1 when front-facing (then corners 1 and 2 were swapped)
+};
+void setup_cull_lanes(const SetupInput& input, std::size_t first, CullLanes& out);
 void setup_lines(const SetupInput& input, SetupChunk& out);
 
 // Depth key of every triangle for the painter's algorithm: the mean NDC depth of its corners (larger is farther).

@@ -47,12 +47,40 @@ SetupInput input_for(const Soup& soup, CullMode cull, std::size_t first, std::si
           first, count, kWidth, kHeight, tiles_x, cull, 1.0f};
 }
 
-// Whether the full setup of triangle t alone (one triangle never reaches the 16-lane pass) keeps it.
-bool setup_keeps(const Soup& soup, CullMode cull, std::size_t t) {
+CullLanes cull_lanes(const SetupInput& in, std::size_t first) {
+  CullLanes lanes;
+  setup_cull_lanes(in, first, lanes);
+  return lanes;
+}
+
+// The full setup of triangle t alone (one triangle never reaches the 16-lane pass).
+SetupChunk set_up_alone(const Soup& soup, CullMode cull, std::size_t t) {
   SetupChunk chunk;
   chunk.reset();
   setup_triangles(input_for(soup, cull, t, 1), chunk);
-  return !chunk.triangles.empty();
+  return chunk;
+}
+
+void expect_same_setup(const TriangleSetup& a, const TriangleSetup& b) {
+  for (int k = 0; k < 3; ++k) {
+    EXPECT_EQ(a.edge[k].a, b.edge[k].a);
+    EXPECT_EQ(a.edge[k].b, b.edge[k].b);
+    EXPECT_EQ(a.edge[k].q, b.edge[k].q);
+    EXPECT_EQ(a.vertex[k], b.vertex[k]);
+  }
+  EXPECT_EQ(a.min_x, b.min_x);
+  EXPECT_EQ(a.min_y, b.min_y);
+  EXPECT_EQ(a.max_x, b.max_x);
+  EXPECT_EQ(a.max_y, b.max_y);
+  EXPECT_EQ(a.origin_x, b.origin_x);
+  EXPECT_EQ(a.origin_y, b.origin_y);
+  for (const auto plane : {&TriangleSetup::depth, &TriangleSetup::inv_w, &TriangleSetup::b1_over_w, &TriangleSetup::b2_over_w}) {
+    EXPECT_EQ((a.*plane).at_origin, (b.*plane).at_origin);
+    EXPECT_EQ((a.*plane).ddx, (b.*plane).ddx);
+    EXPECT_EQ((a.*plane).ddy, (b.*plane).ddy);
+  }
+  EXPECT_EQ(a.primitive, b.primitive);
+  EXPECT_EQ(a.front_facing, b.front_facing);
 }
 
 TEST(SetupCull, RejectsExactlyWhatFullSetupCulls) {
@@ -60,11 +88,22 @@ TEST(SetupCull, RejectsExactlyWhatFullSetupCulls) {
   for (const CullMode cull : {CullMode::back, CullMode::front, CullMode::none}) {
     std::size_t kept = 0, rejected = 0;
     for (std::size_t first = 0; first < soup.indices.size() / 3; first += kCullLanes) {
-      const std::uint32_t keep = setup_cull_lanes(input_for(soup, cull, first, kCullLanes), first);
+      const CullLanes lanes = cull_lanes(input_for(soup, cull, first, kCullLanes), first);
       for (int i = 0; i < kCullLanes; ++i) {
-        const bool lane_keeps = (keep >> i) & 1u;
-        ASSERT_EQ(lane_keeps, setup_keeps(soup, cull, first + i))
+        const bool lane_keeps = (lanes.keep >> i) & 1u;
+        const SetupChunk alone = set_up_alone(soup, cull, first + i);
+        ASSERT_EQ(lane_keeps, !alone.triangles.empty())
             << "triangle " << first + i << ", cull mode " << static_cast<int>(cull);
+        // Every corner is inside, so whatever the pass keeps it has fully accepted, with setup's bounds.
+        ASSERT_EQ(lane_keeps, ((lanes.accepted >> i) & 1u) != 0);
+        if (lane_keeps) {
+          const TriangleSetup& t = alone.triangles.front();
+          EXPECT_EQ(lanes.px0[i], t.min_x);
+          EXPECT_EQ(lanes.py0[i], t.min_y);
+          EXPECT_EQ(lanes.px1[i], t.max_x);
+          EXPECT_EQ(lanes.py1[i], t.max_y);
+          EXPECT_EQ(lanes.front[i] != 0, t.front_facing);
+        }
         (lane_keeps ? kept : rejected) += 1;
       }
     }
@@ -78,14 +117,17 @@ TEST(SetupCull, KeepsTrianglesOutsideTheFrustumAndBlocksWithInvalidIndicesForFul
   Soup soup = tiny_triangles(16, 3);
   // All three corners outside the same plane: culled, but by the full setup, which also counts clipping.
   for (int k = 0; k < 3; ++k) soup.projected[k].outcode = 1;
-  const SetupInput in = input_for(soup, CullMode::back, 0, kCullLanes);
-  EXPECT_EQ(setup_cull_lanes(in, 0) & 1u, 1u);
+  const CullLanes outside = cull_lanes(input_for(soup, CullMode::back, 0, kCullLanes), 0);
+  EXPECT_EQ(outside.keep & 1u, 1u);
+  EXPECT_EQ(outside.accepted & 1u, 0u);
   soup.indices[5] = 1000;  // past the vertices: the whole block goes to full setup, which counts it invalid
-  EXPECT_EQ(setup_cull_lanes(input_for(soup, CullMode::back, 0, kCullLanes), 0), 0xffffu);
+  const CullLanes invalid = cull_lanes(input_for(soup, CullMode::back, 0, kCullLanes), 0);
+  EXPECT_EQ(invalid.keep, 0xffffu);
+  EXPECT_EQ(invalid.accepted, 0u);
 }
 
-// A whole chunk through setup_triangles (16-lane pass first) gives the same triangles, in the same order, and the
-// same counts as setting the triangles up one at a time.
+// A whole chunk through setup_triangles (16-lane pass first) gives the same set-up triangles, field for field, in
+// the same order, and the same counts as setting the triangles up one at a time.
 TEST(SetupCull, ChunkSetupMatchesOneTriangleAtATime) {
   Soup soup = tiny_triangles(16 * 64 + 5, 11);  // a tail shorter than 16 takes the per-triangle path
   soup.indices[3 * 40 + 1] = 99999;            // one invalid triangle
@@ -93,19 +135,16 @@ TEST(SetupCull, ChunkSetupMatchesOneTriangleAtATime) {
   SetupChunk whole;
   whole.reset();
   setup_triangles(input_for(soup, CullMode::back, 0, count), whole);
-  std::vector<std::uint32_t> expected;
+  std::vector<TriangleSetup> expected;
   std::size_t culled = 0, invalid = 0;
   for (std::size_t t = 0; t < count; ++t) {
-    SetupChunk one;
-    one.reset();
-    setup_triangles(input_for(soup, CullMode::back, t, 1), one);
-    for (const TriangleSetup& s : one.triangles) expected.push_back(s.primitive);
+    const SetupChunk one = set_up_alone(soup, CullMode::back, t);
+    expected.insert(expected.end(), one.triangles.begin(), one.triangles.end());
     culled += one.culled;
     invalid += one.invalid;
   }
-  std::vector<std::uint32_t> actual;
-  for (const TriangleSetup& s : whole.triangles) actual.push_back(s.primitive);
-  EXPECT_EQ(actual, expected);
+  ASSERT_EQ(whole.triangles.size(), expected.size());
+  for (std::size_t i = 0; i < expected.size(); ++i) expect_same_setup(whole.triangles[i], expected[i]);
   EXPECT_EQ(whole.culled, culled);
   EXPECT_EQ(whole.invalid, invalid);
   EXPECT_EQ(invalid, 1u);
