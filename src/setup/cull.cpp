@@ -1,4 +1,4 @@
-// cull.cpp - the culling tests of setup for 16 triangles at once, branch-free, so dense meshes drop most triangles fast.
+// cull.cpp - setup's culling tests on 16 triangles at once, branch-free: dense meshes drop most triangles fast.
 #include <algorithm>
 #include <cstdint>
 
@@ -11,9 +11,10 @@ namespace facet::detail {
 // and which ones is a coin toss per triangle, so a per-triangle branch on it mispredicts about every other
 // triangle and throws away the loads already under way for the next ones. Here the tests are plain loops over 16
 // triangles that the vectoriser turns into mask operations (64-bit lanes for the exact products), and the only
-// branch left is the scalar setup of each survivor, which Binner::classify then checks again in full. So this pass
-// may keep a triangle classify rejects, but must never reject one it keeps: it repeats classify's tests exactly,
-// in the same integer arithmetic, for triangles whose corners are all inside the frustum.
+// branch left is the scalar setup of each survivor. The pass repeats Binner::classify's tests exactly, in the same
+// integer arithmetic, for triangles whose corners are all inside the frustum: those it accepts are set up from
+// its results without classify; everything else it keeps (a corner outside, an invalid index) goes through the
+// full per-triangle path, so it may keep what classify rejects but never rejects what classify keeps.
 FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
 void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
   constexpr int N = kCullLanes;
@@ -73,12 +74,13 @@ void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
       std::int32_t inside = c < centres;
       for (int k = 0; k < 3; ++k) {
         const int a = k, b = (k + 1) % 3;
-        const std::uint32_t dx = static_cast<std::uint32_t>(X[b] - X[a]), dy = static_cast<std::uint32_t>(Y[b] - Y[a]);
+        const std::int32_t dx = X[b] - X[a], dy = Y[b] - Y[a];
         // The top-left rule, as classify: a point on an edge is inside only for top and left edges.
-        const std::uint32_t bias = ((dy == 0) & (static_cast<std::int32_t>(dx) > 0)) | (static_cast<std::int32_t>(dy) < 0) ? 0u : ~0u;
+        const std::uint32_t bias = ((dy == 0) & (dx > 0)) | (dy < 0) ? 0u : ~0u;
         // 32 bits are exact here: bounds of at most four centres span under 7 pixels (1792 units) each way, so
         // every product stays below 2^22. Other lanes may wrap (unsigned, so defined) and are masked by `few`.
-        const std::uint32_t edge = dx * static_cast<std::uint32_t>(cy - Y[a]) - dy * static_cast<std::uint32_t>(cx - X[a]) + bias;
+        const auto u = [](std::int32_t v) { return static_cast<std::uint32_t>(v); };
+        const std::uint32_t edge = u(dx) * u(cy - Y[a]) - u(dy) * u(cx - X[a]) + bias;
         inside &= static_cast<std::int32_t>(edge) >= 0;
       }
       covered |= inside;

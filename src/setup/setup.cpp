@@ -252,7 +252,8 @@ VertexRange setup_vertex_range(std::span<const std::uint32_t> indices, std::size
 namespace {
 
 // One triangle, in full: clipping when it crosses the frustum, culling, set-up and binning.
-[[gnu::always_inline]] inline void setup_triangle(const SetupInput& in, SetupChunk& out, Binner& binner, std::size_t i) {
+[[gnu::always_inline]] inline void setup_triangle(const SetupInput& in, SetupChunk& out, Binner& binner,
+                                                  std::size_t i) {
   const bool culling = in.cull != CullMode::none;
   const std::size_t tri = in.order ? in.order[i] : i;
   const std::uint32_t source[3] = {in.indices[3 * tri], in.indices[3 * tri + 1], in.indices[3 * tri + 2]};
