@@ -251,6 +251,21 @@ VertexRange setup_vertex_range(std::span<const std::uint32_t> indices, std::size
 
 namespace {
 
+// A triangle's vertices within the shaded range (set-up triangles name them so: rasterization finds their varyings
+// there) and their projected corners.
+struct Corners {
+  std::uint32_t slot[3];
+  const ProjectedVertex* corner[3];
+};
+Corners corners_of(const SetupInput& in, const std::uint32_t source[3]) {
+  Corners c;
+  for (int k = 0; k < 3; ++k) {
+    c.slot[k] = static_cast<std::uint32_t>(source[k] - in.vertex_first);
+    c.corner[k] = &in.projected[c.slot[k]];
+  }
+  return c;
+}
+
 // One triangle, in full: clipping when it crosses the frustum, culling, set-up and binning.
 [[gnu::always_inline]] inline void setup_triangle(const SetupInput& in, SetupChunk& out, Binner& binner,
                                                   std::size_t i) {
@@ -261,11 +276,7 @@ namespace {
     ++out.invalid;
     return;
   }
-  // Set-up triangles name their vertices within the shaded range, where rasterization finds their varyings.
-  const std::uint32_t slot[3] = {static_cast<std::uint32_t>(source[0] - in.vertex_first),
-                                 static_cast<std::uint32_t>(source[1] - in.vertex_first),
-                                 static_cast<std::uint32_t>(source[2] - in.vertex_first)};
-  const ProjectedVertex* corner[3] = {&in.projected[slot[0]], &in.projected[slot[1]], &in.projected[slot[2]]};
+  const auto [slot, corner] = corners_of(in, source);
   const auto primitive = static_cast<std::uint32_t>(tri);
   const std::uint32_t any_outside = corner[0]->outcode | corner[1]->outcode | corner[2]->outcode;
   if (any_outside == 0) {
@@ -310,16 +321,13 @@ namespace {
 // A triangle the culling pass accepted (see CullLanes): its shape is known, so setup starts at set_up_projected.
 [[gnu::always_inline]] inline void set_up_accepted(const SetupInput& in, Binner& binner, const CullLanes& lanes,
                                                    int lane, std::size_t tri) {
-  const std::uint32_t slot[3] = {static_cast<std::uint32_t>(in.indices[3 * tri] - in.vertex_first),
-                                 static_cast<std::uint32_t>(in.indices[3 * tri + 1] - in.vertex_first),
-                                 static_cast<std::uint32_t>(in.indices[3 * tri + 2] - in.vertex_first)};
-  const ProjectedVertex* corner[3] = {&in.projected[slot[0]], &in.projected[slot[1]], &in.projected[slot[2]]};
+  const Corners c = corners_of(in, &in.indices[3 * tri]);
   Binner::Shape shape;
   for (int k = 0; k < 3; ++k) shape.X[k] = lanes.x[k][lane], shape.Y[k] = lanes.y[k][lane];
   shape.area = lanes.area[lane];
   shape.front = shape.flipped = lanes.front[lane] != 0;
   shape.px0 = lanes.px0[lane], shape.py0 = lanes.py0[lane], shape.px1 = lanes.px1[lane], shape.py1 = lanes.py1[lane];
-  binner.set_up_projected(shape, corner, slot, static_cast<std::uint32_t>(tri));
+  binner.set_up_projected(shape, c.corner, c.slot, static_cast<std::uint32_t>(tri));
 }
 
 }  // namespace

@@ -52,6 +52,7 @@ struct CullLanes {
   std::int32_t front[kCullLanes];                    // 1 when front-facing (then corners 1 and 2 were swapped)
 };
 void setup_cull_lanes(const SetupInput& input, std::size_t first, CullLanes& out);
+
 void setup_lines(const SetupInput& input, SetupChunk& out);
 
 // Depth key of every triangle for the painter's algorithm: the mean NDC depth of its corners (larger is farther).
