@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "facet/detail/raster.hpp"
 #include "support/draw_helpers.hpp"
 
 namespace facet::test {
@@ -149,6 +150,19 @@ TEST(Clipping, TriangleBehindTheCameraDrawsNothing) {
   const ClipMesh behind = eye_space_mesh(projection, {{-1, -1, 2}, {1, -1, 2}, {0, 1, 3}}, {0, 1, 2});
   const std::vector<int> drawn = coverage_counts(behind, 64, 64, no_depth_no_cull());
   EXPECT_EQ(std::count(drawn.begin(), drawn.end(), 0), 64 * 64);
+}
+
+// The block walk's rectangle masks, against the definition: bit j * 8 + i for each pixel of the rectangle.
+TEST(BlockRectMask, HasExactlyTheRectanglesPixels) {
+  for (int i0 = 0; i0 < 8; ++i0)
+    for (int i1 = i0; i1 < 8; ++i1)
+      for (int j0 = 0; j0 < 8; ++j0)
+        for (int j1 = j0; j1 < 8; ++j1) {
+          std::uint64_t expected = 0;
+          for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i) expected |= std::uint64_t{1} << (j * 8 + i);
+          ASSERT_EQ(detail::block_rect_mask(i0, i1, j0, j1), expected) << i0 << ".." << i1 << " x " << j0 << ".." << j1;
+        }
 }
 
 }  // namespace

@@ -36,15 +36,22 @@ inline bool depth_passes(DepthFunc func, float fragment, float stored) {
   return false;
 }
 
+// The bits of the rectangle [i0, i1] x [j0, j1] of a block, 0 <= i0 <= i1 < 8 and 0 <= j0 <= j1 < 8. Without a
+// loop over the rows: a triangle's rectangles have 1 to 8 rows at random, and that loop's exit mispredicts.
+inline std::uint64_t block_rect_mask(int i0, int i1, int j0, int j1) {
+  const std::uint64_t row = ((std::uint64_t{2} << i1) - 1) & ~((std::uint64_t{1} << i0) - 1);
+  const std::uint64_t rows = (~std::uint64_t{0} >> (63 - (kBlockSize * j1 + kBlockSize - 1))) &
+                             (~std::uint64_t{0} << (kBlockSize * j0));
+  return row * 0x0101010101010101u & rows;  // row < 256: the product copies it into every byte, without carries
+}
+
 // Pixels (bx + i, by + j), i in [i0, i1], j in [j0, j1] (a rectangle inside one 8x8 block), whose centres are
 // inside all three edges. Whole-rectangle accept and reject use 64-bit values; an edge that crosses the rectangle
 // is tested per pixel in 32 bits (see Edge). Restricting the work to the triangle's bounds keeps the many tiny
 // triangles of dense meshes from paying for whole blocks.
 [[gnu::always_inline]] inline std::uint64_t raster_block_coverage(const TriangleSetup& tri, int bx, int by, int i0,
                                                                   int i1, int j0, int j1) {
-  const std::uint64_t row_bits = ((std::uint64_t{1} << (i1 + 1)) - 1) & ~((std::uint64_t{1} << i0) - 1);
-  std::uint64_t mask = 0;
-  for (int j = j0; j <= j1; ++j) mask |= row_bits << (j * kBlockSize);
+  std::uint64_t mask = block_rect_mask(i0, i1, j0, j1);
   for (const Edge& e : tri.edge) {
     const std::int64_t at_corner = std::int64_t{e.a} * (bx + i0) + std::int64_t{e.b} * (by + j0) + e.q;
     const std::int64_t step_a = std::int64_t{e.a} * (i1 - i0), step_b = std::int64_t{e.b} * (j1 - j0);

@@ -56,15 +56,15 @@ template <DepthFunc kFunc, bool kDepthTest>
                                                               const TileWork& work, std::uint32_t ref) {
   const bool depth_write = kDepthTest && state.depth_write;
   const float offset = state.depth_offset;
-  const std::int32_t a0 = tri.edge[0].a, b0 = tri.edge[0].b, a1 = tri.edge[1].a, b1 = tri.edge[1].b;
-  const std::int32_t a2 = tri.edge[2].a, b2 = tri.edge[2].b;
   const float origin_x = tri.origin_x, origin_y = tri.origin_y;
   const Plane plane = tri.depth;
 
   raster_blocks(tri, work, kDepthTest, state,
                 [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
-    // Each edge on the block's rectangle [i0, i1] x [j0, j1]: its extremes are at corners (exact in 64 bits).
-    std::int32_t base[3];
+    // Each edge on the block's rectangle [i0, i1] x [j0, j1]: its extremes are at corners (exact in 64 bits). An
+    // edge the whole rectangle is inside of becomes the constant kEdgeInside (steps 0), with selects rather than
+    // branches: which edges those are is a coin toss per block.
+    std::int32_t base[3], step_x[3], step_y[3];
     bool outside = false, all_inside = true;
     for (int e = 0; e < 3; ++e) {
       const Edge& edge = tri.edge[e];
@@ -75,13 +75,15 @@ template <DepthFunc kFunc, bool kDepthTest>
       const std::int64_t highest = at_corner + std::max<std::int64_t>(0, step_a) + std::max<std::int64_t>(0, step_b);
       outside |= highest < 0;
       all_inside &= lowest >= 0;
-      base[e] = lowest >= 0 ? kEdgeInside : static_cast<std::int32_t>(at_block);
+      const bool inside = lowest >= 0;
+      base[e] = inside ? kEdgeInside : static_cast<std::int32_t>(at_block);
+      step_x[e] = inside ? 0 : edge.a;
+      step_y[e] = inside ? 0 : edge.b;
     }
     if (outside) return BlockCoverage{false, false};
 
-    const std::uint64_t row_bits = ((std::uint64_t{1} << (i1 + 1)) - 1) & ~((std::uint64_t{1} << i0) - 1);
-    std::uint64_t rect = 0;
-    for (int j = j0; j <= j1; ++j) rect |= row_bits << (j * kBlockSize);
+    const std::uint64_t rect = block_rect_mask(i0, i1, j0, j1);
+    const std::int32_t a0 = step_x[0], b0 = step_y[0], a1 = step_x[1], b1 = step_y[1], a2 = step_x[2], b2 = step_y[2];
     const std::size_t block = scratch_index((bx - work.x0) / kScratchBlock, (by - work.y0) / kScratchBlock);
     unsigned any = 0;
     for (int strip = j0 / 2; strip <= j1 / 2; ++strip) {
@@ -91,10 +93,7 @@ template <DepthFunc kFunc, bool kDepthTest>
       const int py = by + 2 * strip;
       // Only locals inside the loops: the triangle's fields, read there, might alias the stores through depth[]
       // and triangle[] as far as GCC knows, and that keeps it from vectorising.
-      const auto strip_base = [&](int e) {
-        return base[e] == kEdgeInside ? kEdgeInside : base[e] + 2 * strip * tri.edge[e].b;
-      };
-      const std::int32_t e0 = strip_base(0), e1 = strip_base(1), e2 = strip_base(2);
+      const std::int32_t e0 = base[0] + 2 * strip * b0, e1 = base[1] + 2 * strip * b1, e2 = base[2] + 2 * strip * b2;
       // Branch-free, so that the loops vectorise: bitwise &, selects, and stores of the old value where nothing
       // passes.
       const auto lane_pass = [&](int k, float& z) __attribute__((always_inline)) {
