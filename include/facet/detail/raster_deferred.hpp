@@ -131,7 +131,8 @@ template <LaneShader S>
                                                       const FragmentLanes<typename S::Varyings>& fragment) {
   alignas(64) std::uint32_t colors[simd::kLanes];
   simd::store(colors, simd::pack_rgba8(ctx.shader->fragment_lanes(fragment)));
-  for (int k = 0; k < simd::kLanes; ++k) colors[k] = (covered >> k) & 1u ? colors[k] : work.clear.color_value;
+  // Lanes without a triangle take the clear colour (stored only where `fill` asks for it).
+  simd::store(colors, simd::blend(fragment.active, simd::load<simd::UInt>(colors), simd::UInt{} + work.clear.color_value));
   store_strip(work, px, py, covered | fill, colors);
 }
 
@@ -148,15 +149,21 @@ struct PreparedStrip {
 inline constexpr unsigned kPrefetchDistance = 4;
 
 // Calls copy(local, global, n) for each run of n <= 8 pixels that one row of one block of the tile has: its place
-// in the tile's local depth and in the framebuffer's.
+// in the tile's local depth and in the framebuffer's. n is the constant 8 in all but a cut-short tile's last
+// column, so that the copies of whole rows compile to single vector moves rather than a variable-length memcpy.
 template <class Copy>
 [[gnu::always_inline]] inline void for_each_depth_row(const TileWork& work, Copy&& copy) {
   const int width = work.x1 - work.x0, height = work.y1 - work.y0;
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; x += kScratchBlock)
-      copy(work.scratch->depth + scratch_index(x / kScratchBlock, y / kScratchBlock) + (y % kScratchBlock) * kScratchBlock,
-           work.depth + static_cast<std::size_t>(work.y0 + y) * work.stride + work.x0 + x,
-           std::min(kScratchBlock, width - x));
+  const int whole = width / kScratchBlock * kScratchBlock;
+  for (int y = 0; y < height; ++y) {
+    float* local_row = work.scratch->depth + (y % kScratchBlock) * kScratchBlock;
+    float* global_row = work.depth + static_cast<std::size_t>(work.y0 + y) * work.stride + work.x0;
+    for (int x = 0; x < whole; x += kScratchBlock)
+      copy(local_row + scratch_index(x / kScratchBlock, y / kScratchBlock), global_row + x,
+           std::integral_constant<int, kScratchBlock>{});
+    if (whole < width)
+      copy(local_row + scratch_index(whole / kScratchBlock, y / kScratchBlock), global_row + whole, width - whole);
+  }
 }
 
 template <Shader S>
@@ -167,8 +174,8 @@ template <Shader S>
 
   // The tile's depth comes in from the framebuffer unless it is being cleared.
   if (state.depth_test || work.clear.depth)
-    for_each_depth_row(work, [&](float* local, float* global, int n) __attribute__((always_inline)) {
-      if (work.clear.depth) std::fill_n(local, n, work.clear.depth_value);
+    for_each_depth_row(work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
+      if (work.clear.depth) std::fill_n(local, static_cast<int>(n), work.clear.depth_value);
       else std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
     });
   std::fill_n(scratch.triangle, kTileSize * kTileSize, kNoTriangle);
@@ -222,7 +229,7 @@ template <Shader S>
     }
 
   if (work.clear.depth || (state.depth_test && state.depth_write))
-    for_each_depth_row(work, [&](float* local, float* global, int n) __attribute__((always_inline)) {
+    for_each_depth_row(work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
       std::memcpy(global, local, static_cast<std::size_t>(n) * sizeof(float));
     });
 }
