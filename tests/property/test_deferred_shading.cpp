@@ -7,6 +7,7 @@
 #include <random>
 
 #include "bench/bench_shader.hpp"
+#include "facet/detail/raster_deferred.hpp"
 #include "facet/fragment_lanes.hpp"
 #include "support/draw_helpers.hpp"
 
@@ -58,6 +59,47 @@ struct ProbeShader {
     return {r, g, b, splat(1.0f)};
   }
 };
+
+// The shading pass interpolates the triangles of a strip at the lanes strip_triangle_starts picks: each triangle in
+// the strip must have one, and no lane may be picked without a triangle. Strips of 1 to 5 triangles in random
+// places (disjoint runs, triangles in one row only, empty lanes) and in the layouts of a mesh's strips.
+TEST(StripTriangleStarts, EveryTriangleOfTheStripHasALane) {
+  std::mt19937 rng(11);
+  int repeated = 0;
+  for (int trial = 0; trial < 20000; ++trial) {
+    alignas(64) std::uint32_t refs[simd::kLanes];
+    const unsigned kinds = 1 + rng() % 5;
+    if (trial % 2) {
+      for (std::uint32_t& r : refs) r = rng() % (kinds + 1) == 0 ? detail::kNoTriangle : 100 + rng() % kinds;
+    } else {  // columns split at a random cut per row, as a mesh's edges cross a strip
+      const int cut0 = static_cast<int>(rng() % 9), cut1 = static_cast<int>(rng() % 9);
+      for (int k = 0; k < simd::kLanes; ++k) refs[k] = (k & 7) < (k < 8 ? cut0 : cut1) ? 7u : 8u;
+    }
+    const unsigned starts = detail::strip_triangle_starts(simd::load<simd::UInt>(refs));
+    for (int k = 0; k < simd::kLanes; ++k) {
+      if (refs[k] == detail::kNoTriangle) {
+        ASSERT_FALSE(starts >> k & 1u) << "trial " << trial << ": lane " << k << " has no triangle";
+        continue;
+      }
+      int picked = 0;
+      for (int j = 0; j < simd::kLanes; ++j) picked += (starts >> j & 1u) && refs[j] == refs[k];
+      ASSERT_GE(picked, 1) << "trial " << trial << ": triangle of lane " << k << " has no lane";
+      repeated += picked > 1;
+    }
+  }
+  // Repeats only cost time. In the split layouts, what a mesh's edges draw, triangle 8 repeats exactly when its run
+  // in row 1 starts left of its run in row 0 (cut1 < cut0).
+  EXPECT_GT(repeated, 0);  // the random strips do split triangles
+  for (int cut0 = 0; cut0 <= 8; ++cut0)
+    for (int cut1 = 0; cut1 <= 8; ++cut1) {
+      alignas(64) std::uint32_t refs[simd::kLanes];
+      for (int k = 0; k < simd::kLanes; ++k) refs[k] = (k & 7) < (k < 8 ? cut0 : cut1) ? 7u : 8u;
+      const unsigned starts = detail::strip_triangle_starts(simd::load<simd::UInt>(refs));
+      const int kinds = (cut0 > 0 || cut1 > 0) + (cut0 < 8 || cut1 < 8);
+      const int repeats = cut1 < cut0 && cut0 < 8;
+      EXPECT_EQ(std::popcount(starts), kinds + repeats) << cut0 << " " << cut1;
+    }
+}
 
 #pragma GCC diagnostic pop
 

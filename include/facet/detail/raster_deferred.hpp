@@ -66,6 +66,23 @@ inline unsigned strip_inside(const TileWork& work, int px, int py) {
   return bits;
 }
 
+// One lane per triangle of the strip, for the loop over its triangles: the lanes that start a run of one triangle in
+// their row, less those in row 1 whose triangle the lane above also has. Every triangle of the strip keeps at least
+// one lane (a triangle of row 0 starts a run there). One whose runs in the two rows do not overlap (a slanted edge)
+// or whose run in a row is split (by a nearer triangle) keeps more, which costs a repeated interpolation but no
+// error; looking further than the lane above makes GCC 12 turn this into scalar code. Unlike picking lanes one
+// triangle at a time, the loop over these bits carries no chain of vector compares from one triangle to the next.
+[[gnu::always_inline]] inline unsigned strip_triangle_starts(simd::UInt refs) {
+  using namespace simd;
+  const UInt left = __builtin_shuffle(refs, (kLaneIndex - 1) & 15), above = __builtin_shuffle(refs, kLaneIndex ^ 8);
+  const Mask row_start = (kLaneIndex & 7) == 0, row_1 = kLaneIndex >= 8;
+  const Mask start = (refs != kNoTriangle) & ((refs != left) | row_start) & ~((refs == above) & row_1);
+  unsigned bits = 0;
+#pragma GCC unroll 1  // a loop for the vectoriser, as strip_lanes_equal
+  for (int k = 0; k < kLanes; ++k) bits |= static_cast<unsigned>(start[k] & 1) << k;
+  return bits;
+}
+
 inline const TriangleSetup& triangle_at(const TileWork& work, std::uint32_t ref) {
   return work.chunks[ref >> kTriangleIndexBits].triangles[ref & ((1u << kTriangleIndexBits) - 1)];
 }
@@ -74,10 +91,10 @@ inline const TriangleSetup& triangle_at(const TileWork& work, std::uint32_t ref)
 // them. Each triangle of the strip interpolates its varyings at all 16 centres, exactly as shade_quad would (its
 // quads' helper pixels included, so derivatives are its own), and its lanes take those values. Dense meshes put
 // several triangles in most strips; shading them together costs one interpolation each and one shader call.
-// prepare_strip_lanes interpolates, finish_strip_lanes shades and stores.
+// prepare_strip_lanes interpolates (the strip has at least one triangle), finish_strip_lanes shades and stores.
 template <LaneShader S>
 [[gnu::always_inline]] inline void prepare_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px,
-                                                       int py, const std::uint32_t* refs, unsigned covered,
+                                                       int py, const std::uint32_t* refs,
                                                        FragmentLanes<typename S::Varyings>& fragment) {
   using namespace simd;
   using Varyings = typename S::Varyings;
@@ -86,8 +103,10 @@ template <LaneShader S>
   fragment.screen_y = to_float(kLaneY + py) + 0.5f;
   const float offset = ctx.state->depth_offset;
   // kFirst: the strip's first triangle fills every lane, so that none is left unset; later ones blend theirs in.
-  const auto interpolate = [&]<bool kFirst>(const TriangleSetup& tri, unsigned same) __attribute__((always_inline)) {
-    const Mask mine = mask_from_bits(same);
+  const UInt strip_refs = load<UInt>(refs);
+  const auto interpolate = [&]<bool kFirst>(std::uint32_t ref) __attribute__((always_inline)) {
+    const TriangleSetup& tri = triangle_at(work, ref);
+    const Mask mine = strip_refs == ref;
     const auto put = [&](auto& slot, auto value) __attribute__((always_inline)) {
       if constexpr (kFirst) slot = value;
       else slot = blend(mine, value, slot);
@@ -114,15 +133,11 @@ template <LaneShader S>
       }
     }
   };
-  std::uint32_t ref = refs[std::countr_zero(covered)];
-  unsigned same = strip_lanes_equal(refs, ref);
-  interpolate.template operator()<true>(triangle_at(work, ref), same);
-  for (unsigned pending = covered & ~same; pending; pending &= ~same) {
-    ref = refs[std::countr_zero(pending)];
-    same = strip_lanes_equal(refs, ref);
-    interpolate.template operator()<false>(triangle_at(work, ref), same);
-  }
-  fragment.active = mask_from_bits(covered);
+  const unsigned starts = strip_triangle_starts(strip_refs);
+  interpolate.template operator()<true>(refs[std::countr_zero(starts)]);
+  for (unsigned rest = starts & (starts - 1); rest; rest &= rest - 1)
+    interpolate.template operator()<false>(refs[std::countr_zero(rest)]);
+  fragment.active = strip_refs != kNoTriangle;
 }
 
 template <LaneShader S>
@@ -204,13 +219,13 @@ template <Shader S>
           // Shade the strip prepared kPrefetchDistance strips ago, then prepare this one in its slot.
           PreparedStrip<S>& slot = ahead[prepared % kPrefetchDistance];
           if (prepared >= kPrefetchDistance) finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
-          prepare_strip_lanes(shade, work, px, py, refs, covered, slot.fragment);
+          prepare_strip_lanes(shade, work, px, py, refs, slot.fragment);
           slot.px = px, slot.py = py, slot.covered = covered, slot.fill = fill;
           ctx.shader->prefetch_lanes(slot.fragment);
           ++prepared;
         } else if constexpr (LaneShader<S>) {
           FragmentLanes<typename S::Varyings> fragment;
-          prepare_strip_lanes(shade, work, px, py, refs, covered, fragment);
+          prepare_strip_lanes(shade, work, px, py, refs, fragment);
           finish_strip_lanes(shade, work, px, py, covered, fill, fragment);
         } else {
           // One triangle at a time, a quad at a time; ctx's state has the depth test off: it is resolved.
