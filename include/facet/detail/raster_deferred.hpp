@@ -92,9 +92,11 @@ inline const TriangleSetup& triangle_at(const TileWork& work, std::uint32_t ref)
 // quads' helper pixels included, so derivatives are its own), and its lanes take those values. Dense meshes put
 // several triangles in most strips; shading them together costs one interpolation each and one shader call.
 // prepare_strip_lanes interpolates (the strip has at least one triangle), finish_strip_lanes shades and stores.
+// `depth`, when not null, is the strip's depth as the visibility pass wrote it: each lane's is then already its
+// triangle's window depth, computed by the same operations, and is not interpolated again.
 template <LaneShader S>
 [[gnu::always_inline]] inline void prepare_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px,
-                                                       int py, const std::uint32_t* refs,
+                                                       int py, const std::uint32_t* refs, const float* depth,
                                                        FragmentLanes<typename S::Varyings>& fragment) {
   using namespace simd;
   using Varyings = typename S::Varyings;
@@ -113,7 +115,7 @@ template <LaneShader S>
     };
     const Float dx = fragment.screen_x - tri.origin_x, dy = fragment.screen_y - tri.origin_y;
     const auto at = [&](const Plane& p) __attribute__((always_inline)) { return p.at_origin + p.ddx * dx + p.ddy * dy; };
-    put(fragment.depth, clamp(at(tri.depth) + offset, 0.0f, 1.0f));
+    if (!depth) put(fragment.depth, clamp(at(tri.depth) + offset, 0.0f, 1.0f));
     put(fragment.primitive, UInt{} | tri.primitive);
     put(fragment.front_facing, Mask{} | (tri.front_facing ? -1 : 0));
     // Perspective-correct weights of the source vertices: b/w and 1/w are linear in screen space.
@@ -137,6 +139,7 @@ template <LaneShader S>
   interpolate.template operator()<true>(refs[std::countr_zero(starts)]);
   for (unsigned rest = starts & (starts - 1); rest; rest &= rest - 1)
     interpolate.template operator()<false>(refs[std::countr_zero(rest)]);
+  if (depth) fragment.depth = load<Float>(depth);
   fragment.active = strip_refs != kNoTriangle;
 }
 
@@ -200,6 +203,8 @@ template <Shader S>
     else raster_tile_visibility<kFunc, false>(state, work);
   });
 
+  // With the depth test and depth writes on, the tile's depth holds each pixel's visible triangle's depth.
+  const bool depth_resolved = state.depth_test && state.depth_write;
   RenderState resolved = state;
   resolved.depth_test = false;
   const ShadeContext<S> shade{ctx.shader, &resolved};
@@ -208,7 +213,9 @@ template <Shader S>
   for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
     for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
       for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
-        const std::uint32_t* refs = scratch.triangle + scratch_index(block_x, block_y) + strip * simd::kLanes;
+        const std::size_t at = scratch_index(block_x, block_y) + static_cast<std::size_t>(strip) * simd::kLanes;
+        const std::uint32_t* refs = scratch.triangle + at;
+        const float* depth = depth_resolved ? scratch.depth + at : nullptr;
         const unsigned covered = ~strip_lanes_equal(refs, kNoTriangle) & 0xffffu;
         const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
         const unsigned fill = work.clear.color ? strip_inside(work, px, py) & ~covered : 0u;
@@ -219,13 +226,13 @@ template <Shader S>
           // Shade the strip prepared kPrefetchDistance strips ago, then prepare this one in its slot.
           PreparedStrip<S>& slot = ahead[prepared % kPrefetchDistance];
           if (prepared >= kPrefetchDistance) finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
-          prepare_strip_lanes(shade, work, px, py, refs, slot.fragment);
+          prepare_strip_lanes(shade, work, px, py, refs, depth, slot.fragment);
           slot.px = px, slot.py = py, slot.covered = covered, slot.fill = fill;
           ctx.shader->prefetch_lanes(slot.fragment);
           ++prepared;
         } else if constexpr (LaneShader<S>) {
           FragmentLanes<typename S::Varyings> fragment;
-          prepare_strip_lanes(shade, work, px, py, refs, fragment);
+          prepare_strip_lanes(shade, work, px, py, refs, depth, fragment);
           finish_strip_lanes(shade, work, px, py, covered, fill, fragment);
         } else {
           // One triangle at a time, a quad at a time; ctx's state has the depth test off: it is resolved.
