@@ -6,6 +6,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 #include <random>
 
+#include "facet/detail/raster.hpp"
 #include "support/draw_helpers.hpp"
 
 namespace facet::test {
@@ -155,6 +156,33 @@ TEST(HiddenSurfaces, HierarchicalDepthRejectsOnlyHiddenBlocks) {
         break;
       }
   EXPECT_LE(different, fast.color().size() / 1000);
+}
+
+// Hierarchical depth bounds each block by the plane's extremes at the corners of the block's rectangle; the block
+// walk picks the two corners by the gradient's signs. They must be exactly the least and greatest of all four
+// corner values, whatever the plane (any signs, zero gradients, large and tiny magnitudes) and offset.
+TEST(BlockDepthRange, IsTheLeastAndGreatestCornerValue) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+  for (int trial = 0; trial < 20000; ++trial) {
+    detail::TriangleSetup tri{};
+    const float scale = std::ldexp(1.0f, static_cast<int>(rng() % 30) - 24);
+    tri.depth = {0.5f + 0.5f * unit(rng), trial % 7 == 0 ? 0.0f : unit(rng) * scale,
+                 trial % 5 == 0 ? -0.0f : unit(rng) * scale};
+    tri.origin_x = 1000.0f * (unit(rng) + 1.0f), tri.origin_y = 600.0f * (unit(rng) + 1.0f);
+    const int x0 = static_cast<int>(rng() % 1900), y0 = static_cast<int>(rng() % 1060);
+    const int x1 = x0 + static_cast<int>(rng() % 8), y1 = y0 + static_cast<int>(rng() % 8);
+    const float offset = trial % 3 == 0 ? 0.0f : 1e-3f * unit(rng);
+    float z[4];
+    int n = 0;
+    for (int y : {y0, y1})
+      for (int x : {x0, x1})
+        z[n++] = detail::evaluate(tri.depth, static_cast<float>(x) + 0.5f - tri.origin_x,
+                                  static_cast<float>(y) + 0.5f - tri.origin_y);
+    const detail::DepthRange range = detail::raster_block_depth_range(tri, offset, x0, y0, x1, y1);
+    ASSERT_EQ(range.nearest, std::clamp(*std::min_element(z, z + 4) + offset, 0.0f, 1.0f)) << "trial " << trial;
+    ASSERT_EQ(range.farthest, std::clamp(*std::max_element(z, z + 4) + offset, 0.0f, 1.0f)) << "trial " << trial;
+  }
 }
 
 }  // namespace

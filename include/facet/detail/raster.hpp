@@ -167,10 +167,13 @@ inline DepthRange raster_block_depth_range(const TriangleSetup& tri, float depth
                                            int y1) {
   const float dx0 = static_cast<float>(x0) + 0.5f - tri.origin_x, dx1 = static_cast<float>(x1) + 0.5f - tri.origin_x;
   const float dy0 = static_cast<float>(y0) + 0.5f - tri.origin_y, dy1 = static_cast<float>(y1) + 0.5f - tri.origin_y;
-  const float z[4] = {evaluate(tri.depth, dx0, dy0), evaluate(tri.depth, dx1, dy0), evaluate(tri.depth, dx0, dy1),
-                      evaluate(tri.depth, dx1, dy1)};
-  return {std::clamp(std::min(std::min(z[0], z[1]), std::min(z[2], z[3])) + depth_offset, 0.0f, 1.0f),
-          std::clamp(std::max(std::max(z[0], z[1]), std::max(z[2], z[3])) + depth_offset, 0.0f, 1.0f)};
+  // evaluate() rounds (at_origin + ddx * dx) + ddy * dy, which is monotone in dx and in dy, so the signs of the
+  // gradients pick the corners where the plane is lowest and highest: the same values as the minimum and maximum
+  // over all four corners, for half the evaluations.
+  const bool rises_x = tri.depth.ddx >= 0.0f, rises_y = tri.depth.ddy >= 0.0f;
+  const float lowest = evaluate(tri.depth, rises_x ? dx0 : dx1, rises_y ? dy0 : dy1);
+  const float highest = evaluate(tri.depth, rises_x ? dx1 : dx0, rises_y ? dy1 : dy0);
+  return {std::clamp(lowest + depth_offset, 0.0f, 1.0f), std::clamp(highest + depth_offset, 0.0f, 1.0f)};
 }
 
 // What a block's pixel pass reports to the block walk: whether it drew any pixel, and whether the triangle covers
