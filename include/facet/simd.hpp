@@ -36,7 +36,6 @@ using Mask = Int;
 inline constexpr Int kLaneIndex = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
 inline constexpr Int kLaneX = kLaneIndex & 7;
 inline constexpr Int kLaneY = kLaneIndex >> 3;
-inline constexpr Int kLaneBit = (Int{} + 1) << kLaneIndex;  // Int{1} would set lane 0 only
 
 FACET_LANES_INLINE Float splat(float v) { return Float{} + v; }
 FACET_LANES_INLINE Int splat(std::int32_t v) { return Int{} + v; }
@@ -62,9 +61,6 @@ FACET_LANES_INLINE Float sqrt(Float v) {
 
 FACET_LANES_INLINE Float to_float(Int v) { return __builtin_convertvector(v, Float); }
 FACET_LANES_INLINE Int truncate(Float v) { return __builtin_convertvector(v, Int); }
-
-// Lanes whose bit is set in a 16-bit coverage mask.
-FACET_LANES_INLINE Mask mask_from_bits(unsigned bits) { return (splat(static_cast<std::int32_t>(bits)) & kLaneBit) != 0; }
 
 template <class V>
 FACET_LANES_INLINE V load(const void* p) {
