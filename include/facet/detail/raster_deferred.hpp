@@ -148,9 +148,9 @@ template <LaneShader S>
                                                       unsigned covered, unsigned fill,
                                                       const FragmentLanes<typename S::Varyings>& fragment) {
   alignas(64) std::uint32_t colors[simd::kLanes];
-  simd::store(colors, simd::pack_rgba8(ctx.shader->fragment_lanes(fragment)));
+  const simd::UInt shaded = simd::pack_rgba8(ctx.shader->fragment_lanes(fragment));
   // Lanes without a triangle take the clear colour (stored only where `fill` asks for it).
-  simd::store(colors, simd::blend(fragment.active, simd::load<simd::UInt>(colors), simd::UInt{} + work.clear.color_value));
+  simd::store(colors, simd::blend(fragment.active, shaded, simd::UInt{} + work.clear.color_value));
   store_strip(work, px, py, covered | fill, colors);
 }
 
