@@ -120,12 +120,12 @@ template <LaneShader S>
     put(fragment.front_facing, Mask{} | (tri.front_facing ? -1 : 0));
     // Perspective-correct weights of the source vertices: b/w and 1/w are linear in screen space.
     const Float w = 1.0f / at(tri.inv_w);
-    const Float b1 = at(tri.b1_over_w) * w, b2 = at(tri.b2_over_w) * w;
+    const Float b1 = at(tri.b1_over_w) * w, b2 = at(tri.b2_over_w) * w, b0 = 1.0f - b1 - b2;
     const float* v0 = work.varyings + std::size_t{tri.vertex[0]} * kFloats;
     const float* v1 = work.varyings + std::size_t{tri.vertex[1]} * kFloats;
     const float* v2 = work.varyings + std::size_t{tri.vertex[2]} * kFloats;
     for (std::size_t f = 0; f < kFloats; ++f) {
-      const Float value = v0[f] + b1 * (v1[f] - v0[f]) + b2 * (v2[f] - v0[f]);
+      const Float value = b0 * v0[f] + b1 * v1[f] + b2 * v2[f];
       put(fragment.varyings[f], value);
       if constexpr (needs_derivatives<S>()) {
         // Coarse derivatives: within each 2x2 quad, right minus left and bottom minus top of the top-left pixel.
