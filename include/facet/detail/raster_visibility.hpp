@@ -130,24 +130,13 @@ template <DepthFunc kFunc, bool kDepthTest>
   });
 }
 
-// Set-up records are written by whichever thread set up their chunk and first read here, so most come from memory
-// or the other core: the pass asks for the lines of what it reads (edges, bounds, origin, depth plane) this many
-// triangles ahead. sphere:224 and 707, 2 threads: 2-3% faster; 4 and 8 measured alike.
-inline constexpr std::uint32_t kSetupPrefetchDistance = 4;
-
 // Visibility pass of one tile: coverage and depth of all its triangles, in draw order, keeping per pixel the
 // triangle that passed last.
 template <DepthFunc kFunc, bool kDepthTest>
 [[gnu::always_inline]] inline void raster_tile_visibility(const RenderState& state, const TileWork& work) {
   for (std::size_t c = 0; c < work.chunk_count; ++c) {
     const SetupChunk& chunk = work.chunks[c];
-    const std::uint32_t end = chunk.first[work.tile + 1];
-    for (std::uint32_t i = chunk.first[work.tile]; i < end; ++i) {
-      if (i + kSetupPrefetchDistance < end) {
-        const char* ahead = reinterpret_cast<const char*>(&chunk.triangles[chunk.binned[i + kSetupPrefetchDistance]]);
-        __builtin_prefetch(ahead);
-        __builtin_prefetch(ahead + 64);
-      }
+    for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i) {
       const std::uint32_t index = chunk.binned[i];
       raster_triangle_visibility<kFunc, kDepthTest>(chunk.triangles[index], state, work, triangle_ref(c, index));
     }
