@@ -25,7 +25,8 @@ struct alignas(simd::kLaneAlign) FragmentLanes {
   std::array<simd::Float, kFloats> ddx, ddy;  // coarse, per 2x2 quad; filled only when needs_derivatives
   simd::Float screen_x, screen_y, depth;     // as Fragment::screen
   simd::Mask active;                          // the lanes whose colour will be written
-  // Per lane, as Fragment's: the lanes of one strip may come from different triangles.
+  // Per lane, as Fragment's: the lanes of one strip may come from different triangles. Unset for a shader that
+  // declares it does not read them (see lanes_read_primitive).
   simd::UInt primitive;
   simd::Mask front_facing;                    // -1 where front-facing
 
@@ -58,6 +59,19 @@ concept LaneShader = Shader<S> && !S::may_discard &&
                      requires(const S& shader, const FragmentLanes<typename S::Varyings>& fragment) {
                        { shader.fragment_lanes(fragment) } -> std::same_as<simd::Color>;
                      };
+
+// A LaneShader may also declare
+//     static constexpr bool lanes_read_primitive = false;
+// when its fragment_lanes reads neither primitive nor front_facing: the pipeline then leaves them unset. Each of a
+// strip's triangles would otherwise blend both into their lanes, which on sphere:224 costs 4.5% of a frame's
+// instructions for values the benchmark shader never looks at.
+template <class S>
+constexpr bool lanes_read_primitive() {
+  if constexpr (requires { S::lanes_read_primitive; })
+    return S::lanes_read_primitive;
+  else
+    return true;
+}
 
 // A LaneShader may also have
 //     void prefetch_lanes(const FragmentLanes<Varyings>&) const;

@@ -204,6 +204,11 @@ struct ScalarBenchShader {
   glm::vec4 fragment(const Fragment<Varyings>& f) const { return inner.fragment(f); }
 };
 
+// The benchmark shader opts out of per-lane primitive and front_facing (its lanes match without them, below);
+// a lane shader that says nothing gets them, as the shader at the top of this file needs.
+static_assert(!lanes_read_primitive<bench::BenchShader>());
+static_assert(lanes_read_primitive<ProbeShader<true, false>>());
+
 TEST(DeferredShading, BenchShaderLanesMatchItsScalarFragment) {
   std::vector<bench::BenchVertex> vertices;
   std::vector<std::uint32_t> indices;

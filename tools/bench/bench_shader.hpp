@@ -34,6 +34,8 @@ struct BenchShader {
   };
   // No discard, so the pipeline tests depth before shading and hidden fragments cost no texture lookups.
   static constexpr bool may_discard = false;
+  // fragment_lanes reads neither primitive nor front_facing: the pipeline need not fill them per lane.
+  static constexpr bool lanes_read_primitive = false;
 
   // Uniforms. clip_from_world = P * V, formed once, like GLSL's `uProj * uView * pw` which multiplies the two
   // matrices before the vector.

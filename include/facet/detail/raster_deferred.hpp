@@ -116,8 +116,10 @@ template <LaneShader S>
     const Float dx = fragment.screen_x - tri.origin_x, dy = fragment.screen_y - tri.origin_y;
     const auto at = [&](const Plane& p) __attribute__((always_inline)) { return p.at_origin + p.ddx * dx + p.ddy * dy; };
     if (!depth) put(fragment.depth, clamp(at(tri.depth) + offset, 0.0f, 1.0f));
-    put(fragment.primitive, UInt{} | tri.primitive);
-    put(fragment.front_facing, Mask{} | (tri.front_facing ? -1 : 0));
+    if constexpr (lanes_read_primitive<S>()) {
+      put(fragment.primitive, UInt{} | tri.primitive);
+      put(fragment.front_facing, Mask{} | (tri.front_facing ? -1 : 0));
+    }
     // Perspective-correct weights of the source vertices: b/w and 1/w are linear in screen space.
     const Float w = 1.0f / at(tri.inv_w);
     const Float b1 = at(tri.b1_over_w) * w, b2 = at(tri.b2_over_w) * w, b0 = 1.0f - b1 - b2;
