@@ -232,9 +232,18 @@ inline simd::Int Texture::bilinear_repeat_pow2_first(const simd::Vec2& uv, simd:
 }
 
 inline void Texture::prefetch_lanes(const simd::Vec2& uv, const Sampler& sampler) const {
+  using namespace simd;
   if (!bilinear_repeat_pow2_applies(sampler)) return;
-  simd::Float alpha, beta;
-  const simd::Int first = bilinear_repeat_pow2_first(uv, alpha, beta);
+  // A prefetch needs the line, not the texel: truncation instead of split_floor's floor and weights, which is the
+  // same index for s >= 0 and one texel off below it. The clamp keeps the conversion defined for any uv.
+  const Level& l = levels_[0];
+  const auto index = [](Float s, int size) __attribute__((always_inline)) {
+    constexpr float lo = -1073741824.0f, hi = 1073741824.0f;
+    s = select(s > lo, s, splat(lo));
+    s = select(s < hi, s, splat(hi));
+    return truncate(s) & (size - 1);
+  };
+  const Int first = index(uv.y * l.fheight - 0.5f, l.height) * l.stride + index(uv.x * l.fwidth - 0.5f, l.width);
   const std::uint32_t* texels = texels_.data();
   for (int k = 0; k < simd::kLanes; ++k) {
     __builtin_prefetch(texels + first[k]);
