@@ -64,7 +64,7 @@ concept LaneShader = Shader<S> && !S::may_discard &&
 //     static constexpr bool lanes_read_primitive = false;
 // when its fragment_lanes reads neither primitive nor front_facing: the pipeline then leaves them unset. Each of a
 // strip's triangles would otherwise blend both into their lanes, which on sphere:224 costs 4.5% of a frame's
-// instructions for values the benchmark shader never looks at.
+// instructions (AVX2 clone) for values the benchmark shader never looks at.
 template <class S>
 constexpr bool lanes_read_primitive() {
   if constexpr (requires { S::lanes_read_primitive; })

@@ -114,9 +114,9 @@ template <Shader S>
     const float dy = static_cast<float>(py + (k >> 1)) + 0.5f - tri.origin_y;
     const float w = 1.0f / evaluate(tri.inv_w, dx, dy);
     const float b1 = evaluate(tri.b1_over_w, dx, dy) * w, b2 = evaluate(tri.b2_over_w, dx, dy) * w;
-    // Weighted sum of the three vertices' values rather than v0 + b1 (v1 - v0) + b2 (v2 - v0): the same precision
-    // for weights in [0, 1], and the lane version then multiplies each value straight from memory (broadcast
-    // operands) instead of forming its differences first: 5 operations per varying instead of 12.
+    // Weighted sum of the three vertices' values rather than v0 + b1 (v1 - v0) + b2 (v2 - v0): errors of the same
+    // order for weights in [0, 1], and the lane version then multiplies each value straight from memory (broadcast
+    // operands) instead of forming its differences first: 5 operations per varying instead of 12 (AVX-512).
     const float b0 = 1.0f - b1 - b2;
     for (std::size_t f = 0; f < kFloats; ++f) value[k][f] = b0 * v0[f] + b1 * v1[f] + b2 * v2[f];
   }
