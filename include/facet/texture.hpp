@@ -185,6 +185,9 @@ class Texture {
   // Per lane, the offset of the bottom-left texel of the bilinear footprint and the weights (split_floor's).
   FACET_LANES_INLINE simd::Int bilinear_repeat_pow2_first(const simd::Vec2& uv, simd::Float& alpha,
                                                           simd::Float& beta) const;
+  // Texel coordinates limited to +-2^30, NaN to the lower limit (as maxps does in split_floor), so that their
+  // conversion to integers is defined for any uv.
+  FACET_LANES_INLINE static simd::Float clamp_texel_coordinate(simd::Float v);
 
   void pad_level(int level);  // fills the extra column and row of a level from column 0 and row 0
   glm::vec4 sample_level0(glm::vec2 uv, const Sampler& sampler) const;
@@ -213,14 +216,19 @@ inline simd::Color Texture::sample_lanes(const simd::Vec2& uv, const Sampler& sa
   return c;
 }
 
+inline simd::Float Texture::clamp_texel_coordinate(simd::Float v) {
+  using namespace simd;
+  constexpr float lo = -1073741824.0f, hi = 1073741824.0f;
+  v = select(v > lo, v, splat(lo));
+  return select(v < hi, v, splat(hi));
+}
+
 inline simd::Int Texture::bilinear_repeat_pow2_first(const simd::Vec2& uv, simd::Float& alpha,
                                                       simd::Float& beta) const {
   using namespace simd;
-  constexpr float lo = -1073741824.0f, hi = 1073741824.0f;
   const Level& l = levels_[0];
   auto split = [&](Float v, Int& index, Float& fraction) {
-    v = select(v > lo, v, splat(lo));  // NaN goes to lo, as maxps does in split_floor
-    v = select(v < hi, v, splat(hi));
+    v = clamp_texel_coordinate(v);
     index = truncate(v);
     index += v < to_float(index);  // -1 where truncation rounded up
     fraction = v - to_float(index);
@@ -235,13 +243,10 @@ inline void Texture::prefetch_lanes(const simd::Vec2& uv, const Sampler& sampler
   using namespace simd;
   if (!bilinear_repeat_pow2_applies(sampler)) return;
   // A prefetch needs the line, not the texel: truncation instead of split_floor's floor and weights, which is the
-  // same index for s >= 0 and one texel off below it. The clamp keeps the conversion defined for any uv.
+  // same index for s >= 0 and one texel off below it.
   const Level& l = levels_[0];
   const auto index = [](Float s, int size) __attribute__((always_inline)) {
-    constexpr float lo = -1073741824.0f, hi = 1073741824.0f;
-    s = select(s > lo, s, splat(lo));
-    s = select(s < hi, s, splat(hi));
-    return truncate(s) & (size - 1);
+    return truncate(clamp_texel_coordinate(s)) & (size - 1);
   };
   const Int first = index(uv.y * l.fheight - 0.5f, l.height) * l.stride + index(uv.x * l.fwidth - 0.5f, l.width);
   const std::uint32_t* texels = texels_.data();
