@@ -45,9 +45,17 @@ template <DepthFunc kFunc>
 // so offsets stay within 2^26) and far below overflow.
 inline constexpr std::int32_t kEdgeInside = 1 << 30;
 
-// Visibility of one triangle in one tile. Per 8x8 block: hierarchical depth rejects hidden blocks, the three edges
-// are classified on the block (64 bits, exact: outside, inside, or crossing), and then each 8x2 strip runs one
-// branch-free loop over its 16 pixels that does the crossing edges' tests, the depth test and the stores together.
+// Triangles whose pixel bounds span at most this many pixels each way have all their edge values, over every block
+// they touch, within 32 bits: their vertices lie within 1.5 pixels of the bounds, so |a|, |b| <= (span + 3) * 256,
+// and a block corner is at most span + 8 pixels from each vertex, which bounds |a * i + b * j + q| by
+// 2 * (span + 3) * 256 * (span + 9) < 2^30 for span 1024.
+inline constexpr int kSmallTriangleSpan = 1024;
+
+// Visibility of one triangle in one tile. Per 8x8 block: hierarchical depth rejects hidden blocks, and then each 8x2
+// strip of the block's rectangle runs one branch-free loop over its 16 pixels that does the three edge tests, the
+// depth test and the stores together. Edge values come in 32 bits straight from the triangle's corner for all but
+// huge triangles (kSmallTriangleSpan); a huge one's are classified per block in 64 bits first (exact: outside,
+// inside, or crossing), and an edge that has the whole block inside becomes the constant kEdgeInside.
 // It is written as plain loops, not with the lane types: the loop vectoriser runs after inlining, inside each
 // dispatch clone, and emits that clone's mask instructions, where GCC 12 lowers some lane-type idioms (broadcasts,
 // -1/0 masks) element by element. The coverage is exactly raster_block_coverage's (see Edge for the 32-bit budget).
@@ -59,30 +67,10 @@ template <DepthFunc kFunc, bool kDepthTest>
   const float origin_x = tri.origin_x, origin_y = tri.origin_y;
   const Plane plane = tri.depth;
 
-  raster_blocks(tri, work, kDepthTest, state,
-                [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
-    // Each edge on the block's rectangle [i0, i1] x [j0, j1]: its extremes are at corners (exact in 64 bits). An
-    // edge the whole rectangle is inside of becomes the constant kEdgeInside (steps 0), with selects rather than
-    // branches: which edges those are is a coin toss per block.
-    std::int32_t base[3], step_x[3], step_y[3];
-    bool outside = false, all_inside = true;
-    for (int e = 0; e < 3; ++e) {
-      const Edge& edge = tri.edge[e];
-      const std::int64_t at_block = std::int64_t{edge.a} * bx + std::int64_t{edge.b} * by + edge.q;
-      const std::int64_t at_corner = at_block + std::int64_t{edge.a} * i0 + std::int64_t{edge.b} * j0;
-      const std::int64_t step_a = std::int64_t{edge.a} * (i1 - i0), step_b = std::int64_t{edge.b} * (j1 - j0);
-      const std::int64_t lowest = at_corner + std::min<std::int64_t>(0, step_a) + std::min<std::int64_t>(0, step_b);
-      const std::int64_t highest = at_corner + std::max<std::int64_t>(0, step_a) + std::max<std::int64_t>(0, step_b);
-      outside |= highest < 0;
-      all_inside &= lowest >= 0;
-      const bool inside = lowest >= 0;
-      base[e] = inside ? kEdgeInside : static_cast<std::int32_t>(at_block);
-      step_x[e] = inside ? 0 : edge.a;
-      step_y[e] = inside ? 0 : edge.b;
-    }
-    if (outside) return BlockCoverage{false, false};
-
-    const std::uint64_t rect = block_rect_mask(i0, i1, j0, j1);
+  // The strips of rows [j0, j1] of the block at (bx, by) within `rect`, with edge values base + step_x * i +
+  // step_y * j at its pixel (i, j). Returns whether any pixel passed.
+  const auto strips = [&](int bx, int by, int j0, int j1, std::uint64_t rect, const std::int32_t* base,
+                          const std::int32_t* step_x, const std::int32_t* step_y) __attribute__((always_inline)) {
     const std::int32_t a0 = step_x[0], b0 = step_y[0], a1 = step_x[1], b1 = step_y[1], a2 = step_x[2], b2 = step_y[2];
     const std::size_t block = scratch_index((bx - work.x0) / kScratchBlock, (by - work.y0) / kScratchBlock);
     unsigned any = 0;
@@ -126,7 +114,57 @@ template <DepthFunc kFunc, bool kDepthTest>
         }
       }
     }
-    return BlockCoverage{any != 0, all_inside && rect == ~std::uint64_t{0}};
+    return any;
+  };
+
+  if (tri.max_x - tri.min_x <= kSmallTriangleSpan && tri.max_y - tri.min_y <= kSmallTriangleSpan) {
+    std::int32_t at_min[3], step_x[3], step_y[3];
+    for (int e = 0; e < 3; ++e) {
+      const Edge& edge = tri.edge[e];
+      at_min[e] = static_cast<std::int32_t>(std::int64_t{edge.a} * tri.min_x + std::int64_t{edge.b} * tri.min_y + edge.q);
+      step_x[e] = edge.a;
+      step_y[e] = edge.b;
+    }
+    raster_blocks(tri, work, kDepthTest, state,
+                  [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
+      std::int32_t base[3];
+      for (int e = 0; e < 3; ++e) base[e] = at_min[e] + step_x[e] * (bx - tri.min_x) + step_y[e] * (by - tri.min_y);
+      const std::uint64_t rect = block_rect_mask(i0, i1, j0, j1);
+      // Whether every pixel of the block is inside: only then can the block's depth bound tighten.
+      bool full = rect == ~std::uint64_t{0};
+      if (full)
+        for (int e = 0; e < 3; ++e)
+          full &= base[e] + std::min(0, step_x[e] * (kBlockSize - 1)) + std::min(0, step_y[e] * (kBlockSize - 1)) >= 0;
+      return BlockCoverage{strips(bx, by, j0, j1, rect, base, step_x, step_y) != 0, full};
+    });
+    return;
+  }
+
+  raster_blocks(tri, work, kDepthTest, state,
+                [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
+    // Each edge on the block's rectangle [i0, i1] x [j0, j1]: its extremes are at corners (exact in 64 bits). An
+    // edge the whole rectangle is inside of becomes the constant kEdgeInside (steps 0), with selects rather than
+    // branches: which edges those are is a coin toss per block.
+    std::int32_t base[3], step_x[3], step_y[3];
+    bool outside = false, all_inside = true;
+    for (int e = 0; e < 3; ++e) {
+      const Edge& edge = tri.edge[e];
+      const std::int64_t at_block = std::int64_t{edge.a} * bx + std::int64_t{edge.b} * by + edge.q;
+      const std::int64_t at_corner = at_block + std::int64_t{edge.a} * i0 + std::int64_t{edge.b} * j0;
+      const std::int64_t step_a = std::int64_t{edge.a} * (i1 - i0), step_b = std::int64_t{edge.b} * (j1 - j0);
+      const std::int64_t lowest = at_corner + std::min<std::int64_t>(0, step_a) + std::min<std::int64_t>(0, step_b);
+      const std::int64_t highest = at_corner + std::max<std::int64_t>(0, step_a) + std::max<std::int64_t>(0, step_b);
+      outside |= highest < 0;
+      all_inside &= lowest >= 0;
+      const bool inside = lowest >= 0;
+      base[e] = inside ? kEdgeInside : static_cast<std::int32_t>(at_block);
+      step_x[e] = inside ? 0 : edge.a;
+      step_y[e] = inside ? 0 : edge.b;
+    }
+    if (outside) return BlockCoverage{false, false};
+    const std::uint64_t rect = block_rect_mask(i0, i1, j0, j1);
+    const bool any = strips(bx, by, j0, j1, rect, base, step_x, step_y) != 0;
+    return BlockCoverage{any, all_inside && rect == ~std::uint64_t{0}};
   });
 }
 
