@@ -188,6 +188,31 @@ TEST(DeferredShading, SeveralDrawsAndDepthFunctionsMatchImmediate) {
   expect_deferred_matches<false>(reversed, 190, 133, 0.0f);
 }
 
+// The visibility pass takes a huge triangle's edge values per block in 64 bits, and a smaller one's in 32 bits from
+// its corner (kSmallTriangleSpan): 1300 pixels wide, the soup has triangles of both kinds and the sphere small ones.
+TEST(DeferredShading, HugeAndSmallTrianglesMatchImmediate) {
+  constexpr int kWidth = 1300, kHeight = 72;
+  RenderState no_cull;
+  no_cull.cull = CullMode::none;
+  const std::vector<Draw> draws{{triangle_soup(40, 13), no_cull},
+                                {closed_sphere(24, 32, camera({0.1f, 0.0f, -3.0f})), RenderState{}}};
+  int huge = 0;
+  const ClipMesh& soup = draws[0].mesh;
+  for (std::size_t t = 0; t + 2 < soup.indices.size(); t += 3) {
+    float lo = kWidth, hi = 0.0f;
+    bool in_front = true;
+    for (int k = 0; k < 3; ++k) {
+      const glm::vec4& c = soup.clip[soup.indices[t + k]];
+      in_front &= c.w > 0.0f;
+      const float x = std::clamp((c.x / c.w + 1.0f) * 0.5f * kWidth, 0.0f, float(kWidth));
+      lo = std::min(lo, x), hi = std::max(hi, x);
+    }
+    huge += in_front && hi - lo > detail::kSmallTriangleSpan + 8;
+  }
+  ASSERT_GE(huge, 3);
+  expect_deferred_matches<false>(draws, kWidth, kHeight);
+}
+
 TEST(DeferredShading, WithoutDepthTestTheLastDrawnTriangleWins) {
   RenderState painter = no_depth_no_cull();
   const std::vector<Draw> draws{{triangle_soup(80, 11), painter}, {jittered_grid(5, 4, 9, false), painter}};
