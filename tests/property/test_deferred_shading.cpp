@@ -229,6 +229,14 @@ struct ScalarBenchShader {
   glm::vec4 fragment(const Fragment<Varyings>& f) const { return inner.fragment(f); }
 };
 
+// The benchmark shader with prefetch_lanes: strips are prepared kPrefetchDistance strips before they are shaded.
+struct PrefetchingBenchShader : bench::BenchShader {
+  FACET_LANES_INLINE void prefetch_lanes(const FragmentLanes<Varyings>& f) const {
+    texture->prefetch_lanes(f.get(&Varyings::uv), sampler);
+  }
+};
+static_assert(PrefetchingLaneShader<PrefetchingBenchShader>);
+
 // The benchmark shader opts out of per-lane primitive and front_facing (its lanes match without them, below);
 // a lane shader that says nothing gets them, as the shader at the top of this file needs.
 static_assert(!lanes_read_primitive<bench::BenchShader>());
@@ -260,6 +268,7 @@ TEST(DeferredShading, BenchShaderLanesMatchItsScalarFragment) {
   lanes.clip_from_world = glm::perspective(glm::radians(45.0f), 1.5f, 0.1f, 10.0f) *
                           glm::lookAt(lanes.eye, glm::vec3(0.0f), glm::vec3(0, 1, 0));
   const ScalarBenchShader scalar{lanes};
+  const PrefetchingBenchShader prefetching{lanes};
   const auto draw = [&](const auto& shader, bool deferred) {
     Framebuffer fb(241, 160);
     Renderer renderer(2);
@@ -275,6 +284,7 @@ TEST(DeferredShading, BenchShaderLanesMatchItsScalarFragment) {
   ASSERT_GT(drawn, 241 * 160 / 4);  // the sphere fills a good part of the frame
   expect_same(expected, draw(scalar, true), "deferred, scalar fragment");
   expect_same(expected, draw(lanes, true), "deferred, lane fragment");
+  expect_same(expected, draw(prefetching, true), "deferred, lane fragment prepared ahead");
   expect_same(expected, draw(lanes, false), "immediate, lane shader's scalar fragment");
 }
 

@@ -102,11 +102,6 @@ struct BenchShader {
     return {color, 1.0f};
   }
 
-  // The texels fragment_lanes will read, requested a few strips ahead (see PrefetchingLaneShader).
-  FACET_LANES_INLINE void prefetch_lanes(const FragmentLanes<Varyings>& f) const {
-    texture->prefetch_lanes(f.get(&Varyings::uv), sampler);
-  }
-
   // fragment() for 16 pixels at once: the same operations in the same order, so both give identical images.
   FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
     using namespace simd;
@@ -130,7 +125,9 @@ struct BenchShader {
   }
 };
 
-static_assert(PrefetchingLaneShader<BenchShader>);
+// No prefetch_lanes: issuing the footprint's lines for every lane cost more than it saved on this benchmark
+// (docs/PERFORMANCE.md: sphere:224, WusonOBJ and the quads 3-8% faster without, sphere:707 and 1414 2-3% slower).
+static_assert(!PrefetchingLaneShader<BenchShader>);
 static_assert(LaneVertexShader<BenchShader>);
 
 }  // namespace facet::bench
