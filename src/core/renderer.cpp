@@ -113,7 +113,8 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   const std::size_t tiles = static_cast<std::size_t>(target.tiles_x()) * target.tiles_y();
   for (std::size_t batch_first = 0; batch_first < count; batch_first += batch) {
     const std::size_t batch_count = std::min(batch, count - batch_first);
-    const std::size_t chunk_count = (batch_count + kSetupChunk - 1) / kSetupChunk;
+    const std::size_t chunk_size = setup_chunk_size(batch_count);
+    const std::size_t chunk_count = (batch_count + chunk_size - 1) / chunk_size;
     if (chunks_.size() < chunk_count) chunks_.resize(chunk_count);
     if (banded) {
       const VertexRange band = batch_vertex_band(request, batch_first, batch_count);
@@ -127,10 +128,10 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     pool_.parallel_for(chunk_count, [&](std::size_t c, int) {
       SetupChunk& chunk = chunks_[c];
       chunk.reset();
-      const std::size_t first = batch_first + c * kSetupChunk;
+      const std::size_t first = batch_first + c * chunk_size;
       const SetupInput input{outputs.clip, outputs.projected, outputs.first, request.clip_position, request.source,
                              request.vertex_count, request.indices, order, first,
-                             std::min(kSetupChunk, batch_first + batch_count - first), target.width(), target.height(),
+                             std::min(chunk_size, batch_first + batch_count - first), target.width(), target.height(),
                              target.tiles_x(), state.cull, state.line_width};
       if (triangles) setup_triangles(input, chunk);
       else setup_lines(input, chunk);

@@ -92,6 +92,25 @@ TEST(VertexBatches, CoverageEqualsReference) {
   EXPECT_EQ(fast, slow);
 }
 
+// A draw of fewer than 8 full chunks is set up in 8 smaller ones (at least kMinSetupChunk primitives each), so that
+// threads share it; the chunks are walked in order, so the image is that of any other cut.
+TEST(SetupChunks, SmallDrawsAreCutIntoSmallerChunks) {
+  EXPECT_EQ(detail::setup_chunk_size(1), detail::kMinSetupChunk);
+  EXPECT_EQ(detail::setup_chunk_size(3732), detail::kMinSetupChunk);
+  EXPECT_EQ(detail::setup_chunk_size(8 * 1000), 1000u);
+  EXPECT_EQ(detail::setup_chunk_size(8 * detail::kSetupChunk), detail::kSetupChunk);
+  EXPECT_EQ(detail::setup_chunk_size(kBatch), detail::kSetupChunk);
+
+  const ClipMesh grid = jittered_grid(40, 40, 29, true);  // 3,200 triangles: 7 chunks
+  ASSERT_GT(grid.indices.size() / 3, 6 * detail::kMinSetupChunk);
+  const Drawn one = draw(grid, 1);
+  EXPECT_EQ(one.stats.primitives, grid.indices.size() / 3);
+  EXPECT_TRUE(same_pixels(one.image, draw(grid, 2).image));
+  EXPECT_TRUE(same_pixels(one.image, draw(grid, 3).image));
+  EXPECT_EQ(coverage_counts(grid, kWidth, kHeight, no_depth_no_cull(), 3, false),
+            coverage_counts(grid, kWidth, kHeight, no_depth_no_cull(), 1, true));
+}
+
 TEST(VertexBatches, OutOfRangeIndicesDoNotWidenTheBand) {
   ClipMesh grid = large_grid();
   const std::size_t n = grid.clip.size();

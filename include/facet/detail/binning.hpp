@@ -15,7 +15,7 @@
 
 namespace facet::detail {
 
-// Setup runs over fixed-size chunks of primitives, whatever the thread count, and each chunk bins into its own
+// Setup runs over chunks of primitives, cut the same whatever the thread count, and each chunk bins into its own
 // lists. A tile then walks the chunks in order, so it sees its triangles in draw order with no locks and the image
 // is identical at any thread count.
 inline constexpr std::size_t kSetupChunk = 4096;     // primitives per setup task
@@ -23,6 +23,14 @@ inline constexpr std::size_t kSetupChunk = 4096;     // primitives per setup tas
 // triangles and varyings of a batch near the cache while its tiles read them back: on sphere:1414, 64 chunks were
 // 14% slower at 2 threads, 8 chunks 2-5% slower (more tile visits and barriers per frame).
 inline constexpr std::size_t kChunksPerBatch = 16;
+// A draw of fewer than 8 full chunks is cut into 8 smaller ones of at least kMinSetupChunk primitives, so that a
+// small mesh's setup is shared between threads instead of leaving all but one waiting (WusonOBJ: 3,732 triangles,
+// one chunk). The size depends on the draw alone, not the thread count: the chunks are walked in order, so the
+// image is the same either way.
+inline constexpr std::size_t kMinSetupChunk = 512;
+inline std::size_t setup_chunk_size(std::size_t primitives) {
+  return std::clamp<std::size_t>((primitives + 7) / 8, kMinSetupChunk, kSetupChunk);
+}
 
 // An allocator whose emplace_back() leaves a new element default-initialised: setup writes every field of a
 // TriangleSetup in place, and value-initialisation would first zero all 136 bytes of it.
