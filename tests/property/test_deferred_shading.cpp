@@ -189,14 +189,15 @@ TEST(DeferredShading, SeveralDrawsAndDepthFunctionsMatchImmediate) {
 }
 
 // The visibility pass takes a huge triangle's edge values per block in 64 bits, and a smaller one's in 32 bits from
-// its corner (kSmallTriangleSpan): 1300 pixels wide, the soup has triangles of both kinds and the sphere small ones.
+// its corner (kSmallTriangleSpan): 1300 pixels wide, the soup has triangles of both kinds, some of the smaller kind
+// close to the span limit, and the sphere small ones.
 TEST(DeferredShading, HugeAndSmallTrianglesMatchImmediate) {
   constexpr int kWidth = 1300, kHeight = 72;
   RenderState no_cull;
   no_cull.cull = CullMode::none;
   const std::vector<Draw> draws{{triangle_soup(40, 13), no_cull},
                                 {closed_sphere(24, 32, camera({0.1f, 0.0f, -3.0f})), RenderState{}}};
-  int huge = 0;
+  int huge = 0, large = 0;
   const ClipMesh& soup = draws[0].mesh;
   for (std::size_t t = 0; t + 2 < soup.indices.size(); t += 3) {
     float lo = kWidth, hi = 0.0f;
@@ -208,8 +209,10 @@ TEST(DeferredShading, HugeAndSmallTrianglesMatchImmediate) {
       lo = std::min(lo, x), hi = std::max(hi, x);
     }
     huge += in_front && hi - lo > detail::kSmallTriangleSpan + 8;
+    large += in_front && hi - lo > 512 && hi - lo < detail::kSmallTriangleSpan - 8;  // 32 bits, near its budget
   }
   ASSERT_GE(huge, 3);
+  ASSERT_GE(large, 3);
   expect_deferred_matches<false>(draws, kWidth, kHeight);
 }
 

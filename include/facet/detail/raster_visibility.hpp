@@ -46,9 +46,10 @@ template <DepthFunc kFunc>
 inline constexpr std::int32_t kEdgeInside = 1 << 30;
 
 // Triangles whose pixel bounds span at most this many pixels each way have all their edge values, over every block
-// they touch, within 32 bits: their vertices lie within 1.5 pixels of the bounds, so |a|, |b| <= (span + 3) * 256,
-// and a block corner is at most span + 8 pixels from each vertex, which bounds |a * i + b * j + q| by
-// 2 * (span + 3) * 256 * (span + 9) < 2^30 for span 1024.
+// they touch, within 32 bits: their snapped vertices lie within 2 pixels of the bounds (snap_to_subpixel clamps to
+// one pixel beyond the target), so |a|, |b| <= (span + 4) * 256, and the pixels of those blocks are at most
+// span + 10 pixels from each vertex, which bounds |a * i + b * j + q| by 2 * (span + 4) * 256 * (span + 10) < 2^30
+// for span 1024.
 inline constexpr int kSmallTriangleSpan = 1024;
 
 // Visibility of one triangle in one tile. Per 8x8 block: hierarchical depth rejects hidden blocks, and then each 8x2
