@@ -108,7 +108,11 @@ template <LaneShader S>
   const UInt strip_refs = load<UInt>(refs);
   const auto interpolate = [&]<bool kFirst>(std::uint32_t ref) __attribute__((always_inline)) {
     const TriangleSetup& tri = triangle_at(work, ref);
-    const Mask mine = strip_refs == ref;
+    // The lanes of this triangle, built by a loop for the vectoriser (as strip_lanes_equal): GCC 12 lowers
+    // `strip_refs == ref` lane by lane in the clones narrower than 512 bits, and every blend below with it.
+    Mask mine;
+#pragma GCC unroll 1
+    for (int k = 0; k < kLanes; ++k) mine[k] = -static_cast<std::int32_t>(refs[k] == ref);
     const auto put = [&](auto& slot, auto value) __attribute__((always_inline)) {
       if constexpr (kFirst) slot = value;
       else slot = blend(mine, value, slot);
