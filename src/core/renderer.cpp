@@ -85,9 +85,12 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   // mesh. One batch, the painter's order (its sort reads every vertex first), or bands that overlap too much (a
   // shuffled index order) shade the whole vertex span once instead. Either way the post-transform cache never
   // misses: each vertex is shaded at most once per batch.
+  // A draw's last part shorter than a batch joins the batch before it: one batch boundary fewer, i.e. one round of
+  // barriers and one visit of the tiles both batches touch, for at most twice a batch's setup memory.
   const std::size_t batch = kSetupChunk * kChunksPerBatch;
+  const auto batch_end = [&](std::size_t first) { return count - first < 2 * batch ? count : first + batch; };
   const std::size_t n = request.vertex_count;
-  bool banded = !painter && count > batch;
+  bool banded = !painter && batch_end(0) < count;
   VertexOutputs outputs{};
   const auto shade_band = [&](VertexRange band) {
     outputs = prepare_vertex_outputs(request, band.end - band.first, band.first, target.width(), target.height());
@@ -111,8 +114,8 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   }
 
   const std::size_t tiles = static_cast<std::size_t>(target.tiles_x()) * target.tiles_y();
-  for (std::size_t batch_first = 0; batch_first < count; batch_first += batch) {
-    const std::size_t batch_count = std::min(batch, count - batch_first);
+  for (std::size_t batch_first = 0; batch_first < count; batch_first = batch_end(batch_first)) {
+    const std::size_t batch_count = batch_end(batch_first) - batch_first;
     const std::size_t chunk_size = setup_chunk_size(batch_count);
     const std::size_t chunk_count = (batch_count + chunk_size - 1) / chunk_size;
     if (chunks_.size() < chunk_count) chunks_.resize(chunk_count);

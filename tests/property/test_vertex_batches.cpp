@@ -85,6 +85,20 @@ TEST(VertexBatches, ImageDoesNotDependOnVertexOrderOrThreads) {
   EXPECT_TRUE(same_pixels(banded.image, draw(grid, 1).image));
 }
 
+// A last part shorter than a batch joins the batch before it: one and a half batches are drawn as one, so every
+// vertex is shaded once and held at once, and the image is that of any other cut.
+TEST(VertexBatches, ShortLastPartJoinsThePreviousBatch) {
+  const ClipMesh grid = jittered_grid(kCells, static_cast<int>(3 * kRowsPerBatch / 2), 31, true);
+  const Drawn joined = draw(grid, 2);
+  EXPECT_EQ(joined.stats.primitives, 3 * kBatch / 2);
+  EXPECT_EQ(joined.stats.vertices_shaded, grid.clip.size());
+  EXPECT_EQ(joined.stats.vertices_held, grid.clip.size());
+  EXPECT_TRUE(same_pixels(joined.image, draw(grid, 1).image));
+  EXPECT_TRUE(same_pixels(joined.image, draw(grid, 3).image));
+  EXPECT_EQ(coverage_counts(grid, kWidth, kHeight, no_depth_no_cull(), 2, false),
+            coverage_counts(grid, kWidth, kHeight, no_depth_no_cull(), 1, true));
+}
+
 TEST(VertexBatches, CoverageEqualsReference) {
   const ClipMesh grid = large_grid();
   const std::vector<int> fast = coverage_counts(grid, kWidth, kHeight, no_depth_no_cull(), 2, false);

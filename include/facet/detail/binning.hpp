@@ -100,7 +100,7 @@ inline constexpr int kTriangleIndexBits = 20;
 inline constexpr std::uint32_t kNoTriangle = 0xffffffffu;
 // Clipping makes at most 8 triangles of one primitive (a 10-gon), a line makes 2.
 static_assert(kSetupChunk * 8 < (std::size_t{1} << kTriangleIndexBits));
-static_assert(kChunksPerBatch << kTriangleIndexBits < kNoTriangle);
+static_assert(2 * kChunksPerBatch << kTriangleIndexBits < kNoTriangle);  // a batch holds up to two batches' worth
 inline std::uint32_t triangle_ref(std::size_t chunk, std::uint32_t index) {
   return static_cast<std::uint32_t>(chunk) << kTriangleIndexBits | index;
 }
