@@ -162,7 +162,8 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       const TileWork work{tile, x0, y0, std::min(x0 + kTileSize, target.width()),
                           std::min(y0 + kTileSize, target.height()), target.width(), target.color_storage(),
                           target.depth_storage(), target.tile_depth_bounds(tile), chunks_.data(),
-                          chunk_count, outputs.varyings, &scratch_[static_cast<std::size_t>(thread)], clear};
+                          chunk_count, outputs.varyings, &scratch_[static_cast<std::size_t>(thread)], clear,
+                          batch_end(batch_first) == count};
       request.raster(request.draw, work);
     });
   }

@@ -127,6 +127,7 @@ struct TileWork {
   const float* varyings;  // post-transform varyings, indexed by TriangleSetup::vertex
   TileScratch* scratch;  // the running thread's, for deferred shading
   Framebuffer::PendingClear clear;  // deferred shading: the clear the tile applies itself as it writes its pixels
+  bool last_batch;  // no later batch of the draw visits the tile: deferred shading may stream its depth out
 };
 
 }  // namespace facet::detail

@@ -7,6 +7,10 @@
 #include <cstring>
 #include <type_traits>
 
+#if defined(__x86_64__)
+#include <xmmintrin.h>
+#endif
+
 #include "facet/fragment_lanes.hpp"
 #include "facet/simd.hpp"
 #include "facet/detail/raster.hpp"
@@ -191,6 +195,25 @@ template <class Copy>
   }
 }
 
+// The tile's depth leaves with streaming stores after the draw's last batch: nothing in the draw reads it again,
+// and a plain store would first read each line of the framebuffer's depth from memory (write-allocate) only to
+// overwrite it. Whole aligned rows of a block only; returns false for the rest, which the caller copies.
+template <class N>
+[[gnu::always_inline]] inline bool stream_depth_row(float* global, const float* local, N n) {
+#if defined(__x86_64__)
+  if constexpr (std::is_same_v<N, std::integral_constant<int, kScratchBlock>>) {
+    static_assert(kScratchBlock == 8);
+    if (reinterpret_cast<std::uintptr_t>(global) % 16 == 0) {
+      _mm_stream_ps(global, _mm_load_ps(local));
+      _mm_stream_ps(global + 4, _mm_load_ps(local + 4));
+      return true;
+    }
+  }
+#endif
+  (void)global, (void)local, (void)n;
+  return false;
+}
+
 template <Shader S>
 [[gnu::always_inline]] inline void raster_tile_deferred(const ShadeContext<S>& ctx, const TileWork& work) {
   const RenderState& state = *ctx.state;
@@ -257,10 +280,16 @@ template <Shader S>
       finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
     }
 
-  if (work.clear.depth || (state.depth_test && state.depth_write))
+  if (work.clear.depth || (state.depth_test && state.depth_write)) {
     for_each_depth_row(work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
-      std::memcpy(global, local, static_cast<std::size_t>(n) * sizeof(float));
+      if (!(work.last_batch && stream_depth_row(global, local, n)))
+        std::memcpy(global, local, static_cast<std::size_t>(n) * sizeof(float));
     });
+#if defined(__x86_64__)
+    // Streaming stores are weakly ordered: fence them before the pool's barrier hands the frame to other threads.
+    if (work.last_batch) _mm_sfence();
+#endif
+  }
 }
 
 }  // namespace facet::detail
