@@ -41,6 +41,23 @@ void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
   }
 
   const std::int32_t cull_back = in.cull == CullMode::back, cull_front = in.cull == CullMode::front;
+  // Facing alone first: a mesh's index order keeps neighbours together, so the 16 triangles are often all back
+  // faces (half of a closed mesh), and then the costly bounds and centre tests are skipped. That branch follows
+  // the mesh's surface, not a coin toss per triangle, so it is mostly predicted.
+  std::uint32_t away = 0, clipped = 0;
+  for (int i = 0; i < N; ++i) {
+    const std::int64_t area = std::int64_t{x[1][i] - x[0][i]} * (y[2][i] - y[0][i]) -
+                              std::int64_t{x[2][i] - x[0][i]} * (y[1][i] - y[0][i]);
+    const std::int32_t front = area < 0;
+    away |= static_cast<std::uint32_t>((area == 0) | (cull_back & (front ^ 1)) | (cull_front & front)) << i;
+    clipped |= static_cast<std::uint32_t>(outside[i] != 0) << i;
+  }
+  if (away == (std::uint32_t{1} << N) - 1) {
+    out.keep = clipped;  // a corner outside the frustum: full setup decides, clipping first
+    out.accepted = 0;
+    return;
+  }
+
   const std::int32_t last_x = in.width - 1, last_y = in.height - 1;
   constexpr std::int32_t half = kSubpixelScale / 2;
   std::uint32_t keep = 0, accepted = 0;

@@ -1,7 +1,9 @@
 // test_setup_cull.cpp - setup's 16-lane culling pass rejects exactly the triangles the full per-triangle setup culls.
 #include <gtest/gtest.h>
 
+#include <bit>
 #include <cstdint>
+#include <utility>
 #include <random>
 #include <vector>
 
@@ -124,6 +126,41 @@ TEST(SetupCull, KeepsTrianglesOutsideTheFrustumAndBlocksWithInvalidIndicesForFul
   const CullLanes invalid = cull_lanes(input_for(soup, CullMode::back, 0, kCullLanes), 0);
   EXPECT_EQ(invalid.keep, 0xffffu);
   EXPECT_EQ(invalid.accepted, 0u);
+}
+
+// Blocks of 16 triangles that all face away, as on a closed mesh's far side: the pass answers from facing alone,
+// accepts none and keeps only those with a corner outside the frustum, for full setup. Culling front faces or
+// nothing, the same triangles take the whole pass, which agrees with full setup.
+TEST(SetupCull, BlocksThatAllFaceAwayKeepOnlyTrianglesOutsideTheFrustum) {
+  Soup soup = tiny_triangles(16 * 40, 19);
+  const std::size_t count = soup.indices.size() / 3;
+  for (std::size_t t = 0; t < count; ++t) {
+    const ProjectedVertex &a = soup.projected[soup.indices[3 * t]], &b = soup.projected[soup.indices[3 * t + 1]],
+                          &c = soup.projected[soup.indices[3 * t + 2]];
+    const std::int64_t area = std::int64_t{b.x - a.x} * (c.y - a.y) - std::int64_t{c.x - a.x} * (b.y - a.y);
+    if (area < 0) std::swap(soup.indices[3 * t + 1], soup.indices[3 * t + 2]);  // front-facing on screen: flip it
+  }
+  for (std::size_t t = 3; t < count; t += 7) soup.projected[soup.indices[3 * t + 1]].outcode = 1;
+  std::size_t accepted_elsewhere = 0;
+  for (std::size_t first = 0; first < count; first += kCullLanes) {
+    std::uint32_t outside = 0;
+    for (int i = 0; i < kCullLanes; ++i)
+      for (int k = 0; k < 3; ++k)
+        outside |= static_cast<std::uint32_t>(soup.projected[soup.indices[3 * (first + i) + k]].outcode != 0) << i;
+    const CullLanes back = cull_lanes(input_for(soup, CullMode::back, first, kCullLanes), first);
+    EXPECT_EQ(back.accepted, 0u) << "block " << first;
+    EXPECT_EQ(back.keep, outside) << "block " << first;
+    for (const CullMode cull : {CullMode::back, CullMode::front, CullMode::none}) {
+      const CullLanes lanes = cull_lanes(input_for(soup, cull, first, kCullLanes), first);
+      accepted_elsewhere += static_cast<std::size_t>(std::popcount(lanes.accepted));
+      for (int i = 0; i < kCullLanes; ++i) {
+        if ((outside >> i) & 1u) continue;  // full setup would clip it, which this soup has no clip positions for
+        ASSERT_EQ(((lanes.keep >> i) & 1u) != 0, !set_up_alone(soup, cull, first + i).triangles.empty())
+            << "triangle " << first + i << ", cull mode " << static_cast<int>(cull);
+      }
+    }
+  }
+  EXPECT_GT(accepted_elsewhere, 100u);  // culling front faces or none, the far side is drawn
 }
 
 // A whole chunk through setup_triangles (16-lane pass first) gives the same set-up triangles, field for field, in
