@@ -114,8 +114,9 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   }
 
   const std::size_t tiles = static_cast<std::size_t>(target.tiles_x()) * target.tiles_y();
-  for (std::size_t batch_first = 0; batch_first < count; batch_first = batch_end(batch_first)) {
-    const std::size_t batch_count = batch_end(batch_first) - batch_first;
+  for (std::size_t batch_first = 0, next_batch = 0; batch_first < count; batch_first = next_batch) {
+    next_batch = batch_end(batch_first);
+    const std::size_t batch_count = next_batch - batch_first;
     const std::size_t chunk_size = setup_chunk_size(batch_count);
     const std::size_t chunk_count = (batch_count + chunk_size - 1) / chunk_size;
     if (chunks_.size() < chunk_count) chunks_.resize(chunk_count);
@@ -163,7 +164,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
                           std::min(y0 + kTileSize, target.height()), target.width(), target.color_storage(),
                           target.depth_storage(), target.tile_depth_bounds(tile), chunks_.data(),
                           chunk_count, outputs.varyings, &scratch_[static_cast<std::size_t>(thread)], clear,
-                          batch_end(batch_first) == count};
+                          next_batch == count};
       request.raster(request.draw, work);
     });
   }
