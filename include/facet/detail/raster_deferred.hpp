@@ -112,14 +112,19 @@ template <LaneShader S>
   const UInt strip_refs = load<UInt>(refs);
   const auto interpolate = [&]<bool kFirst>(std::uint32_t ref) __attribute__((always_inline)) {
     const TriangleSetup& tri = triangle_at(work, ref);
-    // The lanes of this triangle, built by a loop for the vectoriser (as strip_lanes_equal): GCC 12 lowers
-    // `strip_refs == ref` lane by lane in the clones narrower than 512 bits, and every blend below with it.
-    Mask mine;
-#pragma GCC unroll 1
-    for (int k = 0; k < kLanes; ++k) mine[k] = -static_cast<std::int32_t>(refs[k] == ref);
+    // The lanes of this triangle take its value. A plain loop over the lanes, for the vectoriser (as
+    // strip_lanes_equal): each clone compiles it to one compare per triangle and one masked move or blend per slot,
+    // which the AVX-512 clone folds into the value's last addition. GCC 12 lowers `mask ? a : b` on the lane types
+    // lane by lane here, and a bitwise blend costs two instructions (AVX-512) or three per half (AVX2).
     const auto put = [&](auto& slot, auto value) __attribute__((always_inline)) {
-      if constexpr (kFirst) slot = value;
-      else slot = blend(mine, value, slot);
+      if constexpr (kFirst) {
+        slot = value;
+      } else {
+        using Lane = std::remove_reference_t<decltype(slot[0])>;
+        Lane* lanes = reinterpret_cast<Lane*>(&slot);
+#pragma GCC unroll 1
+        for (int k = 0; k < kLanes; ++k) lanes[k] = refs[k] == ref ? value[k] : lanes[k];
+      }
     };
     const Float dx = fragment.screen_x - tri.origin_x, dy = fragment.screen_y - tri.origin_y;
     const auto at = [&](const Plane& p) __attribute__((always_inline)) { return p.at_origin + p.ddx * dx + p.ddy * dy; };
