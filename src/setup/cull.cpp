@@ -41,23 +41,20 @@ void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
   }
 
   const std::int32_t cull_back = in.cull == CullMode::back, cull_front = in.cull == CullMode::front;
-  // classify: twice the signed area; counter-clockwise on screen (y down) is negative and front-facing. Culled
-  // when zero or facing the culled way.
-  const auto signed_area = [](std::int32_t x0, std::int32_t x1, std::int32_t x2, std::int32_t y0, std::int32_t y1,
-                              std::int32_t y2) {
-    return std::int64_t{x1 - x0} * (y2 - y0) - std::int64_t{x2 - x0} * (y1 - y0);
-  };
-  const auto faces_away = [&](std::int64_t area) {
-    const std::int32_t front = area < 0;
-    return (area == 0) | (cull_back & (front ^ 1)) | (cull_front & front);
-  };
-  // Facing alone first: a mesh's index order keeps neighbours together, so the 16 triangles are often all back
-  // faces (half of a closed mesh), and then the costly bounds and centre tests are skipped. That branch follows
-  // the mesh's surface, not a coin toss per triangle, so it is mostly predicted.
+  // Facing first: a mesh's index order keeps neighbours together, so the 16 triangles are often all back faces
+  // (half of a closed mesh), and then the costly bounds and centre tests are skipped. That branch follows the
+  // mesh's surface, not a coin toss per triangle, so it is mostly predicted. The areas and facing bits are kept
+  // for the full pass below.
+  std::int64_t area[N];
   std::uint32_t away = 0, clipped = 0;
   for (int i = 0; i < N; ++i) {
-    const std::int64_t area = signed_area(x[0][i], x[1][i], x[2][i], y[0][i], y[1][i], y[2][i]);
-    away |= static_cast<std::uint32_t>(faces_away(area)) << i;
+    // classify: twice the signed area; counter-clockwise on screen (y down) is negative and front-facing. Culled
+    // when zero or facing the culled way.
+    area[i] = std::int64_t{x[1][i] - x[0][i]} * (y[2][i] - y[0][i]) -
+              std::int64_t{x[2][i] - x[0][i]} * (y[1][i] - y[0][i]);
+    const std::int32_t front = area[i] < 0;
+    const std::int32_t faced_away = (area[i] == 0) | (cull_back & (front ^ 1)) | (cull_front & front);
+    away |= static_cast<std::uint32_t>(faced_away) << i;
     clipped |= static_cast<std::uint32_t>(outside[i] != 0) << i;
   }
   if (away == (std::uint32_t{1} << N) - 1) {
@@ -73,9 +70,8 @@ void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
     // Values, not references into the arrays: std::min of references becomes a conditional load, which stops the
     // vectoriser.
     const std::int32_t x0 = x[0][i], x1 = x[1][i], x2 = x[2][i], y0 = y[0][i], y1 = y[1][i], y2 = y[2][i];
-    const std::int64_t area = signed_area(x0, x1, x2, y0, y1, y2);
-    const std::int32_t front = area < 0;
-    const std::int32_t faced_away = faces_away(area);
+    const std::int32_t front = area[i] < 0;
+    const std::int32_t faced_away = (away >> i) & 1;
     // Pixels whose centres lie within the snapped bounds (floor division by 256 is an arithmetic shift).
     const std::int32_t min_x = std::min(std::min(x0, x1), x2), max_x = std::max(std::max(x0, x1), x2);
     const std::int32_t min_y = std::min(std::min(y0, y1), y2), max_y = std::max(std::max(y0, y1), y2);
@@ -113,7 +109,7 @@ void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
     keep |= static_cast<std::uint32_t>((outside[i] != 0) | (rejected ^ 1)) << i;
     accepted |= static_cast<std::uint32_t>((outside[i] == 0) & (rejected ^ 1)) << i;
     for (int k = 0; k < 3; ++k) out.x[k][i] = X[k], out.y[k][i] = Y[k];
-    out.area[i] = front ? -area : area;
+    out.area[i] = front ? -area[i] : area[i];
     out.px0[i] = px0, out.py0[i] = py0, out.px1[i] = px1, out.py1[i] = py1;
     out.front[i] = front;
   }

@@ -3,8 +3,8 @@
 
 #include <bit>
 #include <cstdint>
-#include <utility>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "facet/framebuffer.hpp"
