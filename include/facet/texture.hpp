@@ -84,7 +84,7 @@ class Texture {
   // each pair of neighbours with one 8-byte load. Other wrap modes index explicitly and never read the padding.
   struct Level {
     int width = 0, height = 0;
-    int stride = 0;                       // texels per stored row: width + 1
+    int stride = 0;                       // texels per stored row: width + 1, padded (row_stride)
     float fwidth = 0.0f, fheight = 0.0f;  // the size as floats, so sampling does not convert per call
     std::size_t offset = 0;              // of texel (0, 0) in texels_
   };
