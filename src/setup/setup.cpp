@@ -137,6 +137,26 @@ class Binner {
     set_up(s, c, vertex, primitive);
   }
 
+  // A triangle the culling pass accepted, from that pass's lane i and setup_accepted_lanes's edges and planes.
+  void set_up_lane(const CullLanes& cull, const SetupLanes& lanes, int i, const std::uint32_t vertex[3],
+                   std::uint32_t primitive) {
+    const auto index = static_cast<std::uint32_t>(out_.triangles.size());
+    TriangleSetup& t = out_.triangles.emplace_back();
+    for (int k = 0; k < 3; ++k) t.edge[k] = {lanes.edge_a[k][i], lanes.edge_b[k][i], lanes.edge_q[k][i]};
+    t.min_x = static_cast<std::int16_t>(cull.px0[i]);
+    t.min_y = static_cast<std::int16_t>(cull.py0[i]);
+    t.max_x = static_cast<std::int16_t>(cull.px1[i]);
+    t.max_y = static_cast<std::int16_t>(cull.py1[i]);
+    t.origin_x = lanes.origin_x[i];
+    t.origin_y = lanes.origin_y[i];
+    Plane* const planes[4] = {&t.depth, &t.inv_w, &t.b1_over_w, &t.b2_over_w};
+    for (int p = 0; p < 4; ++p) *planes[p] = {lanes.plane[p][0][i], lanes.plane[p][1][i], lanes.plane[p][2][i]};
+    for (int k = 0; k < 3; ++k) t.vertex[k] = vertex[k];
+    t.primitive = primitive;
+    t.front_facing = cull.front[i] != 0;
+    bin(t, index);
+  }
+
  private:
   // The edge function of clockwise edge (dx, dy) at a point is dx * (y - y_a) - dy * (x - x_a) plus this bias, and
   // the point is inside when that is >= 0. Top-left rule, with y down: a top edge is horizontal going right, a
@@ -318,16 +338,12 @@ Corners corners_of(const SetupInput& in, const std::uint32_t source[3]) {
   }
 }
 
-// A triangle the culling pass accepted (see CullLanes): its shape is known, so setup starts at set_up_projected.
-[[gnu::always_inline]] inline void set_up_accepted(const SetupInput& in, Binner& binner, const CullLanes& lanes,
-                                                   int lane, std::size_t tri) {
-  const Corners c = corners_of(in, &in.indices[3 * tri]);
-  Binner::Shape shape;
-  for (int k = 0; k < 3; ++k) shape.X[k] = lanes.x[k][lane], shape.Y[k] = lanes.y[k][lane];
-  shape.area = lanes.area[lane];
-  shape.front = shape.flipped = lanes.front[lane] != 0;
-  shape.px0 = lanes.px0[lane], shape.py0 = lanes.py0[lane], shape.px1 = lanes.px1[lane], shape.py1 = lanes.py1[lane];
-  binner.set_up_projected(shape, c.corner, c.slot, static_cast<std::uint32_t>(tri));
+// A triangle the culling pass accepted (see CullLanes), with its edges and planes already computed in lanes.
+[[gnu::always_inline]] inline void set_up_accepted(const SetupInput& in, Binner& binner, const CullLanes& cull,
+                                                   const SetupLanes& lanes, int lane, std::size_t tri) {
+  std::uint32_t slot[3];
+  for (int k = 0; k < 3; ++k) slot[k] = static_cast<std::uint32_t>(in.indices[3 * tri + k] - in.vertex_first);
+  binner.set_up_lane(cull, lanes, lane, slot, static_cast<std::uint32_t>(tri));
 }
 
 }  // namespace
@@ -338,13 +354,16 @@ void setup_triangles(const SetupInput& in, SetupChunk& out) {
   std::size_t i = in.first;
   // Whole runs of kCullLanes triangles in index order go through the branch-free culling pass first.
   CullLanes lanes;
+  SetupLanes set_up;
   if (!in.order)
     for (; i + kCullLanes <= end; i += kCullLanes) {
       setup_cull_lanes(in, i, lanes);
+      if (lanes.accepted) setup_accepted_lanes(in, i, lanes, set_up);
       std::size_t kept = 0;
       for (std::uint32_t bits = lanes.keep; bits; bits &= bits - 1, ++kept) {
         const int lane = std::countr_zero(bits);
-        if (lanes.accepted >> lane & 1u) set_up_accepted(in, binner, lanes, lane, i + static_cast<std::size_t>(lane));
+        if (lanes.accepted >> lane & 1u)
+          set_up_accepted(in, binner, lanes, set_up, lane, i + static_cast<std::size_t>(lane));
         else setup_triangle(in, out, binner, i + static_cast<std::size_t>(lane));
       }
       out.culled += static_cast<std::size_t>(kCullLanes) - kept;

@@ -53,6 +53,16 @@ struct CullLanes {
 };
 void setup_cull_lanes(const SetupInput& input, std::size_t first, CullLanes& out);
 
+// What TriangleSetup holds of each accepted triangle of a culling pass (the same 16 lanes) beyond CullLanes: its
+// edges and interpolation planes, bit for bit as the one-at-a-time setup computes them.
+struct alignas(64) SetupLanes {
+  std::int32_t edge_a[3][kCullLanes], edge_b[3][kCullLanes];
+  std::int64_t edge_q[3][kCullLanes];
+  float origin_x[kCullLanes], origin_y[kCullLanes];
+  float plane[4][3][kCullLanes];  // depth, 1/w, b1/w, b2/w; each at_origin, ddx, ddy
+};
+void setup_accepted_lanes(const SetupInput& input, std::size_t first, const CullLanes& cull, SetupLanes& out);
+
 void setup_lines(const SetupInput& input, SetupChunk& out);
 
 // Depth key of every triangle for the painter's algorithm: the mean NDC depth of its corners (larger is farther).
