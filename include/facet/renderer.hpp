@@ -81,7 +81,7 @@ class Renderer {
   std::vector<detail::VertexRange> chunk_bands_;  // vertices each setup chunk of the batch references
   std::vector<std::uint32_t> order_;  // painter's order
   std::vector<float> sort_keys_;
-  std::vector<int> active_tiles_;
+  std::vector<std::uint64_t> active_tiles_;  // tiles with work, most binned triangles first (see execute)
   std::vector<detail::TileScratch> scratch_;  // one per thread, for deferred shading
   DrawStats stats_;
 };

@@ -141,13 +141,17 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       else setup_lines(input, chunk);
       chunk.sort_by_tile(tiles);
     });
+    // Heaviest tiles first, by binned triangles: the pool hands tiles out in this order, so the last ones to start
+    // are short and the threads finish together (in row order the centre of a model came last and one thread ran
+    // on alone: sphere:224 and 707 1.5-3% slower). Each key is the inverted count above the tile index, a total
+    // order, so std::sort needs no buffer and the order is the same every frame.
     active_tiles_.clear();
-    for (std::size_t t = 0; t < tiles; ++t)
-      for (std::size_t c = 0; c < chunk_count; ++c)
-        if (chunks_[c].has(t)) {
-          active_tiles_.push_back(static_cast<int>(t));
-          break;
-        }
+    for (std::size_t t = 0; t < tiles; ++t) {
+      std::uint32_t binned = 0;
+      for (std::size_t c = 0; c < chunk_count; ++c) binned += chunks_[c].binned_count(t);
+      if (binned) active_tiles_.push_back(std::uint64_t{~binned} << 32 | t);
+    }
+    std::sort(active_tiles_.begin(), active_tiles_.end());
     for (std::size_t c = 0; c < chunk_count; ++c) {
       stats_.culled += chunks_[c].culled;
       stats_.clipped += chunks_[c].clipped;
@@ -157,7 +161,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
 
     // One owner per tile: no two threads ever write the same pixel, so the tile loop needs no locks.
     pool_.parallel_for(active_tiles_.size(), [&](std::size_t i, int thread) {
-      const int tile = active_tiles_[i];
+      const int tile = static_cast<int>(active_tiles_[i] & 0xffffffffu);
       const Framebuffer::PendingClear clear = target.begin_tile_draw(tile, request.deferred);
       const int x0 = (tile % target.tiles_x()) * kTileSize, y0 = (tile / target.tiles_x()) * kTileSize;
       const TileWork work{tile, x0, y0, std::min(x0 + kTileSize, target.width()),

@@ -92,7 +92,7 @@ struct alignas(64) SetupChunk {
     for (std::size_t t = tiles; t > 0; --t) first[t] = first[t - 1];
     first[0] = 0;
   }
-  bool has(std::size_t tile) const { return first[tile] != first[tile + 1]; }
+  std::uint32_t binned_count(std::size_t tile) const { return first[tile + 1] - first[tile]; }
 };
 
 // A reference to one set-up triangle of a batch: its chunk in the high bits, its index in the chunk below.
