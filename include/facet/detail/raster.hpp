@@ -208,16 +208,17 @@ template <class Cover>
       const int i0 = std::max(x0 - bx, 0), i1 = std::min(x1 - bx, kBlockSize - 1);
       const int j0 = std::max(y0 - by, 0), j1 = std::min(y1 - by, kBlockSize - 1);
       float& bound = work.depth_bounds[(by - work.y0) / kBlockSize * (kTileSize / kBlockSize) + (bx - work.x0) / kBlockSize];
-      DepthRange range{0.0f, 1.0f};
-      if (reject_hidden || writes_depth) {
-        range = raster_block_depth_range(tri, state.depth_offset, bx + i0, by + j0, bx + i1, by + j1);
-        if (reject_hidden && (less ? range.nearest - kDepthBoundMargin >= bound
-                                   : range.nearest - kDepthBoundMargin > bound))
-          continue;
+      const auto range = [&]() __attribute__((always_inline)) {
+        return raster_block_depth_range(tri, state.depth_offset, bx + i0, by + j0, bx + i1, by + j1);
+      };
+      // A bound of 1 or more rejects nothing (depths are clamped to 1): most blocks until something covers them.
+      if (reject_hidden && bound < 1.0f) {
+        const float nearest = range().nearest;
+        if (less ? nearest - kDepthBoundMargin >= bound : nearest - kDepthBoundMargin > bound) continue;
       }
       const BlockCoverage covered = cover(bx, by, i0, i1, j0, j1);
-      if (writes_depth) {
-        const float farthest = std::min(range.farthest + kDepthBoundMargin, 1.0f);
+      if (writes_depth && (covered.full || (!reject_hidden && covered.any))) {
+        const float farthest = std::min(range().farthest + kDepthBoundMargin, 1.0f);
         if (!reject_hidden) {
           if (covered.any) bound = std::max(bound, farthest);
         } else if (covered.full) {
