@@ -45,13 +45,6 @@ SnappedVertex snap(const ScreenVertex& v, int width, int height) {
   return {snap_to_subpixel(v.x, width), snap_to_subpixel(v.y, height), v.z, v.inv_w, v.b1_w, v.b2_w};
 }
 
-// The plane through (0, 0, f[0]), (dx1, dy1, f[1]) and (dx2, dy2, f[2]), relative to the first corner. Double
-// precision: the corner differences and products are exact, so the gradients are correctly rounded once.
-Plane make_plane(const float f[3], double dx1, double dy1, double dx2, double dy2, double inv_det) {
-  const double d1 = double{f[1]} - f[0], d2 = double{f[2]} - f[0];
-  return {f[0], static_cast<float>((d1 * dy2 - d2 * dy1) * inv_det), static_cast<float>((d2 * dx1 - d1 * dx2) * inv_det)};
-}
-
 class Binner {
  public:
   Binner(const SetupInput& in, SetupChunk& out) : in_(in), out_(out) {}
@@ -158,11 +151,6 @@ class Binner {
   }
 
  private:
-  // The edge function of clockwise edge (dx, dy) at a point is dx * (y - y_a) - dy * (x - x_a) plus this bias, and
-  // the point is inside when that is >= 0. Top-left rule, with y down: a top edge is horizontal going right, a
-  // left edge goes up; a point exactly on any other edge is outside.
-  static std::int64_t top_left_bias(std::int64_t dx, std::int64_t dy) { return (dy == 0 && dx > 0) || dy < 0 ? 0 : -1; }
-
   // Whether any pixel centre within the bounds is inside all three clockwise edges (the fill rule included).
   static bool covers_a_centre(const Shape& s) {
     const std::int64_t half = kSubpixelScale / 2;
@@ -194,10 +182,7 @@ class Binner {
     TriangleSetup& t = out_.triangles.emplace_back();
     for (int k = 0; k < 3; ++k) {
       const int a = k, b = (k + 1) % 3;
-      const std::int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
-      const std::int64_t c0 = dy * X[a] - dx * Y[a];
-      const std::int64_t k_centre = (kSubpixelScale / 2) * (-dy + dx) + c0 + top_left_bias(dx, dy);
-      t.edge[k] = {static_cast<std::int32_t>(-dy), static_cast<std::int32_t>(dx), floor_div_subpixel(k_centre)};
+      t.edge[k] = make_edge(std::int64_t{X[b]} - X[a], std::int64_t{Y[b]} - Y[a], X[a], Y[a]);
     }
     t.min_x = static_cast<std::int16_t>(s.px0);
     t.min_y = static_cast<std::int16_t>(s.py0);
@@ -212,10 +197,10 @@ class Binner {
     const double inv_det = double{kSubpixelScale * kSubpixelScale} / static_cast<double>(s.area);
     t.origin_x = static_cast<float>(X[0] * scale);
     t.origin_y = static_cast<float>(Y[0] * scale);
-    t.depth = make_plane(c.value[0], dx1, dy1, dx2, dy2, inv_det);
-    t.inv_w = make_plane(c.value[1], dx1, dy1, dx2, dy2, inv_det);
-    t.b1_over_w = make_plane(c.value[2], dx1, dy1, dx2, dy2, inv_det);
-    t.b2_over_w = make_plane(c.value[3], dx1, dy1, dx2, dy2, inv_det);
+    t.depth = make_plane(c.value[0][0], c.value[0][1], c.value[0][2], dx1, dy1, dx2, dy2, inv_det);
+    t.inv_w = make_plane(c.value[1][0], c.value[1][1], c.value[1][2], dx1, dy1, dx2, dy2, inv_det);
+    t.b1_over_w = make_plane(c.value[2][0], c.value[2][1], c.value[2][2], dx1, dy1, dx2, dy2, inv_det);
+    t.b2_over_w = make_plane(c.value[3][0], c.value[3][1], c.value[3][2], dx1, dy1, dx2, dy2, inv_det);
     for (int k = 0; k < 3; ++k) t.vertex[k] = vertex[k];
     t.primitive = primitive;
     t.front_facing = s.front;

@@ -53,6 +53,29 @@ struct CullLanes {
 };
 void setup_cull_lanes(const SetupInput& input, std::size_t first, CullLanes& out);
 
+// The edge function of clockwise edge (dx, dy) from corner (x_a, y_a) at a point is dx * (y - y_a) - dy * (x - x_a)
+// plus this bias, and the point is inside when that is >= 0. Top-left rule, with y down: a top edge is horizontal
+// going right, a left edge goes up; a point exactly on any other edge is outside. Bitwise logic, so that it
+// vectorises in setup_accepted_lanes.
+[[gnu::always_inline]] inline std::int64_t top_left_bias(std::int64_t dx, std::int64_t dy) {
+  return ((dy == 0) & (dx > 0)) | (dy < 0) ? 0 : -1;
+}
+
+// The edge of TriangleSetup from clockwise corner (x, y) along (dx, dy), all in 1/256 pixel (see Edge).
+[[gnu::always_inline]] inline Edge make_edge(std::int64_t dx, std::int64_t dy, std::int64_t x, std::int64_t y) {
+  const std::int64_t k_centre = (kSubpixelScale / 2) * (-dy + dx) + (dy * x - dx * y) + top_left_bias(dx, dy);
+  // Floor division by the sub-pixel scale: C++20 defines >> on negative values as an arithmetic shift.
+  return {static_cast<std::int32_t>(-dy), static_cast<std::int32_t>(dx), k_centre >> kSubpixelBits};
+}
+
+// The plane through (0, 0, f0), (dx1, dy1, f1) and (dx2, dy2, f2), relative to the first corner. Double precision:
+// the corner differences and products are exact, so the gradients are correctly rounded once.
+[[gnu::always_inline]] inline Plane make_plane(float f0, float f1, float f2, double dx1, double dy1, double dx2,
+                                               double dy2, double inv_det) {
+  const double d1 = double{f1} - f0, d2 = double{f2} - f0;
+  return {f0, static_cast<float>((d1 * dy2 - d2 * dy1) * inv_det), static_cast<float>((d2 * dx1 - d1 * dx2) * inv_det)};
+}
+
 // What TriangleSetup holds of each accepted triangle of a culling pass (the same 16 lanes) beyond CullLanes: its
 // edges and interpolation planes, bit for bit as the one-at-a-time setup computes them.
 struct alignas(64) SetupLanes {

@@ -9,7 +9,7 @@ namespace facet::detail {
 // Why lanes: a dense mesh sets up tens of thousands of small triangles per frame, and one at a time each costs
 // some 250 instructions, mostly the four planes' double-precision products and the edges' 64-bit ones. The same
 // operations in plain loops over the culling pass's 16 lanes vectorise in every dispatch clone, in the same IEEE
-// arithmetic (no contraction, see CMakeLists.txt), so each lane is bit for bit what Binner::set_up computes.
+// arithmetic (no contraction, see CMakeLists.txt), so each lane is bit for bit what Binner::set_up computes (both call make_edge and make_plane).
 // Lanes the pass did not accept are computed too, branch-free, and ignored: their corners are snapped values or
 // zero (a corner outside the frustum), so no integer product overflows; a zero area gives infinite planes.
 FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
@@ -28,16 +28,10 @@ void setup_accepted_lanes(const SetupInput& in, std::size_t first, const CullLan
   for (int i = 0; i < N; ++i) {
     const std::int64_t X[3] = {cull.x[0][i], cull.x[1][i], cull.x[2][i]};
     const std::int64_t Y[3] = {cull.y[0][i], cull.y[1][i], cull.y[2][i]};
-    // Edge k from clockwise corner k to k + 1, as Binner::set_up: the top-left bias, then floor division by the
-    // sub-pixel scale as an arithmetic shift.
     for (int k = 0; k < 3; ++k) {
       const int a = k, b = (k + 1) % 3;
-      const std::int64_t dx = X[b] - X[a], dy = Y[b] - Y[a];
-      const std::int64_t bias = ((dy == 0) & (dx > 0)) | (dy < 0) ? 0 : -1;
-      const std::int64_t k_centre = (kSubpixelScale / 2) * (-dy + dx) + (dy * X[a] - dx * Y[a]) + bias;
-      out.edge_a[k][i] = static_cast<std::int32_t>(-dy);
-      out.edge_b[k][i] = static_cast<std::int32_t>(dx);
-      out.edge_q[k][i] = k_centre >> kSubpixelBits;
+      const Edge edge = make_edge(X[b] - X[a], Y[b] - Y[a], X[a], Y[a]);
+      out.edge_a[k][i] = edge.a, out.edge_b[k][i] = edge.b, out.edge_q[k][i] = edge.q;
     }
     const double scale = 1.0 / kSubpixelScale;
     const double dx1 = static_cast<double>(X[1] - X[0]) * scale, dy1 = static_cast<double>(Y[1] - Y[0]) * scale;
@@ -45,13 +39,10 @@ void setup_accepted_lanes(const SetupInput& in, std::size_t first, const CullLan
     const double inv_det = double{kSubpixelScale * kSubpixelScale} / static_cast<double>(cull.area[i]);
     out.origin_x[i] = static_cast<float>(static_cast<double>(X[0]) * scale);
     out.origin_y[i] = static_cast<float>(static_cast<double>(Y[0]) * scale);
-    // make_plane of setup.cpp over the clockwise corner values. The weight planes' values are 1/w at the source
-    // corner they weigh and 0 elsewhere.
+    // The weight planes' values are 1/w at the source corner they weigh and 0 elsewhere.
     const auto plane = [&](int p, float f0, float f1, float f2) __attribute__((always_inline)) {
-      const double d1 = double{f1} - f0, d2 = double{f2} - f0;
-      out.plane[p][0][i] = f0;
-      out.plane[p][1][i] = static_cast<float>((d1 * dy2 - d2 * dy1) * inv_det);
-      out.plane[p][2][i] = static_cast<float>((d2 * dx1 - d1 * dx2) * inv_det);
+      const Plane result = make_plane(f0, f1, f2, dx1, dy1, dx2, dy2, inv_det);
+      out.plane[p][0][i] = result.at_origin, out.plane[p][1][i] = result.ddx, out.plane[p][2][i] = result.ddy;
     };
     const bool front = cull.front[i] != 0;
     plane(0, z[0][i], z[1][i], z[2][i]);

@@ -44,13 +44,14 @@ Texture::Texture(int width, int height, std::vector<std::uint32_t> rgba) {
   if (rgba.size() != static_cast<std::size_t>(width) * height)
     throw std::invalid_argument("texture of " + std::to_string(width) + "x" + std::to_string(height) + " given " +
                                 std::to_string(rgba.size()) + " texels");
-  levels_[0] = Level{width, height, row_stride(width), static_cast<float>(width), static_cast<float>(height), 0};
+  const int stride = row_stride(width);
+  levels_[0] = Level{width, height, stride, static_cast<float>(width), static_cast<float>(height), 0};
   level_count_ = 1;
   pow2_ = (width & (width - 1)) == 0 && (height & (height - 1)) == 0;
-  texels_.resize(static_cast<std::size_t>(row_stride(width)) * (height + 1));
+  texels_.resize(static_cast<std::size_t>(stride) * (height + 1));
   for (int y = 0; y < height; ++y)
     std::copy_n(rgba.begin() + static_cast<std::ptrdiff_t>(y) * width, width,
-                texels_.begin() + static_cast<std::ptrdiff_t>(y) * row_stride(width));
+                texels_.begin() + static_cast<std::ptrdiff_t>(y) * stride);
   pad_level(0);
 }
 
