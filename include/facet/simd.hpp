@@ -37,7 +37,10 @@ inline constexpr Int kLaneIndex = {0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13,
 inline constexpr Int kLaneX = kLaneIndex & 7;
 inline constexpr Int kLaneY = kLaneIndex >> 3;
 
-FACET_LANES_INLINE Float splat(float v) { return Float{} + v; }
+// v - 0 rather than 0 + v: subtracting +0 leaves every value as it is (-0 included), so GCC folds it into a plain
+// broadcast (or a broadcast memory operand); adding +0 turns -0 into +0, so it cannot, and each splat of a
+// run-time value would cost an addition and a separate broadcast.
+FACET_LANES_INLINE Float splat(float v) { return v - Float{}; }
 FACET_LANES_INLINE Int splat(std::int32_t v) { return Int{} + v; }
 
 FACET_LANES_INLINE Float select(Mask m, Float a, Float b) { return m ? a : b; }
