@@ -62,6 +62,13 @@ FACET_LANES_INLINE Float sqrt(Float v) {
   return r;
 }
 
+// A plain loop over the lanes, like sqrt: one rounding instruction where the clone has one (SSE4.1 and later).
+FACET_LANES_INLINE Float floor(Float v) {
+  Float r;
+  for (int k = 0; k < kLanes; ++k) r[k] = std::floor(v[k]);
+  return r;
+}
+
 FACET_LANES_INLINE Float to_float(Int v) { return __builtin_convertvector(v, Float); }
 FACET_LANES_INLINE Int truncate(Float v) { return __builtin_convertvector(v, Int); }
 

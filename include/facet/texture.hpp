@@ -229,9 +229,11 @@ inline simd::Int Texture::bilinear_repeat_pow2_first(const simd::Vec2& uv, simd:
   const Level& l = levels_[0];
   auto split = [&](Float v, Int& index, Float& fraction) {
     v = clamp_texel_coordinate(v);
-    index = truncate(v);
-    index += v < to_float(index);  // -1 where truncation rounded up
-    fraction = v - to_float(index);
+    // split_floor's values: within the clamp's +-2^30, floor(v) converts to an int exactly. One rounding
+    // instruction instead of a truncation corrected by one where it rounded up (a compare and a masked add).
+    const Float lower = simd::floor(v);
+    index = truncate(lower);
+    fraction = v - lower;
   };
   Int i, j;
   split(uv.x * l.fwidth - 0.5f, i, alpha);
