@@ -1,4 +1,5 @@
 // test_texture.cpp - texture sampling (filters, wrap modes, level of detail), mipmaps, the checker and loading.
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <filesystem>
@@ -11,6 +12,8 @@
 
 #include "facet/error.hpp"
 #include "facet/image_io.hpp"
+#include "facet/detail/dispatch.hpp"
+#include "facet/simd.hpp"
 #include "facet/texture.hpp"
 #include "support/scratch_dir.hpp"
 
@@ -143,6 +146,47 @@ TEST(TextureSampling, HugeAndNonFiniteCoordinatesAreSafe) {
   EXPECT_TRUE(empty.empty());
   EXPECT_EQ(empty.levels(), 0);
   expect_color(empty.sample({0.5f, 0.5f}, Sampler{}), glm::vec4(0, 0, 0, 1));
+}
+
+// sample_lanes as the tile function runs it: compiled in each dispatch clone, the one for this CPU called.
+FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+void sample_lanes_dispatched(const Texture& t, const simd::Vec2& uv, const Sampler& s, simd::Color& out) {
+  out = t.sample_lanes(uv, s);
+}
+
+// The lane path gives sample()'s values bit for bit, lane by lane: coordinates below zero (where floor and
+// truncation part), on texel centres and edges, huge, infinite and NaN. The 8x4 texture takes the inline
+// power-of-two path; 5x3 falls back to sample() per lane.
+TEST(TextureSampling, LanesMatchTheScalarSampleBitForBit) {
+  std::mt19937 rng(11);
+  std::uniform_int_distribution<std::uint32_t> byte(0, 255);
+  std::uniform_real_distribution<float> coord(-3.0f, 11.0f);
+  const float special[] = {-0.0f, 0.0f, 1.0f / 16.0f, -1.0f / 16.0f, 0.5f, -0.5f, 1e30f, -1e30f, INFINITY,
+                           -INFINITY, NAN, 3.0e9f, -3.0e9f, 1.0f / 8.0f, -1.0f / 8.0f, 7.9999995f};
+  for (const glm::ivec2 size : {glm::ivec2(8, 4), glm::ivec2(5, 3)}) {
+    std::vector<std::uint32_t> texels(static_cast<std::size_t>(size.x * size.y));
+    for (auto& p : texels) p = rgba(byte(rng), byte(rng), byte(rng), byte(rng));
+    const Texture t(size.x, size.y, texels);
+    for (const Sampler sampler : {Sampler{Filter::bilinear}, Sampler{Filter::trilinear}}) {
+      for (int batch = 0; batch < 200; ++batch) {
+        simd::Vec2 uv;
+        for (int k = 0; k < simd::kLanes; ++k) {
+          uv.x[k] = batch == 0 ? special[k] : coord(rng);
+          uv.y[k] = batch == 1 ? special[k] : coord(rng);
+        }
+        simd::Color lanes;
+        sample_lanes_dispatched(t, uv, sampler, lanes);
+        for (int k = 0; k < simd::kLanes; ++k) {
+          const glm::vec4 scalar = t.sample(glm::vec2(uv.x[k], uv.y[k]), sampler);
+          const float got[4] = {lanes.r[k], lanes.g[k], lanes.b[k], lanes.a[k]};
+          for (int c = 0; c < 4; ++c)
+            ASSERT_EQ(std::bit_cast<std::uint32_t>(got[c]), std::bit_cast<std::uint32_t>(scalar[c]))
+                << size.x << "x" << size.y << " batch " << batch << " lane " << k << " channel " << c << " at "
+                << uv.x[k] << ", " << uv.y[k];
+        }
+      }
+    }
+  }
 }
 
 TEST(TextureSampling, ConstructorRejectsBadSizes) {
