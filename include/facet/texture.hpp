@@ -227,7 +227,9 @@ inline simd::Int Texture::bilinear_repeat_pow2_first(const simd::Vec2& uv, simd:
                                                       simd::Float& beta) const {
   using namespace simd;
   const Level& l = levels_[0];
-  auto split = [&](Float v, Int& index, Float& fraction) {
+  // Lambdas over lane types are forced inline, like every lane function: one left out of line would be compiled
+  // for the baseline ISA while its caller is an AVX-512 or AVX2 clone, which passes vectors differently.
+  auto split = [&](Float v, Int& index, Float& fraction) __attribute__((always_inline)) {
     v = clamp_texel_coordinate(v);
     // split_floor's values: within the clamp's +-2^30, floor(v) converts to an int exactly. One rounding
     // instruction instead of a truncation corrected by one where it rounded up (a compare and a masked add).
@@ -279,8 +281,10 @@ inline simd::Color Texture::bilinear_repeat_pow2_lanes(const simd::Vec2& uv) con
   const Int even = kLaneIndex * 2 + (little ? 0 : 1), odd = kLaneIndex * 2 + (little ? 1 : 0);
   const UInt t00 = __builtin_shuffle(b0, b1, even), t10 = __builtin_shuffle(b0, b1, odd);
   const UInt t01 = __builtin_shuffle(u0, u1, even), t11 = __builtin_shuffle(u0, u1, odd);
-  auto channel = [&](int shift) {
-    auto bytes = [&](UInt t) { return to_float(__builtin_convertvector((t >> shift) & 0xffu, Int)); };
+  auto channel = [&](int shift) __attribute__((always_inline)) {
+    auto bytes = [&](UInt t) __attribute__((always_inline)) {
+      return to_float(__builtin_convertvector((t >> shift) & 0xffu, Int));
+    };
     const Float c00 = bytes(t00), c10 = bytes(t10), c01 = bytes(t01), c11 = bytes(t11);
     const Float bottom = c00 + (c10 - c00) * alpha;
     const Float top = c01 + (c11 - c01) * alpha;
