@@ -197,10 +197,9 @@ class Binner {
     const double inv_det = double{kSubpixelScale * kSubpixelScale} / static_cast<double>(s.area);
     t.origin_x = static_cast<float>(X[0] * scale);
     t.origin_y = static_cast<float>(Y[0] * scale);
-    t.depth = make_plane(c.value[0][0], c.value[0][1], c.value[0][2], dx1, dy1, dx2, dy2, inv_det);
-    t.inv_w = make_plane(c.value[1][0], c.value[1][1], c.value[1][2], dx1, dy1, dx2, dy2, inv_det);
-    t.b1_over_w = make_plane(c.value[2][0], c.value[2][1], c.value[2][2], dx1, dy1, dx2, dy2, inv_det);
-    t.b2_over_w = make_plane(c.value[3][0], c.value[3][1], c.value[3][2], dx1, dy1, dx2, dy2, inv_det);
+    Plane* const planes[4] = {&t.depth, &t.inv_w, &t.b1_over_w, &t.b2_over_w};
+    for (int p = 0; p < 4; ++p)
+      *planes[p] = make_plane(c.value[p][0], c.value[p][1], c.value[p][2], dx1, dy1, dx2, dy2, inv_det);
     for (int k = 0; k < 3; ++k) t.vertex[k] = vertex[k];
     t.primitive = primitive;
     t.front_facing = s.front;

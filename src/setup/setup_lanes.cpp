@@ -9,9 +9,10 @@ namespace facet::detail {
 // Why lanes: a dense mesh sets up tens of thousands of small triangles per frame, and one at a time each costs
 // some 250 instructions, mostly the four planes' double-precision products and the edges' 64-bit ones. The same
 // operations in plain loops over the culling pass's 16 lanes vectorise in every dispatch clone, in the same IEEE
-// arithmetic (no contraction, see CMakeLists.txt), so each lane is bit for bit what Binner::set_up computes (both call make_edge and make_plane).
-// Lanes the pass did not accept are computed too, branch-free, and ignored: their corners are snapped values or
-// zero (a corner outside the frustum), so no integer product overflows; a zero area gives infinite planes.
+// arithmetic (no contraction, see CMakeLists.txt), so each lane is bit for bit what Binner::set_up computes
+// (both call make_edge and make_plane). Lanes the pass did not accept are computed too, branch-free, and ignored:
+// their corners are snapped values or zero (a corner outside the frustum), so no integer product overflows; a zero
+// area gives infinite planes.
 FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
 void setup_accepted_lanes(const SetupInput& in, std::size_t first, const CullLanes& cull, SetupLanes& out) {
   constexpr int N = kCullLanes;
