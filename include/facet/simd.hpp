@@ -6,6 +6,8 @@
 #include <cstdint>
 #include <cstring>
 
+#include <glm/vec3.hpp>
+
 // The lane types are GCC/Clang vector extensions rather than intrinsics: the compiler lowers each operation for
 // the instruction set of the function it ends up in, so the same shader code becomes one AVX-512 instruction in
 // the x86-64-v4 clone of the tile loop, two AVX2 instructions in the v3 clone and four SSE2 instructions in the
@@ -39,7 +41,9 @@ inline constexpr Int kLaneY = kLaneIndex >> 3;
 
 // v - 0 rather than 0 + v: subtracting +0 leaves every value as it is (-0 included), so GCC folds it into a plain
 // broadcast (or a broadcast memory operand); adding +0 turns -0 into +0, so it cannot, and each splat of a
-// run-time value would cost an addition and a separate broadcast.
+// run-time value would cost an addition and a separate broadcast. Meant for constants: a run-time value is better
+// left a scalar operand (`a * v`, `uniform - v`, see Vec3 below), since its splat, once a struct member, is built
+// lane by lane in the AVX-512 clone.
 FACET_LANES_INLINE Float splat(float v) { return v - Float{}; }
 FACET_LANES_INLINE Int splat(std::int32_t v) { return Int{} + v; }
 
@@ -101,9 +105,14 @@ struct alignas(kLaneAlign) Vec3 {
   FACET_LANES_INLINE friend Vec3 operator*(Float s, const Vec3& a) { return {s * a.x, s * a.y, s * a.z}; }
 };
 
-FACET_LANES_INLINE Vec3 splat(float x, float y, float z) { return {splat(x), splat(y), splat(z)}; }
+// A uniform vector with a lane vector: the uniform's components stay scalar operands of each operation. A Vec3 of
+// splats of run-time values would be built lane by lane in the AVX-512 clone (16 masked inserts per member: GCC 12
+// lowers the splat for the baseline before the clone exists); a scalar operand becomes one broadcast.
+FACET_LANES_INLINE Vec3 operator-(const glm::vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+FACET_LANES_INLINE Vec3 operator-(const Vec3& a, const glm::vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 // In glm's order, (x*x + y*y) + z*z, so lane and scalar shaders round alike.
 FACET_LANES_INLINE Float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
+FACET_LANES_INLINE Float dot(const Vec3& a, const glm::vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 FACET_LANES_INLINE Vec3 normalize(const Vec3& v) { return v * (1.0f / sqrt(dot(v, v))); }
 
 // What a lane fragment shader returns: straight (not premultiplied) RGBA in [0, 1].

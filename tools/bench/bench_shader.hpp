@@ -106,10 +106,9 @@ struct BenchShader {
   FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
     using namespace simd;
     const Vec3 n = normalize(f.get(&Varyings::world_normal));
-    const Vec3 v = normalize(splat(eye.x, eye.y, eye.z) - f.get(&Varyings::world_pos));
-    const Vec3 light = splat(light_dir.x, light_dir.y, light_dir.z);
-    const Float n_dot_l = dot(n, light);
-    const Vec3 r = (2.0f * n_dot_l) * n - light;
+    const Vec3 v = normalize(eye - f.get(&Varyings::world_pos));
+    const Float n_dot_l = dot(n, light_dir);
+    const Vec3 r = (2.0f * n_dot_l) * n - light_dir;
     const Color albedo = texture->sample_lanes(f.get(&Varyings::uv), sampler);
     const Float diffuse = select(n_dot_l > 0.0f, n_dot_l, splat(0.0f));
     Float spec = dot(r, v);
