@@ -1,0 +1,66 @@
+// test_simd.cpp - the lane maths with a uniform (glm::vec3) operand gives, lane for lane, what glm gives per pixel.
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+
+#include <glm/glm.hpp>
+
+#include "facet/simd.hpp"
+
+namespace facet {
+namespace {
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+// The bits of a number (so -0 and +0 differ); every NaN as one value, since which NaN an invalid operation returns
+// may differ between the compiler's constant folding and the CPU.
+std::uint32_t bits(float v) { return std::isnan(v) ? 0x7fc00000u : std::bit_cast<std::uint32_t>(v); }
+
+// Lane values that exercise the sign of zero, NaN, infinities and ordinary numbers.
+simd::Vec3 awkward_lanes() {
+  const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
+  const float values[simd::kLanes] = {0.0f, -0.0f, 1.5f, -2.25f, nan, inf, -inf, 1e-30f,
+                                      3.0f, -7.0f, 0.1f, 1e30f, -0.0f, 2.0f, 0.5f, -1e-30f};
+  simd::Vec3 v;
+  for (int k = 0; k < simd::kLanes; ++k) {
+    v.x[k] = values[k];
+    v.y[k] = values[(k + 5) % simd::kLanes];
+    v.z[k] = values[(k + 11) % simd::kLanes];
+  }
+  return v;
+}
+
+glm::vec3 lane(const simd::Vec3& v, int k) { return {v.x[k], v.y[k], v.z[k]}; }
+
+void expect_same_bits(const glm::vec3& expected, const simd::Vec3& actual, int k) {
+  EXPECT_EQ(bits(expected.x), bits(actual.x[k])) << "lane " << k;
+  EXPECT_EQ(bits(expected.y), bits(actual.y[k])) << "lane " << k;
+  EXPECT_EQ(bits(expected.z), bits(actual.z[k])) << "lane " << k;
+}
+
+TEST(SimdUniformOperands, DifferencesMatchGlmBitForBit) {
+  const simd::Vec3 v = awkward_lanes();
+  for (const glm::vec3 uniform : {glm::vec3(0.0f, -0.0f, 3.0f), glm::vec3(-0.0f, 1.25f, -4.5f)}) {
+    const simd::Vec3 from_uniform = uniform - v, to_uniform = v - uniform;
+    for (int k = 0; k < simd::kLanes; ++k) {
+      expect_same_bits(uniform - lane(v, k), from_uniform, k);
+      expect_same_bits(lane(v, k) - uniform, to_uniform, k);
+    }
+  }
+}
+
+TEST(SimdUniformOperands, DotMatchesGlmBitForBit) {
+  const simd::Vec3 v = awkward_lanes();
+  const glm::vec3 uniform(0.4f, -0.7f, 0.6f);
+  const simd::Float d = simd::dot(v, uniform);
+  for (int k = 0; k < simd::kLanes; ++k) EXPECT_EQ(bits(glm::dot(lane(v, k), uniform)), bits(d[k])) << "lane " << k;
+}
+
+#pragma GCC diagnostic pop
+
+}  // namespace
+}  // namespace facet
