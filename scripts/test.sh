@@ -4,6 +4,8 @@ set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 scripts/deps.sh
 jobs=$(nproc)
+# ccache (found by CMakeLists.txt) keys on paths relative to the checkout, so every clone on a machine shares hits.
+export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=true
 
 cmake --preset release >/dev/null
 cmake --build --preset release -j "$jobs"

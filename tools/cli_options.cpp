@@ -1,16 +1,12 @@
-// cli_options.cpp - number lists, enums, the CLI11 options, and the camera / projection flags turned into a View.
+// cli_options.cpp - number lists, enums, the CLI11 options, and the flags as the library's CameraSpec and LookSpec.
 #include "cli_options.hpp"
 
-#include <algorithm>
 #include <charconv>
 #include <cmath>
 #include <cstdio>
 #include <functional>
+#include <optional>
 #include <utility>
-
-#include "facet/camera.hpp"
-#include "facet/projection.hpp"
-#include "facet/transform.hpp"
 
 namespace facet::cli {
 namespace {
@@ -73,27 +69,6 @@ CLI::Option* add_enum_option(CLI::App& app, const std::string& name,
           },
           description + " (" + choices + ")")
       ->type_name("MODE");
-}
-
-// Half extents (x, y) grown to the target's aspect, with the same 8% margin frame_sphere keeps.
-std::array<float, 4> fit_extents(float half_x, float half_y, float aspect) {
-  const float half_h = 1.08f * std::max(half_y, half_x / aspect);
-  const float half_w = half_h * aspect;
-  return {-half_w, half_w, -half_h, half_h};
-}
-
-std::array<float, 4> parse_window(const std::string& text, const std::string& option) {
-  const std::vector<float> v = parse_floats(text, 4, option);
-  return {v[0], v[1], v[2], v[3]};
-}
-
-// The classical views, in ProjectionKind order from isometric on; oblique projects onto the front plane.
-bool is_preset(ProjectionKind kind) { return kind >= ProjectionKind::isometric; }
-glm::mat4 preset_rotation(ProjectionKind kind) {
-  if (!is_preset(kind)) return front_view();
-  using View = glm::mat4 (*)();
-  constexpr View views[] = {isometric_view, dimetric_view, trimetric_view, front_view, top_view, side_view};
-  return views[static_cast<int>(kind) - static_cast<int>(ProjectionKind::isometric)]();
 }
 
 }  // namespace
@@ -191,19 +166,19 @@ void add_camera_options(CLI::App& app, CameraArgs& args) {
   app.add_option("--far", args.far, "Far clipping distance (default: hug the model)")
       ->check(number_in(-1e30, 1e30))
       ->type_name("F");
-  add_enum_option<ProjectionKind>(
+  add_enum_option<Projection>(
       app, "--projection",
-      {{"perspective", ProjectionKind::perspective},
-       {"orthographic", ProjectionKind::orthographic},
-       {"frustum", ProjectionKind::frustum},
-       {"oblique", ProjectionKind::oblique},
-       {"isometric", ProjectionKind::isometric},
-       {"dimetric", ProjectionKind::dimetric},
-       {"trimetric", ProjectionKind::trimetric},
-       {"front", ProjectionKind::front},
-       {"top", ProjectionKind::top},
-       {"side", ProjectionKind::side}},
-      [&args](ProjectionKind k) { args.projection = k; }, "Projection");
+      {{"perspective", Projection::perspective},
+       {"orthographic", Projection::orthographic},
+       {"frustum", Projection::frustum},
+       {"oblique", Projection::oblique},
+       {"isometric", Projection::isometric},
+       {"dimetric", Projection::dimetric},
+       {"trimetric", Projection::trimetric},
+       {"front", Projection::front},
+       {"top", Projection::top},
+       {"side", Projection::side}},
+      [&args](Projection k) { args.projection = k; }, "Projection");
   add_floats_option(app, "--frustum", args.frustum, 4, "Frustum near-plane window L,R,B,T (glFrustum)");
   add_floats_option(app, "--ortho", args.ortho, 4, "Orthographic window L,R,B,T (default: fit the model)");
   app.add_option("--oblique-angle", args.oblique_angle, "Oblique receding direction, degrees from +X (45)")
@@ -213,7 +188,7 @@ void add_camera_options(CLI::App& app, CameraArgs& args) {
       ->check(number_in(0.0, 10.0))
       ->type_name("S");
   app.add_option("--up", args.up, "The model's up axis: +Y or +Z (also -Y, -Z, +X, -X)")
-      ->check(parse_check([](const std::string& v) { upright_from_model(v); }, ""))
+      ->check(parse_check([](const std::string& v) { parse_up(v); }, ""))
       ->type_name("AXIS");
 }
 
@@ -269,117 +244,48 @@ void add_output_options(CLI::App& app, OutputArgs& args, const std::string& defa
       ->type_name("W,H");
 }
 
-glm::mat3 upright_from_model(const std::string& up) {
-  std::string axis = trim(up);
-  if (axis.size() == 1) axis = "+" + axis;
-  if (axis.size() == 2) axis[1] = static_cast<char>(std::toupper(static_cast<unsigned char>(axis[1])));
-  // Exact columns (images of +X, +Y, +Z) rather than rotate_*() so no rounding creeps into the axes.
-  const auto columns = [](glm::vec3 x, glm::vec3 y, glm::vec3 z) { return glm::mat3(x, y, z); };
-  if (axis == "+Y") return glm::mat3(1.0f);
-  if (axis == "-Y") return columns({-1, 0, 0}, {0, -1, 0}, {0, 0, 1});
-  if (axis == "+Z") return columns({1, 0, 0}, {0, 0, -1}, {0, 1, 0});
-  if (axis == "-Z") return columns({1, 0, 0}, {0, 0, 1}, {0, -1, 0});
-  if (axis == "+X") return columns({0, 1, 0}, {-1, 0, 0}, {0, 0, 1});
-  if (axis == "-X") return columns({0, -1, 0}, {1, 0, 0}, {0, 0, 1});
-  throw UsageError("--up: expected +Y or +Z (or -Y, -Z, +X, -X), got \"" + up + "\"");
+std::array<float, 4> parse_window(const std::string& text, const std::string& option) {
+  const std::vector<float> v = parse_floats(text, 4, option);
+  return {v[0], v[1], v[2], v[3]};
 }
 
-namespace {
-
-View make_view_unchecked(const CameraArgs& args, glm::vec3 center, float radius, float aspect) {
-  const glm::mat3 world_from_upright = glm::transpose(upright_from_model(args.up));
-  const bool preset = is_preset(args.projection);
-  glm::vec3 direction, up;
-  if (preset || args.projection == ProjectionKind::oblique) {
-    // Classical views look along the preset's axis; oblique projects onto the front plane as in CIS367.
-    const glm::mat3 upright_from_eye = glm::transpose(glm::mat3(preset_rotation(args.projection)));
-    direction = world_from_upright * upright_from_eye * glm::vec3(0, 0, 1);
-    up = world_from_upright * upright_from_eye * glm::vec3(0, 1, 0);
-  } else {
-    // A 3/4 view: from +Z turned 30 degrees towards +X and lifted 20 degrees.
-    const float az = glm::radians(30.0f), el = glm::radians(20.0f);
-    direction = world_from_upright * glm::vec3(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
-    up = world_from_upright * glm::vec3(0, 1, 0);
-  }
-  if (!args.view_up.empty()) up = parse_vec3(args.view_up, "--camera-view-up");
-  const glm::vec3 focal = args.focal_point.empty() ? center : parse_vec3(args.focal_point, "--camera-focal-point");
-  // The sphere around the focal point that still holds the whole model.
-  float reach = radius + glm::distance(focal, center);
-  if (!(reach > 0.0f)) reach = 1.0f;
-  const bool orthographic =
-      args.projection != ProjectionKind::perspective && args.projection != ProjectionKind::frustum;
-
-  Camera camera;
-  camera.view_angle_degrees = args.view_angle;
-  if (!args.position.empty() && !preset && parse_vec3(args.position, "--camera-position") == focal)
-    throw UsageError("--camera-position: must differ from the focal point");
-  if (!args.position.empty() && !preset) {
-    camera.position = parse_vec3(args.position, "--camera-position");
-    camera.focal_point = focal;
-    camera.view_up = up;
-    const glm::vec3 forward = focal - camera.position;
-    const float length = glm::length(forward);
-    const float depth = length > 0.0f ? glm::dot(center - camera.position, forward / length) : 0.0f;
-    const float r = std::max(radius, 1e-6f);
-    camera.far = std::max(depth + 1.05f * r, 1e-3f);
-    camera.near = orthographic ? depth - 1.05f * r : std::max(depth - 1.05f * r, 1e-3f * (std::abs(depth) + r));
-    if (!(camera.far > camera.near)) camera.far = camera.near + 2.1f * r;
-  } else {
-    camera = frame_sphere(focal, reach, aspect, args.view_angle, direction, up);
-  }
-  if (args.azimuth != 0.0f || args.elevation != 0.0f) apply_azimuth_elevation(camera, args.azimuth, args.elevation);
-  if (args.near) camera.near = *args.near;
-  if (args.far) camera.far = *args.far;
-  if (!orthographic && !(camera.near > 0.0f))
-    throw UsageError("--near: must be positive for a perspective projection, got " + format(camera.near));
-  if (!(camera.far > camera.near))
-    throw UsageError("--far: must be greater than the near distance (near " + format(camera.near) + ", far " +
-                     format(camera.far) + ")");
-
-  View view;
-  view.view_from_world = view_from_world(camera);
-  view.near = camera.near;
-  view.far = camera.far;
-  switch (args.projection) {
-    case ProjectionKind::perspective:
-      view.clip_from_view = clip_from_view(camera, aspect);
-      break;
-    case ProjectionKind::frustum: {
-      const float t = camera.near * std::tan(glm::radians(camera.view_angle_degrees) * 0.5f);
-      const std::array<float, 4> w = args.frustum.empty() ? std::array<float, 4>{-t * aspect, t * aspect, -t, t}
-                                                          : parse_window(args.frustum, "--frustum");
-      view.clip_from_view = frustum(w[0], w[1], w[2], w[3], camera.near, camera.far);
-      break;
-    }
-    case ProjectionKind::oblique: {
-      const float a = glm::radians(args.oblique_angle), s = args.oblique_scale;
-      // The shear turns the model's sphere into an ellipsoid reaching r * sqrt(1 + k^2) along each screen axis.
-      const std::array<float, 4> w = args.ortho.empty() ? fit_extents(reach * std::hypot(1.0f, s * std::cos(a)),
-                                                                      reach * std::hypot(1.0f, s * std::sin(a)), aspect)
-                                                        : parse_window(args.ortho, "--ortho");
-      const float pivot = glm::distance(camera.position, camera.focal_point);
-      view.clip_from_view = oblique(a, s, w[0], w[1], w[2], w[3], camera.near, camera.far, pivot);
-      break;
-    }
-    default: {
-      const std::array<float, 4> w =
-          args.ortho.empty() ? fit_extents(reach, reach, aspect) : parse_window(args.ortho, "--ortho");
-      view.clip_from_view = ortho(w[0], w[1], w[2], w[3], camera.near, camera.far);
-      break;
-    }
-  }
-  return view;
+UpAxis parse_up(const std::string& text) {
+  if (const std::optional<UpAxis> axis = parse_up_axis(text)) return *axis;
+  throw UsageError("--up: expected +Y or +Z (or -Y, -Z, +X, -X), got \"" + text + "\"");
 }
 
-}  // namespace
+CameraSpec camera_spec(const CameraArgs& args) {
+  CameraSpec spec;
+  if (!args.position.empty()) spec.position = parse_vec3(args.position, "--camera-position");
+  if (!args.focal_point.empty()) spec.focal_point = parse_vec3(args.focal_point, "--camera-focal-point");
+  if (!args.view_up.empty()) spec.view_up = parse_vec3(args.view_up, "--camera-view-up");
+  spec.view_angle_degrees = args.view_angle;
+  spec.azimuth_degrees = args.azimuth;
+  spec.elevation_degrees = args.elevation;
+  spec.near = args.near;
+  spec.far = args.far;
+  spec.projection = args.projection;
+  if (!args.frustum.empty()) spec.frustum_window = parse_window(args.frustum, "--frustum");
+  if (!args.ortho.empty()) spec.ortho_window = parse_window(args.ortho, "--ortho");
+  spec.oblique_angle_degrees = args.oblique_angle;
+  spec.oblique_scale = args.oblique_scale;
+  spec.up = parse_up(args.up);
+  return spec;
+}
 
-View make_view(const CameraArgs& args, glm::vec3 center, float radius, float aspect) {
-  try {
-    return make_view_unchecked(args, center, radius, aspect);
-  } catch (const std::invalid_argument& e) {
-    // A degenerate camera (view up along the view direction, a zero-size window, ...) is a usage error.
-    throw UsageError(std::string("camera: ") + e.what());
-  }
+LookSpec look_spec(const LookArgs& args) {
+  LookSpec look;
+  look.shading = args.shading;
+  look.wireframe = args.wireframe;
+  look.edges = args.edges;
+  look.depth_test = !args.no_depth_test;
+  look.painter = args.painter;
+  look.cull = args.culling.value_or(CullMode::back);
+  if (!args.background_color.empty()) look.background = parse_color(args.background_color, "--background-color");
+  look.transparent_background = args.no_background;
+  if (!args.color.empty()) look.color = parse_color(args.color, "--color");
+  if (!args.light_direction.empty()) look.light_direction = parse_vec3(args.light_direction, "--light-direction");
+  return look;
 }
 
 }  // namespace facet::cli

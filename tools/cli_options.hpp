@@ -10,9 +10,8 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
-#include "facet/framebuffer.hpp"
-#include "facet/renderer.hpp"
-#include "facet/scene.hpp"
+#include "facet/render_job.hpp"
+#include "facet/view_spec.hpp"
 
 namespace facet::cli {
 
@@ -27,6 +26,10 @@ std::vector<float> parse_floats(const std::string& text, std::size_t count, cons
 glm::vec3 parse_vec3(const std::string& text, const std::string& option);
 // "R,G,B" with each component in 0..1.
 glm::vec3 parse_color(const std::string& text, const std::string& option);
+// "L,R,B,T": a projection window.
+std::array<float, 4> parse_window(const std::string& text, const std::string& option);
+// "+Y", "-Z", ...: the --up axis.
+UpAxis parse_up(const std::string& text);
 // "W,H" or "WxH", each in 1..kMaxDimension.
 glm::ivec2 parse_resolution(const std::string& text, const std::string& option);
 
@@ -37,32 +40,21 @@ CLI::Validator number_in(double lo, double hi, bool integer = false);
 CLI::Option* add_floats_option(CLI::App& app, const std::string& name, std::string& target, std::size_t count,
                                const std::string& description);
 
-// The classical view presets come last (is_preset relies on the order).
-enum class ProjectionKind {
-  perspective,
-  orthographic,
-  frustum,
-  oblique,
-  isometric,
-  dimetric,
-  trimetric,
-  front,
-  top,
-  side,
-};
-
 // The camera and projection flags as given (f3d's spelling where f3d has one); empty strings were not given.
 struct CameraArgs {
   std::string position, focal_point, view_up;
   float view_angle = 30.0f;  // VTK's and f3d's default vertical field of view
   float azimuth = 0.0f, elevation = 0.0f;
   std::optional<float> near, far;
-  ProjectionKind projection = ProjectionKind::perspective;
+  Projection projection = Projection::perspective;
   std::string frustum, ortho;  // L,R,B,T
   float oblique_angle = 45.0f, oblique_scale = 0.5f;
   std::string up = "+Y";
 };
 void add_camera_options(CLI::App& app, CameraArgs& args);
+
+// The library's description of the camera the flags state; throws UsageError naming the flag for a bad value.
+CameraSpec camera_spec(const CameraArgs& args);
 
 // The drawing and look flags, shared by render and demo.
 struct LookArgs {
@@ -73,6 +65,7 @@ struct LookArgs {
   int threads = 0;
 };
 void add_look_options(CLI::App& app, LookArgs& args);
+LookSpec look_spec(const LookArgs& args);
 
 // The output flags: --output, --output-depth, --resolution.
 struct OutputArgs {
@@ -80,11 +73,5 @@ struct OutputArgs {
   std::string resolution;
 };
 void add_output_options(CLI::App& app, OutputArgs& args, const std::string& default_resolution);
-
-// The rotation taking the model's up axis ("+Y", "-Z", ...) to +Y; throws UsageError for anything else.
-glm::mat3 upright_from_model(const std::string& up);
-
-// The view of a model whose bounding sphere is (center, radius), for a target of the given aspect (width / height).
-View make_view(const CameraArgs& args, glm::vec3 center, float radius, float aspect);
 
 }  // namespace facet::cli

@@ -10,6 +10,7 @@
 #include "facet/primitives.hpp"
 #include "facet/projection.hpp"
 #include "facet/transform.hpp"
+#include "facet/render_job.hpp"
 #include "render_command.hpp"
 
 namespace facet::cli {
@@ -166,11 +167,16 @@ int run_demo(const DemoArgs& args) {
   } else {
     model = make_pentagon();
   }
-  apply_color_override(model, args.look);
+  const LookSpec look = look_spec(args.look);
+  // A colour asked for replaces the vertex and face colours too, so the whole model takes it.
+  if (look.color) {
+    model.colors.clear();
+    model.face_colors.clear();
+  }
   const std::shared_ptr<const Mesh> mesh = std::make_shared<Mesh>(std::move(model));
 
   const float aspect = static_cast<float>(size.x) / static_cast<float>(size.y);
-  const glm::vec4 clear = clear_color(args.look, kWhite);
+  const glm::vec4 clear = clear_color(look, kWhite);
   Renderer renderer(args.look.threads);
   Framebuffer target(size.x, size.y);
   for (int i = 0; i < args.frames; ++i) {
@@ -184,11 +190,11 @@ int run_demo(const DemoArgs& args) {
       frame = seed_003_frame(mesh, seconds, aspect);
     Scene scene;
     for (Instance& instance : frame.instances) scene.add(std::move(instance));
-    const SceneOptions options = make_scene_options(args.look, frame.view.view_from_world, shading, glm::vec3(clear));
+    const SceneOptions options = scene_options(look, frame.view.view_from_world, shading, glm::vec3(clear));
     std::string color_path, depth_path;
     expand_frame_pattern(args.output.output, i, color_path);
     if (!args.output.output_depth.empty()) expand_frame_pattern(args.output.output_depth, i, depth_path);
-    draw_and_write(renderer, target, scene, frame.view, options, clear, color_path, depth_path);
+    draw_and_write(renderer, target, scene, frame.view, options, clear, {color_path, depth_path});
   }
   return 0;
 }

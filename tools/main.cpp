@@ -8,16 +8,13 @@
 
 #include <CLI/CLI.hpp>
 
-#include "bench/bench_command.hpp"
+#include "bench_command.hpp"
 #include "cli_options.hpp"
 #include "demo_command.hpp"
 #include "facet/error.hpp"
+#include "facet/version.hpp"
 #include "info_command.hpp"
 #include "render_command.hpp"
-
-#ifndef FACET_VERSION
-#define FACET_VERSION "unknown"
-#endif
 
 namespace {
 
@@ -41,7 +38,7 @@ int main(int argc, char** argv) {
   if (argc >= 2 && std::string_view(argv[1]) == "bench") return run_bench(argc - 1, argv + 1);
 
   CLI::App app{"facet: a CPU 3D rendering pipeline", "facet"};
-  app.set_version_flag("--version", std::string("facet ") + FACET_VERSION);
+  app.set_version_flag("--version", std::string("facet ") + facet::kVersion);
   app.footer("Also: facet bench [flags] times a scene (see facet bench --help).");
   facet::cli::RenderArgs render_args;
   facet::cli::DemoArgs demo_args;

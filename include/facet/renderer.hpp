@@ -88,6 +88,18 @@ class Renderer {
 
 }  // namespace facet
 
+// Compiling the pipeline for a shader is the costly part of building a program that draws: its per-tile loop is
+// compiled once per CPU level. A program that draws with one shader from several source files can compile it once:
+// FACET_EXTERN_SHADER(S) after the shader's definition in a header those files include, and
+// FACET_INSTANTIATE_SHADER(S) in one .cpp file. The library does this for its stock shaders.
+#define FACET_SHADER_DRAWS_(prefix, S)                                                                             \
+  prefix void ::facet::Renderer::draw<S>(::facet::Framebuffer&, const S&, std::span<const S::Vertex>,              \
+                                         std::span<const std::uint32_t>, const ::facet::RenderState&);             \
+  prefix void ::facet::Renderer::draw_lines<S>(::facet::Framebuffer&, const S&, std::span<const S::Vertex>,        \
+                                               std::span<const std::uint32_t>, const ::facet::RenderState&)
+#define FACET_EXTERN_SHADER(S) FACET_SHADER_DRAWS_(extern template, S)
+#define FACET_INSTANTIATE_SHADER(S) FACET_SHADER_DRAWS_(template, S)
+
 #include "facet/detail/raster_tile.hpp"
 
 namespace facet {

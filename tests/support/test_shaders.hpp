@@ -7,6 +7,7 @@
 
 #include <glm/glm.hpp>
 
+#include "facet/renderer.hpp"
 #include "facet/shader.hpp"
 
 namespace facet::test {
@@ -71,3 +72,7 @@ struct CheckerShader {
 };
 
 }  // namespace facet::test
+
+// Most tests draw with these two: compiled once, in test_shaders.cpp.
+FACET_EXTERN_SHADER(facet::test::ColorShader);
+FACET_EXTERN_SHADER(facet::test::CountingShader);

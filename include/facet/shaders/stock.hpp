@@ -1,6 +1,7 @@
 // stock.hpp - every stock shader in one include.
 #pragma once
 
+#include "facet/renderer.hpp"
 #include "facet/shaders/depth.hpp"
 #include "facet/shaders/flat.hpp"
 #include "facet/shaders/gouraud.hpp"
@@ -12,3 +13,12 @@
 #include "facet/shaders/surface.hpp"
 #include "facet/shaders/surface_color.hpp"
 #include "facet/shaders/unlit.hpp"
+
+// The library compiles the pipeline for each stock shader once (src/shaders/); programs link those instances.
+FACET_EXTERN_SHADER(facet::SurfaceShader);
+FACET_EXTERN_SHADER(facet::GouraudShader);
+FACET_EXTERN_SHADER(facet::FlatShader);
+FACET_EXTERN_SHADER(facet::UnlitShader);
+FACET_EXTERN_SHADER(facet::NormalShader);
+FACET_EXTERN_SHADER(facet::DepthShader);
+FACET_EXTERN_SHADER(facet::LineShader);

@@ -1,5 +1,5 @@
 // bench_command.cpp - `facet bench`: parses the SCENES.md flags, renders the timed frames, prints the result line.
-#include "bench/bench_command.hpp"
+#include "bench_command.hpp"
 
 #include <algorithm>
 #include <cerrno>
@@ -23,10 +23,8 @@
 #include "facet/image_io.hpp"
 #include "facet/renderer.hpp"
 #include "facet/texture.hpp"
+#include "facet/version.hpp"
 
-#ifndef FACET_VERSION
-#define FACET_VERSION "unknown"
-#endif
 
 namespace facet::bench {
 namespace {
@@ -219,7 +217,7 @@ int run(const Options& o, const BenchGeometry& g) {
   if (!o.png.empty()) write_png(o.png, o.width, o.height, frame0_rgba);
   if (!o.depth.empty()) write_npy(o.depth, o.width, o.height, frame0_depth);
 
-  const std::string renderer_name = std::string("facet ") + FACET_VERSION;
+  const std::string renderer_name = std::string("facet ") + kVersion;
   const std::size_t triangles = g.indices.size() / 3;
   if (o.json)
     std::printf("{\"renderer\":\"%s\",\"scene\":\"%s\",\"triangles\":%zu,\"width\":%d,\"height\":%d,\"threads\":%d,"

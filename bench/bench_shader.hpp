@@ -6,6 +6,7 @@
 #include <glm/glm.hpp>
 
 #include "facet/fragment_lanes.hpp"
+#include "facet/renderer.hpp"
 #include "facet/shader.hpp"
 #include "facet/texture.hpp"
 #include "facet/vertex_lanes.hpp"
@@ -130,3 +131,6 @@ static_assert(!PrefetchingLaneShader<BenchShader>);
 static_assert(LaneVertexShader<BenchShader>);
 
 }  // namespace facet::bench
+
+// Compiled once, in bench_shader.cpp, for the CLI, the micro-benchmarks and the tests alike.
+FACET_EXTERN_SHADER(facet::bench::BenchShader);

@@ -1,0 +1,31 @@
+# install.cmake - install rules: the library, its headers, the facet program, a CMake package and facet.pc.
+include(GNUInstallDirs)
+include(CMakePackageConfigHelpers)
+
+install(TARGETS facet EXPORT facetTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
+install(DIRECTORY include/facet DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/include/facet/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/facet)
+install(TARGETS facet_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+
+set(FACET_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/facet)
+install(EXPORT facetTargets NAMESPACE facet:: DESTINATION ${FACET_CMAKE_DIR})
+configure_package_config_file(cmake/facetConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/facetConfig.cmake
+                              INSTALL_DESTINATION ${FACET_CMAKE_DIR})
+write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/facetConfigVersion.cmake
+                                 COMPATIBILITY SameMinorVersion)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/facetConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/facetConfigVersion.cmake
+        DESTINATION ${FACET_CMAKE_DIR})
+
+# facet is a static library, so facet.pc lists the libraries it uses in Libs: a plain `pkg-config --libs facet`
+# links. The flags the templated stages need (see CMakeLists.txt) travel in Cflags.
+# The prefix is found from the .pc file's own place, so the tree works wherever `cmake --install --prefix` puts it.
+list(JOIN FACET_PUBLIC_FLAGS " " FACET_PC_FLAGS)
+file(RELATIVE_PATH FACET_PC_PREFIX_FROM_PCFILEDIR /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
+configure_file(cmake/facet.pc.in ${CMAKE_CURRENT_BINARY_DIR}/facet.pc @ONLY)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/facet.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
+
+set(CPACK_PACKAGE_NAME facet)
+set(CPACK_PACKAGE_CONTACT "facet developers")
+set(CPACK_DEBIAN_PACKAGE_DEPENDS "libtinyobjloader-dev, libglm-dev")
+set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
+include(CPack)

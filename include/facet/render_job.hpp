@@ -1,0 +1,65 @@
+// render_job.hpp - one render as plain data (model, size, camera, look, outputs) and the function that performs it.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+
+#include <glm/glm.hpp>
+
+#include "facet/framebuffer.hpp"
+#include "facet/renderer.hpp"
+#include "facet/scene.hpp"
+#include "facet/view_spec.hpp"
+
+namespace facet {
+
+// The look of a render. Unset fields take the defaults of `facet render`.
+struct LookSpec {
+  std::optional<Shading> shading;       // default: the caller's (the model's own look for `facet render`)
+  bool wireframe = false;               // draw only the edges
+  bool edges = false;                   // draw the edges over the surfaces
+  bool depth_test = true;               // off: draw in submission order
+  bool painter = false;                 // sort triangles back to front instead of depth-testing them
+  CullMode cull = CullMode::back;
+  std::optional<glm::vec3> background;  // RGB in 0..1; default: the caller's
+  bool transparent_background = false;  // alpha 0 where nothing is drawn (RGBA PNG)
+  std::optional<glm::vec3> color;       // replaces every material, vertex and face colour
+  std::optional<glm::vec3> light_direction;  // towards the light, world space; default: a headlight above left
+};
+
+// The files a render writes; empty paths are not written.
+struct OutputSpec {
+  std::filesystem::path color;  // PNG: RGB, or RGBA with a transparent background
+  std::filesystem::path depth;  // linear eye-space depth, float32 H x W .npy, 0 where empty
+};
+
+struct RenderJob {
+  std::filesystem::path model;
+  int width = 1024, height = 768;
+  CameraSpec camera;
+  LookSpec look;
+  OutputSpec outputs;
+};
+
+// The background `facet render` uses when none is given: a mid blue-grey that white and dark models stand out from.
+inline constexpr glm::vec3 kDefaultBackground{0.42f, 0.45f, 0.5f};
+
+// SceneOptions for a look. `view_from_world` places the default headlight in the world; `default_shading` applies
+// when the look names none; `background` picks a wireframe colour that stays visible. Throws std::invalid_argument
+// for a zero light direction.
+SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_world, Shading default_shading,
+                           glm::vec3 background);
+
+// The clear colour of a look: its background (or `fallback`), alpha 0 when transparent.
+glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback);
+
+// Clears, draws the scene, and writes the outputs. A failure writing any of them removes those already written,
+// so a failed render leaves no file behind.
+void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
+                    const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs);
+
+// Loads the model, frames it, draws it and writes the outputs. Throws InputError for a bad model file or an
+// output that cannot be written, std::invalid_argument for a bad job (size, camera, two outputs on one path).
+void render(const RenderJob& job, Renderer& renderer);
+
+}  // namespace facet

@@ -1,0 +1,69 @@
+// view_spec.hpp - the camera as a user states it (framing, position, angles, up axis, projection) and its View.
+#pragma once
+
+#include <array>
+#include <optional>
+#include <string_view>
+
+#include <glm/glm.hpp>
+
+#include "facet/scene.hpp"
+
+namespace facet {
+
+// Perspective and the classical projections; the view presets (isometric onwards) fix the viewing direction.
+enum class Projection {
+  perspective,   // gluPerspective with the view angle
+  orthographic,  // glOrtho, fitted to the model unless a window is given
+  frustum,       // glFrustum with a near-plane window
+  oblique,       // cabinet or cavalier: ortho times a shear, seen from the front
+  isometric,
+  dimetric,
+  trimetric,
+  front,
+  top,
+  side,
+};
+
+// The model's up axis, which the default views keep vertical on screen.
+enum class UpAxis { pos_x, neg_x, pos_y, neg_y, pos_z, neg_z };
+
+// "+Y", "-z", "Z" (a bare letter is positive), ...; nullopt for anything else.
+std::optional<UpAxis> parse_up_axis(std::string_view text);
+
+// The rotation taking the model's up axis to +Y.
+glm::mat3 upright_from_model(UpAxis up);
+
+// Every field defaults to what `facet render` does with no camera flags: a 3/4 view from the front right, above,
+// framing the model's bounding sphere with an 8% margin. The spelling follows f3d's camera options.
+struct CameraSpec {
+  std::optional<glm::vec3> position;     // the eye; default: framed (ignored by the view presets)
+  std::optional<glm::vec3> focal_point;  // the point looked at; default: the model's centre
+  std::optional<glm::vec3> view_up;      // default: the model's up axis
+  float view_angle_degrees = 30.0f;      // vertical field of view (VTK's and f3d's default)
+  float azimuth_degrees = 0.0f;          // turns the camera about view up (VTK's Azimuth), after framing
+  float elevation_degrees = 0.0f;        // lifts it (VTK's Elevation)
+  std::optional<float> near, far;        // clipping distances; default: hug the model
+  Projection projection = Projection::perspective;
+  std::optional<std::array<float, 4>> frustum_window;  // L, R, B, T at the near plane (frustum)
+  std::optional<std::array<float, 4>> ortho_window;    // L, R, B, T (orthographic, oblique, presets); default: fit
+  float oblique_angle_degrees = 45.0f;  // receding direction, from +X
+  float oblique_scale = 0.5f;           // 1 cavalier, 0.5 cabinet
+  UpAxis up = UpAxis::pos_y;
+};
+
+// The bounding sphere a model is framed by: the box centre, and the distance from it to the farthest position.
+struct Framing {
+  glm::vec3 center{0.0f};
+  float radius = 0.0f;
+};
+
+// Framing of a mesh's positions. Throws InputError(source, ...) when its coordinates are too large to frame.
+Framing framing_of(const Mesh& mesh, const std::string& source);
+
+// The view of a model framed by `framing`, for a target of the given aspect (width / height). Throws
+// std::invalid_argument naming the field for a camera that cannot be built (the eye at the focal point, near not
+// positive for a perspective, far not beyond near, a degenerate window or view up).
+View make_view(const CameraSpec& camera, const Framing& framing, float aspect);
+
+}  // namespace facet

@@ -1,0 +1,168 @@
+// view_spec.cpp - a CameraSpec and a model's framing turned into a View: presets, framing, the projections.
+#include "facet/view_spec.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <cmath>
+#include <cstdio>
+#include <stdexcept>
+#include <string>
+
+#include "facet/camera.hpp"
+#include "facet/error.hpp"
+#include "facet/projection.hpp"
+
+namespace facet {
+namespace {
+
+std::string format(float v) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", static_cast<double>(v));
+  return text;
+}
+
+// Half extents (x, y) grown to the target's aspect, with the same 8% margin frame_sphere keeps.
+std::array<float, 4> fit_extents(float half_x, float half_y, float aspect) {
+  const float half_h = 1.08f * std::max(half_y, half_x / aspect);
+  const float half_w = half_h * aspect;
+  return {-half_w, half_w, -half_h, half_h};
+}
+
+// The classical views, in Projection order from isometric on; oblique projects onto the front plane.
+bool is_preset(Projection kind) { return kind >= Projection::isometric; }
+glm::mat4 preset_rotation(Projection kind) {
+  if (!is_preset(kind)) return front_view();
+  using Rotation = glm::mat4 (*)();
+  constexpr Rotation views[] = {isometric_view, dimetric_view, trimetric_view, front_view, top_view, side_view};
+  return views[static_cast<int>(kind) - static_cast<int>(Projection::isometric)]();
+}
+
+// Where the camera is and what it looks at, before the projection: framed on the sphere around the focal point
+// that still holds the whole model, or placed where the spec puts it with near and far hugging the model.
+Camera place_camera(const CameraSpec& spec, const Framing& framing, float aspect, float& reach) {
+  const glm::mat3 world_from_upright = glm::transpose(upright_from_model(spec.up));
+  const bool preset = is_preset(spec.projection);
+  glm::vec3 direction, up;
+  if (preset || spec.projection == Projection::oblique) {
+    // Classical views look along the preset's axis; oblique projects onto the front plane.
+    const glm::mat3 upright_from_eye = glm::transpose(glm::mat3(preset_rotation(spec.projection)));
+    direction = world_from_upright * upright_from_eye * glm::vec3(0, 0, 1);
+    up = world_from_upright * upright_from_eye * glm::vec3(0, 1, 0);
+  } else {
+    // A 3/4 view: from +Z turned 30 degrees towards +X and lifted 20 degrees.
+    const float az = glm::radians(30.0f), el = glm::radians(20.0f);
+    direction = world_from_upright * glm::vec3(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
+    up = world_from_upright * glm::vec3(0, 1, 0);
+  }
+  if (spec.view_up) up = *spec.view_up;
+  const glm::vec3 focal = spec.focal_point.value_or(framing.center);
+  reach = framing.radius + glm::distance(focal, framing.center);
+  if (!(reach > 0.0f)) reach = 1.0f;
+  const bool orthographic = spec.projection != Projection::perspective && spec.projection != Projection::frustum;
+
+  Camera camera;
+  camera.view_angle_degrees = spec.view_angle_degrees;
+  if (spec.position && !preset) {
+    if (*spec.position == focal) throw std::invalid_argument("camera position: must differ from the focal point");
+    camera.position = *spec.position;
+    camera.focal_point = focal;
+    camera.view_up = up;
+    const glm::vec3 forward = glm::normalize(focal - camera.position);
+    const float depth = glm::dot(framing.center - camera.position, forward);
+    const float r = std::max(framing.radius, 1e-6f);
+    camera.far = std::max(depth + 1.05f * r, 1e-3f);
+    camera.near = orthographic ? depth - 1.05f * r : std::max(depth - 1.05f * r, 1e-3f * (std::abs(depth) + r));
+    if (!(camera.far > camera.near)) camera.far = camera.near + 2.1f * r;
+  } else {
+    camera = frame_sphere(focal, reach, aspect, spec.view_angle_degrees, direction, up);
+  }
+  if (spec.azimuth_degrees != 0.0f || spec.elevation_degrees != 0.0f)
+    apply_azimuth_elevation(camera, spec.azimuth_degrees, spec.elevation_degrees);
+  if (spec.near) camera.near = *spec.near;
+  if (spec.far) camera.far = *spec.far;
+  if (!orthographic && !(camera.near > 0.0f))
+    throw std::invalid_argument("near: must be positive for a perspective projection, got " + format(camera.near));
+  if (!(camera.far > camera.near))
+    throw std::invalid_argument("far: must be greater than the near distance (near " + format(camera.near) +
+                                ", far " + format(camera.far) + ")");
+  return camera;
+}
+
+}  // namespace
+
+std::optional<UpAxis> parse_up_axis(std::string_view text) {
+  while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
+  while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
+  if (text.size() == 1) return parse_up_axis(std::string("+") + text.front());
+  if (text.size() != 2 || (text[0] != '+' && text[0] != '-')) return std::nullopt;
+  const bool positive = text[0] == '+';
+  switch (std::toupper(static_cast<unsigned char>(text[1]))) {
+    case 'X': return positive ? UpAxis::pos_x : UpAxis::neg_x;
+    case 'Y': return positive ? UpAxis::pos_y : UpAxis::neg_y;
+    case 'Z': return positive ? UpAxis::pos_z : UpAxis::neg_z;
+    default: return std::nullopt;
+  }
+}
+
+glm::mat3 upright_from_model(UpAxis up) {
+  // Exact columns (images of +X, +Y, +Z) rather than rotate_*() so no rounding creeps into the axes.
+  const auto columns = [](glm::vec3 x, glm::vec3 y, glm::vec3 z) { return glm::mat3(x, y, z); };
+  switch (up) {
+    case UpAxis::pos_y: break;
+    case UpAxis::neg_y: return columns({-1, 0, 0}, {0, -1, 0}, {0, 0, 1});
+    case UpAxis::pos_z: return columns({1, 0, 0}, {0, 0, -1}, {0, 1, 0});
+    case UpAxis::neg_z: return columns({1, 0, 0}, {0, 0, 1}, {0, -1, 0});
+    case UpAxis::pos_x: return columns({0, 1, 0}, {-1, 0, 0}, {0, 0, 1});
+    case UpAxis::neg_x: return columns({0, -1, 0}, {1, 0, 0}, {0, 0, 1});
+  }
+  return glm::mat3(1.0f);
+}
+
+Framing framing_of(const Mesh& mesh, const std::string& source) {
+  Framing framing;
+  framing.center = bounds(mesh).center();
+  // The sphere about the box centre through the farthest vertex: at most the box's half diagonal, and often much
+  // tighter, so the model fills more of the frame.
+  for (const glm::vec3& p : mesh.positions) framing.radius = std::max(framing.radius, glm::distance(p, framing.center));
+  // Coordinates near the float limit overflow the camera distance; such a model cannot be framed.
+  if (!std::isfinite(framing.radius) || !std::isfinite(glm::length(framing.center)) || framing.radius > 1e30f)
+    throw InputError(source, "coordinates too large to frame (bounding radius " + format(framing.radius) + ")");
+  return framing;
+}
+
+View make_view(const CameraSpec& spec, const Framing& framing, float aspect) {
+  float reach = 0.0f;
+  const Camera camera = place_camera(spec, framing, aspect, reach);
+  View view;
+  view.view_from_world = view_from_world(camera);
+  view.near = camera.near;
+  view.far = camera.far;
+  switch (spec.projection) {
+    case Projection::perspective:
+      view.clip_from_view = clip_from_view(camera, aspect);
+      break;
+    case Projection::frustum: {
+      const float t = camera.near * std::tan(glm::radians(camera.view_angle_degrees) * 0.5f);
+      const std::array<float, 4> w = spec.frustum_window.value_or(std::array<float, 4>{-t * aspect, t * aspect, -t, t});
+      view.clip_from_view = frustum(w[0], w[1], w[2], w[3], camera.near, camera.far);
+      break;
+    }
+    case Projection::oblique: {
+      const float a = glm::radians(spec.oblique_angle_degrees), s = spec.oblique_scale;
+      // The shear turns the model's sphere into an ellipsoid reaching r * sqrt(1 + k^2) along each screen axis.
+      const std::array<float, 4> w = spec.ortho_window.value_or(
+          fit_extents(reach * std::hypot(1.0f, s * std::cos(a)), reach * std::hypot(1.0f, s * std::sin(a)), aspect));
+      const float pivot = glm::distance(camera.position, camera.focal_point);
+      view.clip_from_view = oblique(a, s, w[0], w[1], w[2], w[3], camera.near, camera.far, pivot);
+      break;
+    }
+    default: {
+      const std::array<float, 4> w = spec.ortho_window.value_or(fit_extents(reach, reach, aspect));
+      view.clip_from_view = ortho(w[0], w[1], w[2], w[3], camera.near, camera.far);
+      break;
+    }
+  }
+  return view;
+}
+
+}  // namespace facet

@@ -1,0 +1,4 @@
+// surface_instance.cpp - the pipeline compiled for SurfaceShader (per-pixel Phong and Blinn-Phong), once.
+#include "facet/shaders/stock.hpp"
+
+FACET_INSTANTIATE_SHADER(facet::SurfaceShader);

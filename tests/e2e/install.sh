@@ -1,0 +1,44 @@
+#!/usr/bin/env bash
+# install.sh - installs the built tree into a scratch prefix, then builds and runs a consumer against it twice:
+# with find_package(facet) and with pkg-config. Usage: install.sh BUILD_DIR SOURCE_DIR SCRATCH.
+set -euo pipefail
+build=$1
+source=$2
+scratch=$3
+rm -rf "$scratch"
+mkdir -p "$scratch"
+prefix=$scratch/prefix
+
+cmake --install "$build" --prefix "$prefix" >"$scratch/install.log"
+for f in bin/facet lib/libfacet.a include/facet/renderer.hpp lib/cmake/facet/facetConfig.cmake \
+         lib/cmake/facet/facetConfigVersion.cmake lib/pkgconfig/facet.pc; do
+  [ -f "$prefix/$f" ] || { echo "FAIL: $f was not installed"; exit 1; }
+done
+"$prefix/bin/facet" --version >/dev/null
+
+check_png() {
+  python3 - "$1" <<'PY'
+import struct, sys
+data = open(sys.argv[1], 'rb').read()
+assert data[:8] == b'\x89PNG\r\n\x1a\n', 'not a PNG'
+width, height = struct.unpack('>II', data[16:24])
+assert (width, height) == (320, 240), (width, height)
+PY
+}
+
+# find_package(facet CONFIG), in a build folder of its own (the consumer's sources are outside the build tree).
+cmake -S "$source/examples/consumer" -B "$scratch/cmake-build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+      -DCMAKE_PREFIX_PATH="$prefix" >"$scratch/configure.log"
+cmake --build "$scratch/cmake-build" >"$scratch/build.log"
+"$scratch/cmake-build/consumer" "$scratch/cmake.png"
+check_png "$scratch/cmake.png"
+
+# pkg-config: the flags alone build it.
+export PKG_CONFIG_PATH=$prefix/lib/pkgconfig
+# shellcheck disable=SC2046  # pkg-config's output is meant to split into flags
+${CXX:-c++} -std=c++20 -O1 -o "$scratch/pc-consumer" "$source/examples/consumer/main.cpp" \
+  $(pkg-config --cflags --libs facet)
+"$scratch/pc-consumer" "$scratch/pc.png"
+check_png "$scratch/pc.png"
+cmp -s "$scratch/cmake.png" "$scratch/pc.png" || { echo "FAIL: the two consumers' images differ"; exit 1; }
+echo "1 passed, 0 failed"

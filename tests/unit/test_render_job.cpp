@@ -1,0 +1,198 @@
+// test_render_job.cpp - the library's render description: up axes, framing, make_view, looks, and render().
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "facet/error.hpp"
+#include "facet/image_io.hpp"
+#include "facet/primitives.hpp"
+#include "facet/render_job.hpp"
+#include "support/scratch_dir.hpp"
+
+namespace facet {
+namespace {
+
+const std::filesystem::path kBox = "/usr/share/assimp/models/OBJ/box.obj";
+
+// Where a world point lands in NDC under the view.
+glm::vec3 ndc(const View& view, glm::vec3 p) {
+  const glm::vec4 c = view.clip_from_view * view.view_from_world * glm::vec4(p, 1.0f);
+  return glm::vec3(c) / c.w;
+}
+
+bool inside_ndc(glm::vec3 p) { return std::abs(p.x) <= 1.0f && std::abs(p.y) <= 1.0f && std::abs(p.z) <= 1.0f; }
+
+TEST(UpAxis, ParsesSignedAndBareAxes) {
+  EXPECT_EQ(parse_up_axis("+Y"), UpAxis::pos_y);
+  EXPECT_EQ(parse_up_axis("-z"), UpAxis::neg_z);
+  EXPECT_EQ(parse_up_axis("Z"), UpAxis::pos_z);
+  EXPECT_EQ(parse_up_axis(" +x "), UpAxis::pos_x);
+  EXPECT_EQ(parse_up_axis("up"), std::nullopt);
+  EXPECT_EQ(parse_up_axis("+W"), std::nullopt);
+  EXPECT_EQ(parse_up_axis(""), std::nullopt);
+}
+
+TEST(UpAxis, EveryAxisIsTurnedToPlusY) {
+  const std::pair<UpAxis, glm::vec3> axes[] = {{UpAxis::pos_x, {1, 0, 0}}, {UpAxis::neg_x, {-1, 0, 0}},
+                                               {UpAxis::pos_y, {0, 1, 0}}, {UpAxis::neg_y, {0, -1, 0}},
+                                               {UpAxis::pos_z, {0, 0, 1}}, {UpAxis::neg_z, {0, 0, -1}}};
+  for (const auto& [axis, direction] : axes) {
+    const glm::mat3 r = upright_from_model(axis);
+    EXPECT_EQ(r * direction, glm::vec3(0, 1, 0));
+    EXPECT_FLOAT_EQ(glm::determinant(r), 1.0f);  // a rotation, not a mirror
+  }
+}
+
+TEST(Framing, SphereAboutTheBoxCentreThroughTheFarthestVertex) {
+  Mesh mesh;
+  mesh.positions = {{0, 0, 0}, {2, 0, 0}, {0, 4, 0}};
+  mesh.indices = {0, 1, 2};
+  const Framing f = framing_of(mesh, "m");
+  EXPECT_EQ(f.center, glm::vec3(1, 2, 0));
+  EXPECT_FLOAT_EQ(f.radius, std::sqrt(5.0f));
+  mesh.positions[2] = {0, 3e38f, 0};
+  mesh.positions[1] = {0, -3e38f, 0};
+  try {
+    framing_of(mesh, "huge.obj");
+    FAIL() << "no error";
+  } catch (const InputError& e) {
+    EXPECT_EQ(e.source(), "huge.obj");
+    EXPECT_NE(e.problem().find("too large to frame"), std::string::npos);
+  }
+}
+
+TEST(MakeView, EveryProjectionFramesTheWholeModel) {
+  const Framing framing{{1, -2, 3}, 0.5f};
+  for (int p = 0; p <= static_cast<int>(Projection::side); ++p) {
+    CameraSpec spec;
+    spec.projection = static_cast<Projection>(p);
+    const View view = make_view(spec, framing, 4.0f / 3.0f);
+    for (const glm::vec3 d : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)})
+      for (const float s : {-1.0f, 1.0f}) {
+        const glm::vec3 p_ndc = ndc(view, framing.center + s * framing.radius * d);
+        EXPECT_TRUE(inside_ndc(p_ndc)) << "projection " << p << " point " << p_ndc.x << "," << p_ndc.y << ","
+                                       << p_ndc.z;
+      }
+    EXPECT_NEAR(ndc(view, framing.center).x, 0.0f, 1e-4f) << "projection " << p;
+  }
+}
+
+TEST(MakeView, DefaultViewKeepsTheModelUpAxisUpOnScreen) {
+  for (const auto& [axis, up] : {std::pair{UpAxis::pos_y, glm::vec3(0, 1, 0)}, std::pair{UpAxis::pos_z, glm::vec3(0, 0, 1)},
+                                 std::pair{UpAxis::neg_x, glm::vec3(-1, 0, 0)}}) {
+    CameraSpec spec;
+    spec.up = axis;
+    const View view = make_view(spec, {{0, 0, 0}, 1.0f}, 1.0f);
+    EXPECT_GT(ndc(view, 0.5f * up).y, 0.2f);
+    EXPECT_LT(ndc(view, -0.5f * up).y, -0.2f);
+  }
+}
+
+TEST(MakeView, AnExplicitCameraLooksFromWhereItIsPut) {
+  CameraSpec spec;
+  spec.position = glm::vec3(0, 0, 5);
+  spec.focal_point = glm::vec3(0, 0, 0);
+  const View view = make_view(spec, {{0, 0, 0}, 1.0f}, 1.0f);
+  EXPECT_NEAR(glm::vec3(view.view_from_world * glm::vec4(0, 0, 0, 1)).z, -5.0f, 1e-5f);
+  EXPECT_NEAR(view.near, 5.0f - 1.05f, 1e-5f);
+  EXPECT_NEAR(view.far, 5.0f + 1.05f, 1e-5f);
+}
+
+TEST(MakeView, RefusesDegenerateCameras) {
+  const Framing framing{{0, 0, 0}, 1.0f};
+  CameraSpec at_focal;
+  at_focal.position = at_focal.focal_point = glm::vec3(1, 1, 1);
+  EXPECT_THROW(make_view(at_focal, framing, 1.0f), std::invalid_argument);
+  CameraSpec zero_near;
+  zero_near.near = 0.0f;
+  EXPECT_THROW(make_view(zero_near, framing, 1.0f), std::invalid_argument);
+  CameraSpec far_before_near;
+  far_before_near.near = 5.0f;
+  far_before_near.far = 1.0f;
+  EXPECT_THROW(make_view(far_before_near, framing, 1.0f), std::invalid_argument);
+  CameraSpec empty_window;
+  empty_window.projection = Projection::frustum;
+  empty_window.frustum_window = std::array<float, 4>{1, 1, -1, 1};
+  EXPECT_THROW(make_view(empty_window, framing, 1.0f), std::invalid_argument);
+}
+
+TEST(Look, OptionsAndClearColourFollowTheSpec) {
+  LookSpec look;
+  look.shading = Shading::flat;
+  look.cull = CullMode::none;
+  look.painter = true;
+  look.color = glm::vec3(0.2f, 0.4f, 0.6f);
+  look.light_direction = glm::vec3(0, 0, 2);
+  const SceneOptions options = scene_options(look, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.0f));
+  EXPECT_EQ(options.shading, Shading::flat);
+  EXPECT_EQ(options.cull, CullMode::none);
+  EXPECT_TRUE(options.painter);
+  EXPECT_EQ(options.color, glm::vec4(0.2f, 0.4f, 0.6f, 1.0f));
+  EXPECT_EQ(options.lights.at(0).vector, glm::vec3(0, 0, 2));
+  EXPECT_EQ(clear_color(look, glm::vec3(0.5f)), glm::vec4(0.5f, 0.5f, 0.5f, 1.0f));
+  look.transparent_background = true;
+  look.background = glm::vec3(1, 0, 0);
+  EXPECT_EQ(clear_color(look, glm::vec3(0.5f)), glm::vec4(1, 0, 0, 0));
+  look.light_direction = glm::vec3(0.0f);
+  EXPECT_THROW(scene_options(look, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.0f)), std::invalid_argument);
+}
+
+TEST(Look, WireframeOnALightBackgroundIsDark) {
+  LookSpec look;
+  look.wireframe = true;
+  EXPECT_FALSE(scene_options(look, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.1f)).color);
+  EXPECT_EQ(scene_options(look, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.9f)).color,
+            glm::vec4(0.1f, 0.1f, 0.1f, 1.0f));
+}
+
+TEST(Render, WritesTheImageAndDepthOfTheFramedModel) {
+  const std::filesystem::path dir = test::scratch_dir("render_job");
+  RenderJob job;
+  job.model = kBox;
+  job.width = 64;
+  job.height = 48;
+  job.outputs = {dir / "box.png", dir / "box.npy"};
+  Renderer renderer(2);
+  render(job, renderer);
+  int width = 0, height = 0;
+  const std::vector<std::uint8_t> rgba = read_png(dir / "box.png", width, height);
+  ASSERT_EQ(width, 64);
+  ASSERT_EQ(height, 48);
+  // The framed box covers the centre and leaves the corners to the background.
+  const auto pixel = [&](int x, int y) { return glm::ivec3(rgba[(y * 64 + x) * 4], rgba[(y * 64 + x) * 4 + 1], rgba[(y * 64 + x) * 4 + 2]); };
+  const glm::ivec3 background = glm::ivec3(glm::round(kDefaultBackground * 255.0f));
+  EXPECT_EQ(pixel(0, 0), background);
+  EXPECT_NE(pixel(32, 24), background);
+  EXPECT_TRUE(std::filesystem::file_size(dir / "box.npy") > 64u * 48u * 4u);
+}
+
+TEST(Render, AFailedRenderLeavesNoFile) {
+  const std::filesystem::path dir = test::scratch_dir("render_job");
+  RenderJob job;
+  job.model = kBox;
+  job.width = 32;
+  job.height = 32;
+  job.outputs = {dir / "box.png", dir / "no-such-folder" / "box.npy"};
+  Renderer renderer(1);
+  EXPECT_ANY_THROW(render(job, renderer));
+  EXPECT_FALSE(std::filesystem::exists(dir / "box.png"));
+
+  job.outputs = {dir / "same.png", dir / "same.png"};
+  EXPECT_THROW(render(job, renderer), std::invalid_argument);
+  job.outputs = {dir / "box.png", {}};
+  job.width = 0;
+  EXPECT_THROW(render(job, renderer), std::invalid_argument);
+  job.width = 32;
+  job.model = dir / "missing.obj";
+  EXPECT_THROW(render(job, renderer), InputError);
+  EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+}  // namespace
+}  // namespace facet
