@@ -1,4 +1,4 @@
-// model_io.hpp - loading model files into meshes (Wavefront OBJ with its MTL materials).
+// model_io.hpp - loading model files into meshes: Wavefront OBJ (with its MTL materials) and STL.
 #pragma once
 
 #include <cstdint>
@@ -11,18 +11,22 @@ namespace facet {
 // Files larger than this are refused before reading (1 GiB).
 inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 
-// Loads a model, choosing the reader by the (case-insensitive) extension; only ".obj" is supported. The result is
-// indexed (one vertex per distinct position/uv/normal reference), triangulated (convex polygons as fans
-// (c0 c1 c2), (c0 c2 c3), ..., concave ones ear-clipped, corner order kept), in file order, and validated.
-//   - normals / uvs: kept only if every face corner references one (else empty: the renderer derives them);
-//   - colors: kept only if every `v` line carries r g b (else empty);
-//   - materials from the MTL files (Kd + d -> diffuse, Ks -> specular, Ns -> shininess, map_Kd ->
-//     diffuse_texture, resolved against the .obj's folder, '\' read as '/'); face_materials is filled (with -1
-//     for faces without a known material) when the file has materials, else left empty;
-//   - faces with fewer than 3 corners, points and lines are dropped.
-// Throws InputError(path, problem) with a one-line problem for: no such file, not a regular file, an empty or too
-// large file, an unsupported format, an OBJ that does not parse, references to vertices/uvs/normals that do not
-// exist, non-finite positions, polygons with more than 255 corners, or no triangles at all.
+// Loads a model into an indexed, triangulated, validated mesh with at least one triangle. The reader is chosen by the
+// (case-insensitive) extension, ".obj" or ".stl". Polygons are triangulated as fans (c0 c1 c2), (c0 c2 c3), ... when
+// convex and ear-clipped when concave, corner order kept; triangles stay in file order.
+//   OBJ: one vertex per distinct position/uv/normal reference.
+//     - normals / uvs: kept only if every face corner references one (else empty: the renderer derives them);
+//     - colors: kept only if every `v` line carries r g b (else empty);
+//     - materials from the MTL files (Kd + d -> diffuse, Ks -> specular, Ns -> shininess, map_Kd ->
+//       diffuse_texture, resolved against the .obj's folder, '\' read as '/'); face_materials is filled (with -1
+//       for faces without a known material) when the file has materials, else left empty;
+//     - faces with fewer than 3 corners, points and lines are dropped.
+//   STL (binary, or ASCII with one or more solids): exactly equal positions are welded into one vertex (+0 and -0
+//     alike), numbered in order of first use; facet normals and colours are ignored (normals left empty).
+// Throws InputError(path, problem) with a one-line problem, naming the line (text) or byte offset (binary) where
+// that helps, for: no such file, not a regular file, an empty or too large file, an unsupported format, a file
+// that does not parse or ends early, counts that do not fit in the file, references to vertices/uvs/normals that
+// do not exist, non-finite positions, polygons with more than 255 corners, or no triangles at all.
 // A missing MTL file, a missing texture file (diffuse_texture is then left empty) and dropped degenerate faces only
 // print a one-line "facet: warning: ..." to stderr.
 Mesh load_model(const std::filesystem::path& path);

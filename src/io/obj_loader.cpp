@@ -1,4 +1,4 @@
-// obj_loader.cpp - load_model(): Wavefront OBJ + MTL through tinyobjloader, checked, indexed and triangulated.
+// obj_loader.cpp - load_obj(): Wavefront OBJ + MTL through tinyobjloader, checked, indexed and triangulated.
 #define TINYOBJLOADER_IMPLEMENTATION
 #include <tiny_obj_loader.h>
 
@@ -16,24 +16,13 @@
 
 #include "facet/error.hpp"
 #include "facet/model_io.hpp"
+#include "io/loaders.hpp"
 
 namespace facet {
 
 namespace fs = std::filesystem;
 
 namespace {
-
-// Names come from the file, so anything that could break the one-line message format is replaced.
-std::string printable(std::string_view s) {
-  std::string out(s.substr(0, 200));
-  for (char& c : out)
-    if (static_cast<unsigned char>(c) < 0x20 || c == 0x7f) c = '?';
-  return out;
-}
-
-void warn(const std::string& source, const std::string& message) {
-  std::cerr << "facet: warning: " << source << ": " << message << '\n';
-}
 
 // OBJ files written on Windows use '\' as the separator (spider.mtl has "map_Kd .\wal67ar_small.jpg").
 fs::path file_name_path(std::string name) {
@@ -80,31 +69,6 @@ class MtlReader final : public tinyobj::MaterialReader {
   fs::path folder_;
   std::string source_;
 };
-
-// Problems every format shares, checked before the extension so a mistyped path says "no such file".
-std::uintmax_t checked_file_size(const fs::path& path, const std::string& source) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) throw InputError(source, "no such file");
-  if (!fs::is_regular_file(status)) throw InputError(source, "not a regular file");
-  const std::uintmax_t size = fs::file_size(path, ec);
-  if (ec) throw InputError(source, "cannot read file size (" + ec.message() + ")");
-  if (size == 0) throw InputError(source, "file is empty");
-  if (size > kMaxModelFileBytes)
-    throw InputError(source, "file is too large (" + std::to_string(size) + " bytes, limit " +
-                                 std::to_string(kMaxModelFileBytes) + ")");
-  return size;
-}
-
-std::string read_file(const fs::path& path, std::uintmax_t size, const std::string& source) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(source, "cannot open file");
-  std::string text(static_cast<std::size_t>(size), '\0');
-  in.read(text.data(), static_cast<std::streamsize>(size));
-  text.resize(static_cast<std::size_t>(in.gcount()));
-  if (text.empty()) throw InputError(source, "file is empty");
-  return text;
-}
 
 // tinyobj reads "nan" and "inf" as 0, so a position that the file spells as non-finite would pass silently;
 // find those `v` lines first. (Overflowing numbers do come out infinite and are caught after parsing.)
@@ -289,8 +253,9 @@ class ViewBuffer : public std::streambuf {
   explicit ViewBuffer(std::string& text) { setg(text.data(), text.data(), text.data() + text.size()); }
 };
 
-Mesh load_obj(const fs::path& path, std::uintmax_t size, const std::string& source) {
-  std::string text = read_file(path, size, source);
+}  // namespace
+
+Mesh load_obj(const fs::path& path, std::string& text, const std::string& source) {
   reject_non_finite_spellings(text, source);
 
   const fs::path folder = path.parent_path();
@@ -330,18 +295,6 @@ Mesh load_obj(const fs::path& path, std::uintmax_t size, const std::string& sour
   mesh.materials = convert_materials(materials, folder, source);
   validate(mesh, source);
   return mesh;
-}
-
-}  // namespace
-
-Mesh load_model(const fs::path& path) {
-  const std::string source = path.string();
-  const std::uintmax_t size = checked_file_size(path, source);
-  std::string extension = path.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (extension == ".obj") return load_obj(path, size, source);
-  if (extension.empty()) throw InputError(source, "unsupported model format (no file extension; supported: .obj)");
-  throw InputError(source, "unsupported model format '" + printable(extension) + "' (supported: .obj)");
 }
 
 }  // namespace facet

@@ -1,0 +1,29 @@
+// loaders.hpp - the model readers behind load_model() (OBJ, STL) and the helpers they share.
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "facet/mesh.hpp"
+
+namespace facet {
+
+// Each reader gets the model's path (OBJ resolves its MTL and texture files against it), the whole file read once
+// by load_model (non-empty, at most kMaxModelFileBytes) and the source name for its InputErrors. Each returns a
+// validated mesh with at least one triangle, or throws InputError(source, one-line problem).
+Mesh load_obj(const std::filesystem::path& path, std::string& bytes, const std::string& source);
+Mesh load_stl(std::string_view bytes, const std::string& source);
+
+// A binary STL is recognised by its size: an 80-byte header, a little-endian uint32 triangle count, 50 bytes per
+// triangle, nothing after. Its header may begin with "solid" like an ASCII STL, so this is asked first.
+bool is_binary_stl(std::string_view bytes);
+
+// Text from the file shortened to 200 characters, control characters replaced, fit for a one-line message.
+std::string printable(std::string_view s);
+
+// One line "facet: warning: <source>: <message>" on stderr.
+void warn(const std::string& source, const std::string& message);
+
+}  // namespace facet
