@@ -1,4 +1,4 @@
-// model_io.hpp - loading model files into meshes: Wavefront OBJ (with its MTL materials) and STL.
+// model_io.hpp - loading model files into meshes: Wavefront OBJ (with its MTL materials), PLY and STL.
 #pragma once
 
 #include <cstdint>
@@ -12,8 +12,8 @@ namespace facet {
 inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 
 // Loads a model into an indexed, triangulated, validated mesh with at least one triangle. The reader is chosen by the
-// (case-insensitive) extension, ".obj" or ".stl". Polygons are triangulated as fans (c0 c1 c2), (c0 c2 c3), ... when
-// convex and ear-clipped when concave, corner order kept; triangles stay in file order.
+// (case-insensitive) extension, ".obj", ".ply" or ".stl". Polygons are triangulated as fans (c0 c1 c2),
+// (c0 c2 c3), ... when convex and ear-clipped when concave, corner order kept; triangles stay in file order.
 //   OBJ: one vertex per distinct position/uv/normal reference.
 //     - normals / uvs: kept only if every face corner references one (else empty: the renderer derives them);
 //     - colors: kept only if every `v` line carries r g b (else empty);
@@ -21,14 +21,21 @@ inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 //       diffuse_texture, resolved against the .obj's folder, '\' read as '/'); face_materials is filled (with -1
 //       for faces without a known material) when the file has materials, else left empty;
 //     - faces with fewer than 3 corners, points and lines are dropped.
+//   PLY (ascii, binary_little_endian, binary_big_endian 1.0): the `vertex` element's x y z, nx ny nz (normals),
+//     red green blue [alpha] or diffuse_red ... (colors: integer types scaled by their maximum, e.g. uchar / 255,
+//     floats as they are, alpha 1 if absent) and s t, u v, texture_u texture_v or texture_s texture_t (uvs), each
+//     kept when the file has it; the `face` element's `vertex_indices` (or `vertex_index`) list of any integer
+//     types, faces with fewer than 3 corners dropped. Vertices are not merged. Other elements and properties are
+//     skipped; a file with vertices but no faces (a point cloud) is refused.
 //   STL (binary, or ASCII with one or more solids): exactly equal positions are welded into one vertex (+0 and -0
 //     alike), numbered in order of first use; facet normals and colours are ignored (normals left empty).
 // Throws InputError(path, problem) with a one-line problem, naming the line (text) or byte offset (binary) where
 // that helps, for: no such file, not a regular file, an empty or too large file, an unsupported format, a file
 // that does not parse or ends early, counts that do not fit in the file, references to vertices/uvs/normals that
-// do not exist, non-finite positions, polygons with more than 255 corners, or no triangles at all.
-// A missing MTL file, a missing texture file (diffuse_texture is then left empty) and dropped degenerate faces only
-// print a one-line "facet: warning: ..." to stderr.
+// do not exist, non-finite positions (and, in PLY, non-finite normals, colours or uvs), polygons with more corners
+// than supported (OBJ 255, PLY 1024), or no triangles at all.
+// A missing MTL file, a missing texture file (diffuse_texture is then left empty), dropped faces, unknown PLY header
+// lines and data after a PLY's last element only print a one-line "facet: warning: ..." to stderr.
 Mesh load_model(const std::filesystem::path& path);
 
 }  // namespace facet

@@ -1,4 +1,4 @@
-// loaders.hpp - the model readers behind load_model() (OBJ, STL) and the helpers they share.
+// loaders.hpp - the model readers behind load_model() (OBJ, PLY, STL) and the helpers they share.
 #pragma once
 
 #include <cstdint>
@@ -14,6 +14,7 @@ namespace facet {
 // by load_model (non-empty, at most kMaxModelFileBytes) and the source name for its InputErrors. Each returns a
 // validated mesh with at least one triangle, or throws InputError(source, one-line problem).
 Mesh load_obj(const std::filesystem::path& path, std::string& bytes, const std::string& source);
+Mesh load_ply(std::string_view bytes, const std::string& source);
 Mesh load_stl(std::string_view bytes, const std::string& source);
 
 // A binary STL is recognised by its size: an 80-byte header, a little-endian uint32 triangle count, 50 bytes per

@@ -1,4 +1,4 @@
-// model_io.cpp - load_model(): checks and reads a model file once, then hands it to the OBJ or STL reader.
+// model_io.cpp - load_model(): checks and reads a model file once, then hands it to the OBJ, PLY or STL reader.
 #include "facet/model_io.hpp"
 
 #include <cctype>
@@ -27,9 +27,9 @@ void warn(const std::string& source, const std::string& message) {
 
 namespace {
 
-enum class Format { kObj, kStl, kUnknown };
+enum class Format { kObj, kPly, kStl, kUnknown };
 
-constexpr const char* kSupported = "supported: .obj, .stl";
+constexpr const char* kSupported = "supported: .obj, .ply, .stl";
 
 // Problems every format shares, checked before the format so a mistyped path says "no such file".
 std::uintmax_t checked_file_size(const fs::path& path, const std::string& source) {
@@ -59,6 +59,7 @@ std::string read_file(const fs::path& path, std::uintmax_t size, const std::stri
 Format format_of_extension(std::string extension) {
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (extension == ".obj") return Format::kObj;
+  if (extension == ".ply") return Format::kPly;
   if (extension == ".stl") return Format::kStl;
   return Format::kUnknown;
 }
@@ -75,6 +76,8 @@ Mesh load_model(const fs::path& path) {
     switch (format) {
       case Format::kObj:
         return load_obj(path, bytes, source);
+      case Format::kPly:
+        return load_ply(bytes, source);
       case Format::kStl:
         return load_stl(bytes, source);
       case Format::kUnknown:
