@@ -12,8 +12,10 @@ namespace facet {
 inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 
 // Loads a model into an indexed, triangulated, validated mesh with at least one triangle. The reader is chosen by the
-// (case-insensitive) extension, ".obj", ".ply" or ".stl". Polygons are triangulated as fans (c0 c1 c2),
-// (c0 c2 c3), ... when convex and ear-clipped when concave, corner order kept; triangles stay in file order.
+// (case-insensitive) extension, ".obj", ".ply" or ".stl"; a file with another extension or none is recognised by its
+// content ("ply" magic line, a binary STL's size, "solid", or OBJ statements after any comments). Polygons are
+// triangulated as fans (c0 c1 c2), (c0 c2 c3), ... when convex and ear-clipped when concave, corner order kept;
+// triangles stay in file order.
 //   OBJ: one vertex per distinct position/uv/normal reference.
 //     - normals / uvs: kept only if every face corner references one (else empty: the renderer derives them);
 //     - colors: kept only if every `v` line carries r g b (else empty);

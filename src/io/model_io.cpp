@@ -1,14 +1,17 @@
 // model_io.cpp - load_model(): checks and reads a model file once, then hands it to the OBJ, PLY or STL reader.
 #include "facet/model_io.hpp"
 
+#include <algorithm>
 #include <cctype>
 #include <fstream>
 #include <iostream>
 #include <new>
 #include <string>
+#include <string_view>
 
 #include "facet/error.hpp"
 #include "io/loaders.hpp"
+#include "io/text_scan.hpp"
 
 namespace facet {
 
@@ -64,14 +67,47 @@ Format format_of_extension(std::string extension) {
   return Format::kUnknown;
 }
 
+// OBJ has no magic number: the first line that is neither blank nor a comment must start with an OBJ statement.
+bool looks_like_obj(std::string_view bytes) {
+  constexpr std::string_view kStatements[] = {"v", "vt", "vn", "f", "o", "g", "s", "mtllib", "usemtl"};
+  bool comments = false;
+  std::size_t pos = 0;
+  for (int lines = 0; pos < bytes.size() && lines < 1000; ++lines) {
+    const std::size_t end = std::min(bytes.find('\n', pos), bytes.size());
+    std::string_view line = bytes.substr(pos, end - pos);
+    pos = end + 1;
+    while (!line.empty() && is_space(line.front())) line.remove_prefix(1);
+    if (line.empty()) continue;
+    if (line.front() == '#') {
+      comments = true;
+      continue;
+    }
+    std::size_t word = 0;
+    while (word < line.size() && !is_space(line[word])) ++word;
+    if (word == line.size()) return false;  // a statement takes at least one argument
+    return std::find(std::begin(kStatements), std::end(kStatements), line.substr(0, word)) != std::end(kStatements);
+  }
+  return comments && pos >= bytes.size();  // only comments: an OBJ with nothing in it
+}
+
+// For files whose extension names no supported format: magic numbers first, then the shape of the text.
+Format format_of_content(std::string_view bytes) {
+  if (bytes.starts_with("ply\n") || bytes.starts_with("ply\r\n")) return Format::kPly;
+  if (is_binary_stl(bytes)) return Format::kStl;
+  if (bytes.starts_with("solid") && (bytes.size() == 5 || is_space(bytes[5]))) return Format::kStl;
+  if (looks_like_obj(bytes)) return Format::kObj;
+  return Format::kUnknown;
+}
+
 }  // namespace
 
 Mesh load_model(const fs::path& path) {
   const std::string source = path.string();
   const std::uintmax_t size = checked_file_size(path, source);
   const std::string extension = path.extension().string();
-  const Format format = format_of_extension(extension);
+  Format format = format_of_extension(extension);
   std::string bytes = read_file(path, size, source);
+  if (format == Format::kUnknown) format = format_of_content(bytes);
   try {
     switch (format) {
       case Format::kObj:

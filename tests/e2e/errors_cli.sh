@@ -20,7 +20,11 @@ printf 'v 0 0 0\nv nan 0 0\nv 0 1 0\nf 1 2 3\n' >"$scratch/nan.obj"
 printf 'v 0 0 0\nv inf 0 0\nv 0 1 0\nf 1 2 3\n' >"$scratch/inf.obj"
 printf 'v 0 0 0\nv 3e38 0 0\nv -3e38 1 0\nf 1 2 3\n' >"$scratch/huge.obj"
 printf 'v 0 0 0\nv 1 0 0\nv 0 1 0\n' >"$scratch/no_faces.obj"
-printf 'solid x\nendsolid x\n' >"$scratch/model.stl"
+printf 'solid x\nendsolid x\n' >"$scratch/empty_solid.stl"
+printf 'hello\n' >"$scratch/model.xyz"
+head -c 400 /usr/share/assimp/models/PLY/cube_binary.ply >"$scratch/truncated.ply"
+printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n' \
+  >"$scratch/header.ply"
 mkdir -p "$scratch/folder.obj"
 
 # expect NAME STATUS [-n] FACET-ARGS...: runs facet writing to $scratch/NAME.png (unless the args name an output or
@@ -53,6 +57,15 @@ expect() {
   fi
 }
 
+# expect_message NAME TEXT: the error line of the case NAME run just before contains TEXT.
+expect_message() {
+  if grep -qF -- "$2" "$scratch/$1.stderr"; then
+    ok "$1 says: $2"
+  else
+    bad "$1" "expected '$2' in: $(head -n 1 "$scratch/$1.stderr")"
+  fi
+}
+
 # Bad input: exit 1.
 expect missing_file 1 render "$scratch/does_not_exist.obj"
 expect empty_file 1 render "$scratch/empty.obj"
@@ -63,7 +76,13 @@ expect nan_vertex 1 render "$scratch/nan.obj"
 expect inf_vertex 1 render "$scratch/inf.obj"
 expect huge_coordinates 1 render "$scratch/huge.obj"
 expect no_faces 1 render "$scratch/no_faces.obj"
-expect unsupported_format 1 render "$scratch/model.stl"
+expect unsupported_format 1 render "$scratch/model.xyz"
+expect_message unsupported_format "unsupported model format '.xyz' (supported: .obj, .ply, .stl)"
+expect empty_stl 1 render "$scratch/empty_solid.stl"
+expect truncated_ply 1 render "$scratch/truncated.ply"
+expect_message truncated_ply "runs past the end of the file"
+expect truncated_ply_header 1 info "$scratch/header.ply"
+expect_message truncated_ply_header "no 'end_header' line"
 expect directory_model 1 render "$scratch/folder.obj"
 expect unwritable_output 1 render "$box" --output "$scratch/no/such/folder/out.png"
 expect output_is_directory 1 render "$box" --output "$scratch/folder.obj"

@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# render_cli.sh - `facet render` and `facet info` on real OBJ files: sizes, framing, projections, shadings, depth output.
+# render_cli.sh - `facet render` and `facet info` on real OBJ, PLY and STL files: sizes, framing, projections, shadings,
+# depth output.
 # Usage: render_cli.sh FACET SCRATCH. Prints one line per check and a closing "N passed, M failed".
 set -uo pipefail
 # shellcheck source=SCRIPTDIR/lib/common.bash
@@ -7,6 +8,8 @@ source "$(dirname "${BASH_SOURCE[0]}")/lib/common.bash"
 facet=$1
 scratch=$2
 models=/usr/share/assimp/models/OBJ
+ply_models=/usr/share/assimp/models/PLY
+stl_models=/usr/share/assimp/models/STL
 mkdir -p "$scratch"
 rm -f "$scratch"/*.png "$scratch"/*.npy
 
@@ -108,6 +111,10 @@ for model in WusonOBJ spider box cube_with_vertexcolors; do
 done
 run default_size image 1024 768 inside -- render "$models/box.obj"
 
+# The native PLY and STL readers, on real files: an ASCII PLY with normals and uvs, a binary STL.
+run model_ply image 320 240 inside -- render "$ply_models/Wuson.ply" --resolution 320,240
+run model_stl image 320 240 inside -- render "$stl_models/Spider_binary.stl" --resolution 320,240
+
 # Every projection and shading renders with the model in view.
 for p in perspective orthographic frustum oblique isometric dimetric trimetric front top side; do
   run "projection_$p" image 160 120 inside -- render "$models/WusonOBJ.obj" --projection "$p" --resolution 160,120
@@ -168,6 +175,12 @@ if info=$("$facet" info "$models/box.obj" 2>"$scratch/info.log") &&
   ok "info box.obj"
 else
   bad "info box.obj" "$(tr '\n' ';' <<<"${info:-}") $(head -n 2 "$scratch/info.log")"
+fi
+if info=$("$facet" info "$stl_models/Spider_ascii.stl" 2>"$scratch/info_stl.log") &&
+  grep -qx 'vertices: 722' <<<"$info" && grep -qx 'triangles: 1368' <<<"$info"; then
+  ok "info Spider_ascii.stl"
+else
+  bad "info Spider_ascii.stl" "$(tr '\n' ';' <<<"${info:-}") $(head -n 2 "$scratch/info_stl.log")"
 fi
 if info=$("$facet" info "$models/spider.obj" 2>/dev/null) && grep -qx 'materials: 5' <<<"$info" &&
   grep -qx 'triangles: [0-9]*' <<<"$info"; then

@@ -241,6 +241,20 @@ TEST_F(PlyLoader, QuadsAndConcavePolygonsAreTriangulatedKeepingTheirWinding) {
   }
 }
 
+TEST_F(PlyLoader, ChosenByContentWhenTheExtensionSaysNothing) {
+  EXPECT_EQ(load_model(write("no_extension", pyramid("binary_big_endian"))).triangle_count(), 6u);
+  std::string crlf = pyramid("ascii");
+  crlf.replace(0, 4, "ply\r\n");
+  EXPECT_EQ(load_model(write("crlf.model", crlf)).triangle_count(), 6u);
+  EXPECT_EQ(load_model(write("UPPER.PLY", pyramid("ascii"))).triangle_count(), 6u);
+  EXPECT_EQ(
+      load_model(write("model.txt", "# an OBJ by another name\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")).triangle_count(),
+      1u);
+  EXPECT_EQ(problem(write("model.xyz", "hello\n")), "unsupported model format '.xyz' (supported: .obj, .ply, .stl)");
+  EXPECT_EQ(problem(write("noext", "hello\n")),
+            "unsupported model format (no file extension; supported: .obj, .ply, .stl)");
+}
+
 TEST_F(PlyLoader, PointCloudsAndEmptyMeshesAreRefused) {
   PlyWriter w("binary_little_endian");
   w.header("element vertex 2").header("property float x").header("property float y").header("property float z");

@@ -181,6 +181,12 @@ TEST_F(StlLoader, ManyVerticesGrowTheWeldingTable) {
   EXPECT_EQ(triangles_of(m), strip);
 }
 
+TEST_F(StlLoader, ChosenByContentWhenTheExtensionSaysNothing) {
+  EXPECT_EQ(load_model(write("binary_no_extension", binary_stl(cube()))).vertex_count(), 8u);
+  EXPECT_EQ(load_model(write("ascii.model", ascii_stl(cube()))).vertex_count(), 8u);
+  EXPECT_EQ(load_model(write("UPPER.STL", ascii_stl(cube()))).vertex_count(), 8u);
+}
+
 TEST_F(StlLoader, BadFilesThrowInputErrorNamingThePath) {
   EXPECT_EQ(problem(write("empty_solid.stl", "solid x\nendsolid x\n")),
             "no triangles found (ASCII STL without facets)");
@@ -258,7 +264,7 @@ TEST_F(StlLoader, AssimpModelsLoadWithTheirKnownCounts) {
   const Known known[] = {
       {"Spider_binary.stl", 722, 1368},       {"Spider_ascii.stl", 722, 1368},         {"Wuson.stl", 2117, 3732},
       {"3DSMaxExport.STL", 1042, 2000},       {"sphereWithHole.stl", 146, 285},        {"triangle.stl", 3, 1},
-      {"triangle_with_two_solids.stl", 6, 2}, {"triangle_with_empty_solid.stl", 3, 1}};
+      {"triangle_with_two_solids.stl", 6, 2}, {"triangle_with_empty_solid.stl", 3, 1}, {"formatDetection", 3, 1}};
   for (const Known& k : known) {
     const Mesh m = load_model(kAssimpStl / k.name);
     EXPECT_EQ(m.vertex_count(), k.vertices) << k.name;
