@@ -1,4 +1,4 @@
-// bench_scenes.hpp - the `facet bench` scenes (SCENES.md 8.1-8.3) and camera matrices (section 5), in float32.
+// bench_scenes.hpp - the `facet bench` scenes (BENCHMARK.md 8.1-8.3) and camera matrices (section 5), in float32.
 #pragma once
 
 #include <cstdint>

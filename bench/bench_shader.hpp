@@ -1,4 +1,4 @@
-// bench_shader.hpp - the `facet bench` shader: SCENES.md section 7 (textured Lambert + Phong) as a facet Shader.
+// bench_shader.hpp - the `facet bench` shader: BENCHMARK.md section 7 (textured Lambert + Phong) as a facet Shader.
 #pragma once
 
 #include <cmath>
@@ -64,13 +64,15 @@ struct BenchShader {
   FACET_LANES_INLINE VertexOutLanes<Varyings> vertex_lanes(const VertexLanes<Vertex>& v) const {
     using simd::Float;
     const simd::Vec3 pos = v.get(&Vertex::pos), normal = v.get(&Vertex::normal);
-    const auto transform = [](const glm::mat4& m, int row, Float x, Float y, Float z, Float w) __attribute__((always_inline)) {
+    const auto transform = [](const glm::mat4& m, int row, Float x, Float y, Float z,
+                              Float w) __attribute__((always_inline)) {
       return (m[0][row] * x + m[1][row] * y) + (m[2][row] * z + m[3][row] * w);
     };
     const Float one = simd::splat(1.0f);
     Float world[4], clip[4];
     for (int row = 0; row < 4; ++row) world[row] = transform(world_from_object, row, pos.x, pos.y, pos.z, one);
-    for (int row = 0; row < 4; ++row) clip[row] = transform(clip_from_world, row, world[0], world[1], world[2], world[3]);
+    for (int row = 0; row < 4; ++row)
+      clip[row] = transform(clip_from_world, row, world[0], world[1], world[2], world[3]);
     const auto rotate = [&](int row) __attribute__((always_inline)) {
       return normal_matrix[0][row] * normal.x + normal_matrix[1][row] * normal.y + normal_matrix[2][row] * normal.z;
     };
@@ -126,7 +128,7 @@ struct BenchShader {
 };
 
 // No prefetch_lanes: issuing the footprint's lines for every lane cost more than it saved on this benchmark
-// (docs/PERFORMANCE.md: sphere:224, WusonOBJ and the quads 3-8% faster without, sphere:707 and 1414 2-3% slower).
+// (measured: sphere:224, WusonOBJ and the quads 3-8% faster without, sphere:707 and 1414 2-3% slower).
 static_assert(!PrefetchingLaneShader<BenchShader>);
 static_assert(LaneVertexShader<BenchShader>);
 

@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# perf.sh - reproduces docs/PERFORMANCE.md: facet against llvmpipe on every scene, thread scaling, peak memory, micro-benchmarks.
-# Usage: scripts/perf.sh [ROUNDS]   (default 3). Needs ../shared/peers (the Mesa reference renderer kit).
+# perf.sh - reproduces docs/PERFORMANCE.md: facet against llvmpipe per scene, thread scaling, memory, micro-benchmarks.
+# Usage: scripts/perf.sh [ROUNDS]   (default 3). Needs the reference renderer kit (glref, compare.sh) in
+# ../shared/peers, beside the checkout.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 rounds=${1:-3}

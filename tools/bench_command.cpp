@@ -1,4 +1,4 @@
-// bench_command.cpp - `facet bench`: parses the SCENES.md flags, renders the timed frames, prints the result line.
+// bench_command.cpp - `facet bench`: parses the BENCHMARK.md flags, renders the timed frames, prints the result line.
 #include "bench_command.hpp"
 
 #include <algorithm>
@@ -30,7 +30,7 @@ namespace facet::bench {
 namespace {
 
 const char* const kUsage = R"(usage: facet bench SCENE [options]
-The benchmark scenes of SCENES.md, drawn like the reference renderer glref.
+Times frames of a benchmark scene (docs/BENCHMARK.md), drawn like the OpenGL reference renderer glref.
 scene (exactly one):
   --sphere N          UV sphere, N slices x N stacks, 2N(N-1) triangles (3 <= N <= 4096)
   --quads K           K overlapping screen-filling quads, 2K triangles (1 <= K <= 4096)

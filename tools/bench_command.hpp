@@ -1,4 +1,4 @@
-// bench_command.hpp - `facet bench`: the end-to-end benchmark of /work/shared/peers/SCENES.md.
+// bench_command.hpp - `facet bench`: the end-to-end benchmark defined in docs/BENCHMARK.md.
 #pragma once
 
 namespace facet::bench {

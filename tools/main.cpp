@@ -34,7 +34,7 @@ int fail(std::string message, int status) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // `facet bench` follows SCENES.md's own argument rules (and exit statuses), so it bypasses CLI11 entirely.
+  // `facet bench` follows the argument rules (and exit statuses) of BENCHMARK.md section 1, so it bypasses CLI11.
   if (argc >= 2 && std::string_view(argv[1]) == "bench") return run_bench(argc - 1, argv + 1);
 
   CLI::App app{"facet: a CPU 3D rendering pipeline", "facet"};

@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -14,12 +15,16 @@
 
 namespace facet {
 
+class Texture;
+
 struct Material {
   std::string name;
   glm::vec4 diffuse{1, 1, 1, 1};  // OBJ: Kd and, as alpha, the dissolve d
   glm::vec3 specular{0};          // OBJ: Ks
   float shininess = 32;           // OBJ: Ns
   std::string diffuse_texture;    // absolute or relative-to-the-model path, empty if none
+  // A texture the loader decoded itself (glTF's embedded images); used instead of diffuse_texture when set.
+  std::shared_ptr<const Texture> diffuse_map{};
 };
 
 struct Mesh {
@@ -61,7 +66,7 @@ Bounds bounds(const Mesh& mesh);
 // are skipped. Edges are by index, so vertices duplicated at a seam give separate edges.
 std::vector<std::array<std::uint32_t, 2>> unique_edges(const Mesh& mesh);
 
-// Replaces mesh.normals with area-weighted smooth normals (SCENES.md 8.3): every triangle contributes its
+// Replaces mesh.normals with area-weighted smooth normals (BENCHMARK.md 8.3): every triangle contributes its
 // unnormalised face normal (p1 - p0) x (p2 - p0) once per corner to the group of vertices at exactly that corner's
 // position (equal coordinate values, so seams and split vertices get one shared normal); each vertex gets its
 // group's normalised sum, or (0, 0, 1) when the sum is zero.

@@ -160,7 +160,7 @@ class Texture {
 #endif
   }
 
-  // SCENES.md section 7: s = u*W - 0.5, i = floor(s), alpha = s - i, indices wrapped by a mask; thanks to the
+  // BENCHMARK.md section 7: s = u*W - 0.5, i = floor(s), alpha = s - i, indices wrapped by a mask; thanks to the
   // padding, texels i+1 and j+1 are the next ones in memory even at the last column and row.
   glm::vec4 bilinear_repeat_pow2(glm::vec2 uv) const {
     const Level& l = levels_[0];
@@ -299,7 +299,7 @@ inline simd::Color Texture::bilinear_repeat_pow2_lanes(const simd::Vec2& uv) con
 // flipped so that row 0 (the image's bottom row) is at v = 0, with mipmaps. Throws InputError naming the file.
 Texture load_texture(const std::filesystem::path& path);
 
-// The benchmark texture of SCENES.md section 7 (size x size, 128-texel cells, row 0 at v = 0), without mipmaps
+// The benchmark texture of BENCHMARK.md section 7 (size x size, 128-texel cells, row 0 at v = 0), without mipmaps
 // (the benchmark samples with GL_LINEAR). Throws std::invalid_argument unless 1 <= size <= kMaxTextureSize.
 Texture make_checker_texture(int size = 1024);
 

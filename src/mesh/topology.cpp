@@ -26,7 +26,7 @@ void add_edge(std::vector<Edge>& edges, std::uint32_t a, std::uint32_t b) {
   if (a != b) edges.push_back({std::min(a, b), std::max(a, b)});
 }
 
-// Positions compare by value, as SCENES.md's reference does, so -0 and +0 are one key.
+// Positions compare by value, as the benchmark's reference renderer does (BENCHMARK.md 8.3), so -0 and +0 are one key.
 struct PositionKey {
   std::uint32_t bits[3];
   explicit PositionKey(const glm::vec3& p) {

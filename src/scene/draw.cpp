@@ -8,7 +8,7 @@
 namespace facet::detail {
 namespace {
 
-// Meshes without materials get the reference look of SCENES.md section 7: white, specular 0.4, shininess 32.
+// Meshes without materials get the reference look of BENCHMARK.md section 7: white, specular 0.4, shininess 32.
 const Material& default_material() {
   static const Material material{"default", glm::vec4(1.0f), glm::vec3(0.4f), 32.0f, {}};
   return material;

@@ -45,7 +45,7 @@ glm::vec4 Texture::sample_nearest(int level, glm::vec2 uv, Wrap wrap_u, Wrap wra
   return unpack_bytes(texels_[l.offset + static_cast<std::size_t>(j) * l.stride + i]) / 255.0f;
 }
 
-// The same arithmetic as bilinear_repeat_pow2 (SCENES.md section 7), with general wrapping.
+// The same arithmetic as bilinear_repeat_pow2 (BENCHMARK.md section 7), with general wrapping.
 glm::vec4 Texture::sample_bilinear(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const {
   const Level& l = levels_[static_cast<std::size_t>(level)];
   const Split p = split_floor(uv.x * l.fwidth - 0.5f, uv.y * l.fheight - 0.5f);

@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# bench_cli.sh - end-to-end test of `facet bench` (SCENES.md): result line, images, scenes and argument errors.
+# bench_cli.sh - end-to-end test of `facet bench` (docs/BENCHMARK.md): result line, images, scenes and argument errors.
 # Usage: bash tests/e2e/bench_cli.sh <path-to-facet> <scratch-dir>
 set -u
 # shellcheck source=SCRIPTDIR/lib/common.bash
@@ -140,7 +140,8 @@ fi
 out=$("$facet" bench --sphere 4 --resolution 16,16 --frames 1 --warmup 0 2>/dev/null)
 if [ $? -eq 0 ] && [ -n "$out" ] && ! grep -q '^{' <<<"$out"; then ok "without --json: a text line"
 else bad "without --json: a text line" "'$out'"; fi
-if "$facet" bench --help | grep -q -- '--sphere'; then ok "--help lists the flags"; else bad "--help lists the flags"; fi
+if "$facet" bench --help | grep -q -- '--sphere'; then ok "--help lists the flags"
+else bad "--help lists the flags"; fi
 
 # --- bad arguments: status 2, one line on stderr, nothing written ---
 run_bad "unknown flag" --sphere 16 --frobnicate

@@ -254,7 +254,7 @@ TEST_F(ObjLoader, WusonHas3732Triangles) {
   const Mesh m = load_model(kAssimpObj / "WusonOBJ.obj");
   EXPECT_EQ(m.triangle_count(), 3732u);
   EXPECT_EQ(m.normals.size(), m.vertex_count());
-  EXPECT_EQ(m.uvs.size(), m.vertex_count());  // a single shared vt (SCENES.md 8.3: the renderer replaces it)
+  EXPECT_EQ(m.uvs.size(), m.vertex_count());  // a single shared vt (BENCHMARK.md 8.3: the renderer replaces it)
   EXPECT_TRUE(m.materials.empty());
   EXPECT_LT(m.vertex_count(), 3u * 3732u);  // indexed, not one vertex per corner
   EXPECT_FALSE(bounds(m).empty());

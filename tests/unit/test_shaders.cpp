@@ -262,7 +262,7 @@ TEST(StockShader, LineShaderDrawsItsColour) {
 }
 
 TEST(StockShader, LightTermsMatchTheReferenceFormula) {
-  // SCENES.md section 7 with N = (0, 0, 1), L = normalize(0.4, 0.7, 0.6) and the eye straight above the point.
+  // BENCHMARK.md section 7 with N = (0, 0, 1), L = normalize(0.4, 0.7, 0.6) and the eye straight above the point.
   const LightBlock lights = one_light({0.4f, 0.7f, 0.6f}, glm::vec3(0.15f));
   const glm::vec3 l = glm::normalize(glm::vec3(0.4f, 0.7f, 0.6f)), n(0, 0, 1), v(0, 0, 1);
   const glm::vec3 albedo(0.9f, 0.5f, 0.2f);

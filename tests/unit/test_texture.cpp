@@ -70,7 +70,7 @@ TEST(TextureSampling, BilinearFollowsTheGlFormula) {
   }
 }
 
-// The SCENES.md section 7 formula written out directly, for any size and repeat wrapping.
+// The BENCHMARK.md section 7 formula written out directly, for any size and repeat wrapping.
 glm::vec4 reference_bilinear_repeat(const Texture& t, glm::vec2 uv) {
   const int w = t.width(), h = t.height();
   const float s = uv.x * static_cast<float>(w) - 0.5f, tt = uv.y * static_cast<float>(h) - 0.5f;

@@ -62,7 +62,7 @@ struct ProjectedVertex {
   std::uint32_t outcode;
 };
 
-// The viewport transform of SCENES.md section 5, in this exact float order (the reference rasterizer repeats it).
+// The viewport transform of BENCHMARK.md section 5, in this exact float order (the reference rasterizer repeats it).
 inline glm::vec3 screen_from_clip(const glm::vec4& clip, float inv_w, int width, int height) {
   const glm::vec3 ndc = glm::vec3(clip) * inv_w;
   return {(ndc.x + 1.0f) * 0.5f * static_cast<float>(width), (1.0f - ndc.y) * 0.5f * static_cast<float>(height),

@@ -46,7 +46,7 @@ struct LightTerms {
   glm::vec3 specular{0.0f};
 };
 
-// n must be unit length; to_eye need not be. As in the reference shader (SCENES.md section 7) the specular term is
+// n must be unit length; to_eye need not be. As in the reference shader (BENCHMARK.md section 7) the specular term is
 // not gated by dot(N, L) and back-facing normals are not flipped, so back faces get the same formula as in OpenGL.
 // Point lights have no attenuation. with_specular = false skips the pow() where the specular colour is black.
 inline LightTerms light_terms(const LightBlock& lights, glm::vec3 n, glm::vec3 position, glm::vec3 to_eye,

@@ -6,7 +6,7 @@
 namespace facet {
 
 // With one white directional light, ambient 0.15, specular 0.4, shininess 32 and SpecularModel::phong this is the
-// reference fragment shader of SCENES.md section 7.
+// reference fragment shader of BENCHMARK.md section 7.
 struct SurfaceShader : LitUniforms {
   struct Varyings {
     glm::vec3 world;
