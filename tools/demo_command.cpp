@@ -1,4 +1,4 @@
-// demo_command.cpp - the seeds' demo scenes: seed 000's rotating cube and torus, seed 002's two cubes, seed 003's fan.
+// demo_command.cpp - `facet demo`: the rotating cube and torus, the two cubes and the pentagon fan of the tutorials.
 #include "demo_command.hpp"
 
 #include <cmath>
@@ -17,16 +17,18 @@ namespace facet::cli {
 namespace {
 
 constexpr double kPi = 3.14159265358979323846;
-constexpr glm::vec3 kWhite{1.0f};  // seeds 000 and 002 clear to white
+// White, as "Barebones 3D rendering with WebGL" and "Computer Graphics from Scratch" clear, so the demos match them.
+constexpr glm::vec3 kWhite{1.0f};
 
 struct DemoFrame {
   std::vector<Instance> instances;
   View view;
 };
 
-// Seed 000's own interleaved buffer (position, rgb; stride 24, offsets 0 and 12), read as WebGL would.
-Mesh seed_cube() {
-  const std::vector<float> data = seed_cube_vertex_data();
+// The interleaved buffer exactly as "Barebones 3D rendering with WebGL" gives it (position, rgb; stride 24, offsets
+// 0 and 12), read as WebGL would.
+Mesh interleaved_cube_mesh() {
+  const std::vector<float> data = colored_cube_vertex_data();
   VertexLayout layout;
   layout.stride = 6 * sizeof(float);
   layout.position_offset = 0;
@@ -35,10 +37,10 @@ Mesh seed_cube() {
   return mesh_from_interleaved(std::as_bytes(std::span(data)), layout);
 }
 
-// Seed 002's cube, converted from the book's left-handed, +Z-forward space to OpenGL's by negating z. The mirror
-// keeps each triangle's on-screen winding, so the book's clockwise front faces stay clockwise; reversing each
-// triangle makes them counter-clockwise, OpenGL's front.
-Mesh seed_two_cubes_mesh() {
+// The cube of "Computer Graphics from Scratch", converted from the book's left-handed, +Z-forward space to OpenGL's
+// by negating z. The mirror keeps each triangle's on-screen winding, so the book's clockwise front faces stay
+// clockwise; reversing each triangle makes them counter-clockwise, OpenGL's front.
+Mesh two_cubes_mesh() {
   Mesh mesh;
   mesh.positions = {{1, 1, -1}, {-1, 1, -1}, {-1, -1, -1}, {1, -1, -1}, {1, 1, 1}, {-1, 1, 1}, {-1, -1, 1}, {1, -1, 1}};
   const glm::vec4 red{1, 0, 0, 1}, green{0, 1, 0, 1}, blue{0, 0, 1, 1}, yellow{1, 1, 0, 1}, purple{1, 0, 1, 1},
@@ -54,9 +56,9 @@ Mesh seed_two_cubes_mesh() {
   return mesh;
 }
 
-// Seed 000: no camera; the model transform T(0,0,-9) Rx(a) Ry(a) S(2) with a = t_ms * pi / 4000, under the glFrustum
-// of near 0.1, far 100, top = near * tan(pi / 8) and right = top * aspect.
-DemoFrame seed_000_frame(const std::shared_ptr<const Mesh>& mesh, double seconds, float aspect) {
+// As in "Barebones 3D rendering with WebGL": no camera; the model transform T(0,0,-9) Rx(a) Ry(a) S(2) with
+// a = t_ms * pi / 4000, under the glFrustum of near 0.1, far 100, top = near * tan(pi / 8) and right = top * aspect.
+DemoFrame rotating_model_frame(const std::shared_ptr<const Mesh>& mesh, double seconds, float aspect) {
   const auto a = static_cast<float>(std::fmod(seconds * kPi / 4.0, 2.0 * kPi));
   DemoFrame frame;
   frame.instances.push_back({mesh, translate({0.0f, 0.0f, -9.0f}) * rotate_x(a) * rotate_y(a) * scale(2.0f)});
@@ -67,10 +69,11 @@ DemoFrame seed_000_frame(const std::shared_ptr<const Mesh>& mesh, double seconds
   return frame;
 }
 
-// Seed 002: camera at (-3, 1, 2) turned -30 degrees about Y; instances at (-1.5, 0, 7) scaled 0.75 and at
-// (1.25, 2.5, 7.5) turned 195 degrees; a 1 x 1 viewport at distance 1 (vertical view angle 2 atan(1/2)), near
-// plane at 1. Negating z conjugates each of the book's Y rotations into OpenGL's rotate_y of the same angle.
-DemoFrame seed_002_frame(const std::shared_ptr<const Mesh>& mesh, float aspect) {
+// As in "Computer Graphics from Scratch" (hidden surface removal): camera at (-3, 1, 2) turned -30 degrees about
+// Y; instances at (-1.5, 0, 7) scaled 0.75 and at (1.25, 2.5, 7.5) turned 195 degrees; a 1 x 1 viewport at
+// distance 1 (vertical view angle 2 atan(1/2)), near plane at 1. Negating z conjugates each of the book's Y
+// rotations into OpenGL's rotate_y of the same angle.
+DemoFrame two_cubes_frame(const std::shared_ptr<const Mesh>& mesh, float aspect) {
   DemoFrame frame;
   frame.instances.push_back({mesh, translate({-1.5f, 0.0f, -7.0f}) * scale(0.75f)});
   frame.instances.push_back({mesh, translate({1.25f, 2.5f, -7.5f}) * rotate_y(glm::radians(195.0f))});
@@ -82,9 +85,10 @@ DemoFrame seed_002_frame(const std::shared_ptr<const Mesh>& mesh, float aspect) 
   return frame;
 }
 
-// Seed 003's pentagon fan, face on under an orthographic window fitted to its unit circumcircle. It turns a fifth
-// of a revolution per second about its normal, so whole seconds show it upright.
-DemoFrame seed_003_frame(const std::shared_ptr<const Mesh>& mesh, double seconds, float aspect) {
+// The pentagon fan of the CIS367 lecture notes "Building models / Viewing", face on under an orthographic window
+// fitted to its unit circumcircle. It turns a fifth of a revolution per second about its normal, so whole seconds
+// show it upright.
+DemoFrame turning_pentagon_frame(const std::shared_ptr<const Mesh>& mesh, double seconds, float aspect) {
   const auto a = static_cast<float>(std::fmod(seconds * 0.4 * kPi, 2.0 * kPi));
   DemoFrame frame;
   frame.instances.push_back({mesh, rotate_z(a)});
@@ -131,8 +135,9 @@ bool expand_frame_pattern(const std::string& pattern, int frame, std::string& ou
 }
 
 CLI::App* add_demo_command(CLI::App& app, DemoArgs& args) {
-  CLI::App* demo = app.add_subcommand("demo", "Render a demo scene from the source material");
-  demo->add_option("scene", args.name, "cube | torus (seed 000), two-cubes (seed 002), pentagon (seed 003)")
+  CLI::App* demo = app.add_subcommand("demo", "Render a built-in demo scene, one frame or an animation");
+  demo->add_option("scene", args.name,
+                   "cube | torus (spinning), two-cubes (two cubes seen at an angle), pentagon (a turning triangle fan)")
       ->required()
       ->check(CLI::IsMember({"cube", "torus", "two-cubes", "pentagon"}))
       ->type_name("SCENE");
@@ -156,14 +161,14 @@ int run_demo(const DemoArgs& args) {
     throw UsageError("--output-depth: --frames needs {frame} or {frame:04} in the file name");
 
   Mesh model;
-  Shading shading = Shading::unlit;  // the seeds draw flat vertex and face colours
+  Shading shading = Shading::unlit;  // the tutorials these scenes come from draw flat vertex and face colours
   if (args.name == "cube") {
-    model = seed_cube();
+    model = interleaved_cube_mesh();
   } else if (args.name == "torus") {
     model = make_torus(1.0f, 0.4f, 64, 32);
     shading = Shading::automatic;  // a one-colour tube only reads as round when lit
   } else if (args.name == "two-cubes") {
-    model = seed_two_cubes_mesh();
+    model = two_cubes_mesh();
   } else {
     model = make_pentagon();
   }
@@ -183,11 +188,11 @@ int run_demo(const DemoArgs& args) {
     const double seconds = args.time + i / 30.0;
     DemoFrame frame;
     if (args.name == "cube" || args.name == "torus")
-      frame = seed_000_frame(mesh, seconds, aspect);
+      frame = rotating_model_frame(mesh, seconds, aspect);
     else if (args.name == "two-cubes")
-      frame = seed_002_frame(mesh, aspect);
+      frame = two_cubes_frame(mesh, aspect);
     else
-      frame = seed_003_frame(mesh, seconds, aspect);
+      frame = turning_pentagon_frame(mesh, seconds, aspect);
     Scene scene;
     for (Instance& instance : frame.instances) scene.add(std::move(instance));
     const SceneOptions options = scene_options(look, frame.view.view_from_world, shading, glm::vec3(clear));

@@ -1,4 +1,4 @@
-// demo_command.hpp - `facet demo cube|torus|two-cubes|pentagon`: the seeds' demo scenes, one frame or an animation.
+// demo_command.hpp - `facet demo cube|torus|two-cubes|pentagon`: built-in demo scenes, one frame or an animation.
 #pragma once
 
 #include <string>
@@ -13,7 +13,7 @@ struct DemoArgs {
   std::string name;
   LookArgs look;
   OutputArgs output;
-  double time = 1.0;  // seconds into the animation; at 1 s the seed cube shows three faces
+  double time = 1.0;  // seconds into the animation; at 1 s the rotating cube shows three faces
   int frames = 1;
 };
 

@@ -21,12 +21,12 @@ glm::mat4 frustum(float left, float right, float bottom, float top, float near, 
 // near < far. near may be zero or negative (planes behind the eye), as in OpenGL.
 glm::mat4 ortho(float left, float right, float bottom, float top, float near, float far);
 
-// Oblique parallel projection = ortho(l, r, b, t, n, f) * H, H the xy shear of seed 003 (CIS367, "Oblique
-// projection"): H(theta, phi) = [1 0 -cot(theta) 0; 0 1 -cot(phi) 0; 0 0 1 0; 0 0 0 1] with
+// Oblique parallel projection = ortho(l, r, b, t, n, f) * H, H the xy shear of the CIS367 lecture notes "Building
+// models / Viewing" ("Oblique projection"): H(theta, phi) = [1 0 -cot(theta) 0; 0 1 -cot(phi) 0; 0 0 1 0; 0 0 0 1] with
 // cot(theta) = depth_scale * cos(angle), cot(phi) = depth_scale * sin(angle). A point one unit further from the eye
 // is drawn depth_scale units further along the receding direction at `angle` from +X (counter-clockwise, e.g.
 // pi/4 for the usual up-and-right). depth_scale 1 = cavalier, 0.5 = cabinet, 0 = plain orthographic.
-// The shear leaves the plane z = -pivot_distance in place; the default 0 is the seed's matrix exactly (the
+// The shear leaves the plane z = -pivot_distance in place; the default 0 is the lecture's matrix exactly (the
 // eye plane is fixed, so objects at distance d move by depth_scale * d). Pass the distance of the object of
 // interest to keep it where ortho alone would put it.
 glm::mat4 oblique(float angle_radians, float depth_scale, float left, float right, float bottom, float top,
@@ -35,8 +35,8 @@ glm::mat4 oblique(float angle_radians, float depth_scale, float left, float righ
 // Axonometric presets: VIEW rotations (eye space from world space, no translation) to be placed between a
 // look-at/translation and an ortho projection. World +Y stays vertical on screen in all three.
 //   isometric: rotate_x(asin(tan 30deg) = 35.2644deg) * rotate_y(-45deg). The eye looks from direction (1,1,1)
-//              (same rotation as seed 003's lookAt((1,1,1), (0,0,0), (0,1,0))); all three axes are foreshortened
-//              equally (sqrt(2/3) = 0.8165) and drawn 120 degrees apart, X and Z at -30 / -150 degrees.
+//              (same rotation as the CIS367 lecture's lookAt((1,1,1), (0,0,0), (0,1,0))); all three axes are
+//              foreshortened equally (sqrt(2/3) = 0.8165) and drawn 120 degrees apart, X and Z at -30 / -150 degrees.
 //   dimetric:  rotate_x(30deg) * rotate_y(-45deg), the "2:1" dimetric of pixel art and games: X and Z are
 //              foreshortened equally (0.7906), Y less (0.8660); X and Z are drawn at atan(1/2) = 26.565 degrees
 //              below horizontal, i.e. two pixels across per pixel down.

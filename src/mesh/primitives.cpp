@@ -1,4 +1,4 @@
-// primitives.cpp - procedural meshes: the seed 000 cube, the colour-swept torus, the SCENES.md UV sphere, a pentagon.
+// primitives.cpp - procedural meshes: the coloured WebGL cube, a colour-swept torus, the benchmark sphere, a pentagon.
 #include "facet/primitives.hpp"
 
 #include <cmath>
@@ -13,11 +13,12 @@ namespace facet {
 namespace {
 
 struct CubeFace {
-  glm::vec3 corners[4];  // c0 c1 c2 c3, counter-clockwise from outside, in the seed's order
+  glm::vec3 corners[4];  // c0 c1 c2 c3, counter-clockwise from outside, in the post's order
   glm::vec3 color, normal, u_axis, v_axis;
 };
 
-// The seed's six faces in its order. The seed labels both y faces "BOTTOM"; the first one is really at +y.
+// The six faces in the order of "Barebones 3D rendering with WebGL", which labels both y faces "BOTTOM"; the first
+// one is really at +y.
 constexpr CubeFace kCubeFaces[6] = {
     {{{-1, -1, 1}, {1, -1, 1}, {1, 1, 1}, {-1, 1, 1}}, {1, 0, 0}, {0, 0, 1}, {1, 0, 0}, {0, 1, 0}},
     {{{1, -1, -1}, {1, 1, -1}, {1, 1, 1}, {1, -1, 1}}, {0, 1, 0}, {1, 0, 0}, {0, 0, -1}, {0, 1, 0}},
@@ -59,8 +60,8 @@ Mesh make_cube() {
   return mesh;
 }
 
-std::vector<float> seed_cube_vertex_data() {
-  // Verbatim from seed 000's vertexData: pos = x, y, z, color = r, g, b.
+std::vector<float> colored_cube_vertex_data() {
+  // Verbatim from the vertexData of "Barebones 3D rendering with WebGL": pos = x, y, z, color = r, g, b.
   // clang-format off
   return {
       // FRONT
@@ -75,7 +76,7 @@ std::vector<float> seed_cube_vertex_data() {
       // LEFT
       -1, -1, -1, 1, 1, 0,  -1, -1, 1, 1, 1, 0,   -1, 1, 1, 1, 1, 0,
       -1, -1, -1, 1, 1, 0,  -1, 1, 1, 1, 1, 0,    -1, 1, -1, 1, 1, 0,
-      // "BOTTOM" in the seed, at y = +1
+      // "BOTTOM" in the post, at y = +1
       1, 1, -1, 1, 0, 1,    -1, 1, -1, 1, 0, 1,   -1, 1, 1, 1, 0, 1,
       1, 1, -1, 1, 0, 1,    -1, 1, 1, 1, 0, 1,    1, 1, 1, 1, 0, 1,
       // BOTTOM
@@ -120,7 +121,7 @@ Mesh make_torus(float major_radius, float minor_radius, int major_segments, int 
 Mesh make_uv_sphere(int stacks, int slices, glm::vec2 uv_repeat) {
   require(stacks >= 2 && slices >= 3, "make_uv_sphere: need stacks >= 2 and slices >= 3");
   require_grid(stacks, slices, "make_uv_sphere");
-  // Float arithmetic in exactly the reference's order (SCENES.md 8.1), so sphere:N matches it bit for bit.
+  // Float arithmetic in exactly the reference's order (BENCHMARK.md 8.1), so sphere:N matches it bit for bit.
   const float pi = std::numbers::pi_v<float>;
   Mesh mesh;
   for (int i = 0; i <= stacks; ++i) {

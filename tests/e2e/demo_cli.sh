@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# demo_cli.sh - `facet demo`: every seed demo renders, --time animates, --frames writes numbered PNGs.
+# demo_cli.sh - `facet demo`: every demo scene renders, --time animates, --frames writes numbered PNGs.
 # Usage: demo_cli.sh FACET SCRATCH. Prints one line per check and a closing "N passed, M failed".
 set -uo pipefail
 # shellcheck source=SCRIPTDIR/lib/common.bash
@@ -70,15 +70,16 @@ for demo in cube torus two-cubes pentagon; do
 done
 render default_size cube && verify default_size image "$scratch/default_size.png" 800 800
 
-# Seed 000's cube at t = 0 shows only its front face, red, filling the middle of the view.
+# The rotating cube at t = 0 shows only its front face, red, filling the middle of the view.
 render cube_t0 cube --time 0 --resolution 100,100 && verify cube_t0 pixel "$scratch/cube_t0.png" 50 50 255 0 0
-render cube_t2 cube --time 2 --resolution 200,150 && verify cube_animates differ "$scratch/cube.png" "$scratch/cube_t2.png"
+render cube_t2 cube --time 2 --resolution 200,150 &&
+  verify cube_animates differ "$scratch/cube.png" "$scratch/cube_t2.png"
 render torus_t2 torus --time 2 --resolution 200,150 &&
   verify torus_animates differ "$scratch/torus.png" "$scratch/torus_t2.png"
 # The pentagon is upright at whole seconds: apex at the top (also checks the image is not upside down).
 verify pentagon_upright apex-up "$scratch/pentagon.png"
 
-# Drawing modes the seed 002 demo toggles.
+# Drawing modes the "Computer Graphics from Scratch" demo toggles.
 for flags in "--painter" "--no-depth-test --culling none" "--edges" "--wireframe" "--shading flat" \
   "--background-color 0,0,0 --color 0.2,0.6,1"; do
   name=two_cubes_$(tr -c 'a-z0-9\n' '_' <<<"${flags//--/}")

@@ -13,8 +13,8 @@
 namespace facet::test {
 namespace {
 
-// Two triangles that pierce each other (seed 002's case with no valid painter's order): red leans away to the
-// right, green leans away to the left, so each is in front of the other on one side.
+// Two triangles that pierce each other (the case "Computer Graphics from Scratch" gives of no valid painter's
+// order): red leans away to the right, green leans away to the left, so each is in front of the other on one side.
 ClipMesh interpenetrating(const glm::mat4& clip_from_world) {
   ClipMesh m;
   const glm::vec3 red[3] = {{-1.0f, -0.8f, -2.0f}, {1.0f, -0.8f, -4.0f}, {0.0f, 0.9f, -3.0f}};

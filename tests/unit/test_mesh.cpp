@@ -49,7 +49,8 @@ double signed_volume(const Mesh& m) {
   return v;
 }
 
-// The lecture's cube (seed 003): 8 vertices and 6 quads listed so the normals point outwards.
+// The cube of the CIS367 lecture notes "Building models / Viewing": 8 vertices and 6 quads listed so the normals
+// point outwards.
 PolygonMesh lecture_cube() {
   PolygonMesh p;
   p.positions = {{-0.5f, -0.5f, 0.5f},  {-0.5f, 0.5f, 0.5f},  {0.5f, 0.5f, 0.5f},  {0.5f, -0.5f, 0.5f},
@@ -377,8 +378,8 @@ std::vector<std::byte> to_bytes(const std::vector<float>& f, std::size_t lead = 
   return b;
 }
 
-TEST(MeshInterleaved, SeedCubeRoundTrip) {
-  const std::vector<float> data = seed_cube_vertex_data();
+TEST(MeshInterleaved, ColoredCubeRoundTrip) {
+  const std::vector<float> data = colored_cube_vertex_data();
   ASSERT_EQ(data.size(), 36u * 6u);
   // One leading byte makes every float unaligned.
   const std::vector<std::byte> bytes = to_bytes(data, 1);
@@ -431,7 +432,7 @@ TEST(MeshInterleaved, IndexedWithAllAttributes) {
 }
 
 TEST(MeshInterleaved, BadBuffersThrow) {
-  const std::vector<std::byte> cube = to_bytes(seed_cube_vertex_data());
+  const std::vector<std::byte> cube = to_bytes(colored_cube_vertex_data());
   VertexLayout ok;
   ok.stride = 24;
   ok.color_offset = 12;
@@ -457,7 +458,7 @@ TEST(MeshInterleaved, BadBuffersThrow) {
   err(std::span<const std::byte>(), ok);                                  // empty
   EXPECT_NE(err(cube, ok, {0, 1, 36}).find("is 36"), std::string::npos);  // index out of range
   err(cube, ok, {0, 1});                                                  // not a multiple of 3
-  std::vector<float> nan_data = seed_cube_vertex_data();
+  std::vector<float> nan_data = colored_cube_vertex_data();
   nan_data[6 * 5 + 1] = std::nanf("");
   EXPECT_NE(err(to_bytes(nan_data), ok).find("non-finite vertex position (vertex 5)"), std::string::npos);
 }

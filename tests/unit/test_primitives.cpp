@@ -58,26 +58,27 @@ int boundary_edges(const Mesh& m) {
   return boundary;
 }
 
-TEST(PrimitiveCube, MatchesTheSeedCube) {
+TEST(PrimitiveCube, MatchesTheColoredCubeVertexData) {
   const Mesh c = make_cube();
   EXPECT_EQ(c.vertex_count(), 24u);
   EXPECT_EQ(c.triangle_count(), 12u);
   ASSERT_EQ(c.face_colors.size(), 12u);
-  const glm::vec4 seed_colors[6] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1}, {1, 1, 0, 1}, {1, 0, 1, 1}, {0, 1, 1, 1}};
-  const glm::vec3 seed_normals[6] = {{0, 0, 1}, {1, 0, 0}, {0, 0, -1}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
+  const glm::vec4 expected_colors[6] = {{1, 0, 0, 1}, {0, 1, 0, 1}, {0, 0, 1, 1},
+                                        {1, 1, 0, 1}, {1, 0, 1, 1}, {0, 1, 1, 1}};
+  const glm::vec3 expected_normals[6] = {{0, 0, 1}, {1, 0, 0}, {0, 0, -1}, {-1, 0, 0}, {0, 1, 0}, {0, -1, 0}};
   for (std::size_t t = 0; t < 12; ++t) {
-    EXPECT_EQ(c.face_colors[t], seed_colors[t / 2]) << "triangle " << t;
-    EXPECT_EQ(glm::normalize(face_normal(c, t)), seed_normals[t / 2]) << "triangle " << t;
+    EXPECT_EQ(c.face_colors[t], expected_colors[t / 2]) << "triangle " << t;
+    EXPECT_EQ(glm::normalize(face_normal(c, t)), expected_normals[t / 2]) << "triangle " << t;
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t v = c.indices[3 * t + static_cast<std::size_t>(k)];
-      EXPECT_EQ(c.colors[v], seed_colors[t / 2]);
-      EXPECT_EQ(c.normals[v], seed_normals[t / 2]);
+      EXPECT_EQ(c.colors[v], expected_colors[t / 2]);
+      EXPECT_EQ(c.normals[v], expected_normals[t / 2]);
     }
   }
-  // Same triangles, corner for corner, as the seed's interleaved buffer.
-  const std::vector<float> seed = seed_cube_vertex_data();
+  // Same triangles, corner for corner, as the post's interleaved buffer.
+  const std::vector<float> buffer = colored_cube_vertex_data();
   for (std::size_t k = 0; k < 36; ++k)
-    EXPECT_EQ(c.positions[c.indices[k]], glm::vec3(seed[6 * k], seed[6 * k + 1], seed[6 * k + 2])) << k;
+    EXPECT_EQ(c.positions[c.indices[k]], glm::vec3(buffer[6 * k], buffer[6 * k + 1], buffer[6 * k + 2])) << k;
   EXPECT_EQ(boundary_edges(c), 0);
   EXPECT_NEAR(signed_volume(c), 8.0, 1e-9);
   const Bounds b = bounds(c);
@@ -147,14 +148,14 @@ TEST(PrimitiveTorus, ColourSweepsFromBlueToRed) {
   EXPECT_NEAR(b.max.x, 2.5f, 1e-6f);
 }
 
-TEST(PrimitiveSphere, MatchesScenesConstruction) {
+TEST(PrimitiveSphere, MatchesTheBenchmarkConstruction) {
   const int n = 16;
   const Mesh s = make_uv_sphere(n, n);
   EXPECT_EQ(s.vertex_count(), static_cast<std::size_t>((n + 1) * (n + 1)));
   EXPECT_EQ(s.triangle_count(), static_cast<std::size_t>(2 * n * (n - 1)));
   EXPECT_EQ(s.normals, s.positions);
   for (const glm::vec3& p : s.positions) EXPECT_NEAR(glm::length(p), 1.0f, 1e-6f);
-  // Vertex i*(n+1)+j, float formulas of SCENES.md 8.1.
+  // Vertex i*(n+1)+j, float formulas of BENCHMARK.md 8.1.
   const float pi = 3.14159265358979f;
   const int i = 5, j = 7;
   const float theta = pi * i / n, phi = 2.f * pi * j / n;
@@ -175,7 +176,7 @@ TEST(PrimitiveSphere, MatchesScenesConstruction) {
 }
 
 TEST(PrimitiveSphere, BenchmarkSizesAndOtherShapes) {
-  EXPECT_EQ(make_uv_sphere(224, 224).triangle_count(), 99904u);  // SCENES.md: sphere:224
+  EXPECT_EQ(make_uv_sphere(224, 224).triangle_count(), 99904u);  // BENCHMARK.md 8.1: sphere:224
   const Mesh s = make_uv_sphere(3, 8, {1, 1});
   EXPECT_EQ(s.triangle_count(), 2u * 8u * 2u);
   EXPECT_EQ(boundary_edges(s), 0);

@@ -1,4 +1,4 @@
-// test_projection.cpp - projections against the matrices written out in the seeds, NDC mapping, oblique and presets.
+// test_projection.cpp - projections against the matrices the tutorials write out, NDC mapping, oblique and presets.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -20,7 +20,7 @@ constexpr float kPi = std::numbers::pi_v<float>;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// 16 numbers column by column: how seeds 000 and 001 (WebGL Float32Arrays) write matrices.
+// 16 numbers column by column: how the WebGL tutorials write matrices (as Float32Arrays).
 glm::mat4 from_columns(const float (&v)[16]) {
   glm::mat4 m;
   for (int c = 0; c < 4; ++c)
@@ -28,7 +28,7 @@ glm::mat4 from_columns(const float (&v)[16]) {
   return m;
 }
 
-// 16 numbers row by row: how seed 003 (the CIS367 slides) writes matrices in mathematical notation.
+// 16 numbers row by row: how the CIS367 lecture slides write matrices in mathematical notation.
 glm::mat4 from_rows(const float (&v)[16]) {
   glm::mat4 m;
   for (int r = 0; r < 4; ++r)
@@ -44,19 +44,19 @@ glm::vec3 ndc(const glm::mat4& clip_from_eye, glm::vec3 eye_point) {
   return glm::vec3(c) / c.w;
 }
 
-// Seed 000 ("Barebones 3D rendering with WebGL"), copied from its JavaScript:
+// "Barebones 3D rendering with WebGL", copied from its JavaScript:
 //   f = 100; n = 0.1; t = n * tan(PI / 8); b = -t; r = t * width / height; l = -r;
 //   [2n/(r-l), 0, 0, 0,  0, 2n/(t-b), 0, 0,  (r+l)/(r-l), (t+b)/(t-b), -(f+n)/(f-n), -1,  0, 0, -2fn/(f-n), 0]
-TEST(ProjectionTest, Seed000FrustumStylePerspective) {
+TEST(ProjectionTest, BarebonesWebglFrustumStylePerspective) {
   for (float aspect : {200.0f / 200.0f, 640.0f / 480.0f, 300.0f / 700.0f}) {
     const float f = 100, n = 0.1f, t = n * std::tan(kPi / 8), b = -t, r = t * aspect, l = -r;
-    const glm::mat4 seed = from_columns({2 * n / (r - l), 0, 0, 0,                              //
-                                         0, 2 * n / (t - b), 0, 0,                              //
-                                         (r + l) / (r - l), (t + b) / (t - b), -(f + n) / (f - n), -1,  //
-                                         0, 0, -2 * f * n / (f - n), 0});
-    expect_mat_near(frustum(l, r, b, t, n, f), seed);
+    const glm::mat4 expected = from_columns({2 * n / (r - l), 0, 0, 0,                              //
+                                             0, 2 * n / (t - b), 0, 0,                              //
+                                             (r + l) / (r - l), (t + b) / (t - b), -(f + n) / (f - n), -1,  //
+                                             0, 0, -2 * f * n / (f - n), 0});
+    expect_mat_near(frustum(l, r, b, t, n, f), expected);
     // t = n tan(pi/8) is a 45 degree vertical field of view.
-    expect_mat_near(perspective(kPi / 4, aspect, n, f), seed);
+    expect_mat_near(perspective(kPi / 4, aspect, n, f), expected);
   }
   // The demo's 200x200 canvas, worked out by hand: 1/tan(22.5deg) = 1 + sqrt2, -100.1/99.9, -20/99.9.
   const glm::mat4 p = perspective(kPi / 4, 1.0f, 0.1f, 100.0f);
@@ -64,7 +64,7 @@ TEST(ProjectionTest, Seed000FrustumStylePerspective) {
                                    0, 0, -0.20020020f, 0}));
 }
 
-// Seed 001 (MDN "WebGL model view projection"), MDN.perspectiveMatrix copied from its JavaScript:
+// MDN's "WebGL model view projection": MDN.perspectiveMatrix copied from its JavaScript:
 //   f = 1 / tan(fov / 2); rangeInv = 1 / (near - far);
 //   [f/aspect, 0, 0, 0,  0, f, 0, 0,  0, 0, (near+far)*rangeInv, -1,  0, 0, near*far*rangeInv*2, 0]
 glm::mat4 mdn_perspective(float fov, float aspect, float near, float far) {
@@ -73,8 +73,8 @@ glm::mat4 mdn_perspective(float fov, float aspect, float near, float far) {
                        0, 0, near * far * range_inv * 2, 0});
 }
 
-// Seed 001 names MDN.orthographicMatrix(left, right, bottom, top, near, far) as the drop-in replacement in the same
-// demo without printing it; this is its body from the MDN shared code (the same as gl-matrix's mat4.ortho):
+// The same article names MDN.orthographicMatrix(left, right, bottom, top, near, far) as the drop-in replacement in
+// the same demo without printing it; this is its body from the MDN shared code (the same as gl-matrix's mat4.ortho):
 //   lr = 1/(left-right); bt = 1/(bottom-top); nf = 1/(near-far);
 //   [-2lr, 0, 0, 0,  0, -2bt, 0, 0,  0, 0, 2nf, 0,  (left+right)lr, (top+bottom)bt, (far+near)nf, 1]
 glm::mat4 mdn_orthographic(float left, float right, float bottom, float top, float near, float far) {
@@ -83,7 +83,7 @@ glm::mat4 mdn_orthographic(float left, float right, float bottom, float top, flo
                        (left + right) * lr, (top + bottom) * bt, (far + near) * nf, 1});
 }
 
-TEST(ProjectionTest, Seed001PerspectiveAndOrthographic) {
+TEST(ProjectionTest, MdnPerspectiveAndOrthographic) {
   // The demo's computePerspectiveMatrix: fov PI * 0.5, window aspect, near 1, far 50.
   for (float aspect : {1.0f, 1280.0f / 720.0f, 0.5f})
     expect_mat_near(perspective(kPi * 0.5f, aspect, 1.0f, 50.0f), mdn_perspective(kPi * 0.5f, aspect, 1.0f, 50.0f));
@@ -102,23 +102,23 @@ TEST(ProjectionTest, Seed001PerspectiveAndOrthographic) {
   expect_mat_near(ortho(1, 5, -4, -1, -2, 9), mdn_orthographic(1, 5, -4, -1, -2, 9));
 }
 
-// Seed 003 (CIS367 "Viewing") writes the ortho matrix as P = S T with
+// The CIS367 lecture notes "Building models / Viewing" write the ortho matrix as P = S T with
 //   T(-(left+right)/2, -(bottom+top)/2, (near+far)/2) and S(2/(right-left), 2/(top-bottom), 2/(near-far))
 // and spells P out as rows
 //   [2/(r-l), 0, 0, -(r+l)/(r-l);  0, 2/(t-b), 0, -(t+b)/(t-b);  0, 0, 2/(n-f), -(f+n)/(f-n);  0, 0, 0, 1].
 // The slides have three typos that contradict their own S T derivation: S's first factor is printed 2/(left+right),
 // P's [0][3] is printed -(right-left)/(right-left) and P's [2][3] loses its minus sign; the forms here are the ones
 // S * T actually multiplies out to (and the ones glOrtho documents).
-TEST(ProjectionTest, Seed003OrthoIsScaleTimesTranslate) {
+TEST(ProjectionTest, LectureOrthoIsScaleTimesTranslate) {
   const float l = -1, r = 3, b = -2, t = 2, n = 1, f = 10;
   const glm::mat4 st =
       scale({2 / (r - l), 2 / (t - b), 2 / (n - f)}) * translate({-(l + r) / 2, -(b + t) / 2, (n + f) / 2});
-  const glm::mat4 seed = from_rows({2 / (r - l), 0, 0, -(r + l) / (r - l),  //
-                                    0, 2 / (t - b), 0, -(t + b) / (t - b),  //
-                                    0, 0, 2 / (n - f), -(f + n) / (f - n),  //
-                                    0, 0, 0, 1});
+  const glm::mat4 expected = from_rows({2 / (r - l), 0, 0, -(r + l) / (r - l),  //
+                                        0, 2 / (t - b), 0, -(t + b) / (t - b),  //
+                                        0, 0, 2 / (n - f), -(f + n) / (f - n),  //
+                                        0, 0, 0, 1});
   expect_mat_near(ortho(l, r, b, t, n, f), st);
-  expect_mat_near(ortho(l, r, b, t, n, f), seed);
+  expect_mat_near(ortho(l, r, b, t, n, f), expected);
   // By hand: 2/4, 2/4, -2/9; translations -(3-1)/4 = -0.5, 0, -11/9.
   expect_mat_near(ortho(l, r, b, t, n, f), from_rows({0.5f, 0, 0, -0.5f, 0, 0.5f, 0, 0, 0, 0, -2.0f / 9, -11.0f / 9,  //
                                                       0, 0, 0, 1}));
@@ -130,7 +130,7 @@ TEST(ProjectionTest, Seed003OrthoIsScaleTimesTranslate) {
   expect_vec_near(ndc(p, {r, b, -f}), {1, -1, 1});
 }
 
-// Seed 003, "Perspective matrices" and "frustum": the normalised perspective
+// The CIS367 lecture, "Perspective matrices" and "frustum": the normalised perspective
 //   N = [1 0 0 0; 0 1 0 0; 0 0 alpha beta; 0 0 -1 0], beta = 2 near far / (near - far),
 // sends the near plane to z = -1 and the far plane to +1 only with alpha = -(near + far)/(far - near): the slide
 // prints alpha without its minus sign (then near would land at -(n + 3f)/(f - n)). glFrustum is P = N S H: H
@@ -138,7 +138,7 @@ TEST(ProjectionTest, Seed003OrthoIsScaleTimesTranslate) {
 //   frustum = [2n/(r-l), 0, (r+l)/(r-l), 0;  0, 2n/(t-b), (t+b)/(t-b), 0;
 //              0, 0, -(f+n)/(f-n), -2fn/(f-n);  0, 0, -1, 0]
 // (the slide prints [0][2] as (right-left)/(right-left), a typo for (right+left)/(right-left)).
-TEST(ProjectionTest, Seed003FrustumIsNormalisationTimesScaleTimesShear) {
+TEST(ProjectionTest, LectureFrustumIsNormalisationTimesScaleTimesShear) {
   const float l = -0.3f, r = 0.9f, b = -0.2f, t = 0.6f, n = 0.5f, f = 20;
   const float alpha = -(n + f) / (f - n), beta = 2 * n * f / (n - f);
   const glm::mat4 nn = from_rows({1, 0, 0, 0, 0, 1, 0, 0, 0, 0, alpha, beta, 0, 0, -1, 0});
@@ -146,11 +146,11 @@ TEST(ProjectionTest, Seed003FrustumIsNormalisationTimesScaleTimesShear) {
   glm::mat4 h(1.0f);
   h[2][0] = (l + r) / (2 * n);
   h[2][1] = (b + t) / (2 * n);
-  const glm::mat4 seed = from_rows({2 * n / (r - l), 0, (r + l) / (r - l), 0,  //
-                                    0, 2 * n / (t - b), (t + b) / (t - b), 0,  //
-                                    0, 0, -(f + n) / (f - n), -2 * f * n / (f - n),  //
-                                    0, 0, -1, 0});
-  expect_mat_near(frustum(l, r, b, t, n, f), seed);
+  const glm::mat4 expected = from_rows({2 * n / (r - l), 0, (r + l) / (r - l), 0,  //
+                                        0, 2 * n / (t - b), (t + b) / (t - b), 0,  //
+                                        0, 0, -(f + n) / (f - n), -2 * f * n / (f - n),  //
+                                        0, 0, -1, 0});
+  expect_mat_near(frustum(l, r, b, t, n, f), expected);
   expect_mat_near(frustum(l, r, b, t, n, f), nn * s * h);
   // By hand, frustum(-1, 3, -2, 2, 1, 10): 2/4, 2/4, (3-1)/4, -11/9, -20/9.
   expect_mat_near(frustum(-1, 3, -2, 2, 1, 10),
@@ -166,16 +166,17 @@ TEST(ProjectionTest, Seed003FrustumIsNormalisationTimesScaleTimesShear) {
   EXPECT_LT(ndc(p, {0, 0, -1}).z, ndc(p, {0, 0, -2}).z);
 }
 
-// Seed 003, "perspective": P = [near/right, 0, 0, 0;  0, near/top, 0, 0;  0, 0, -(f+n)/(f-n), -2fn/(f-n);  0, 0, -1, 0]
+// The CIS367 lecture, "perspective":
+//   P = [near/right, 0, 0, 0;  0, near/top, 0, 0;  0, 0, -(f+n)/(f-n), -2fn/(f-n);  0, 0, -1, 0]
 // with top = near tan(fovy/2), right = top * aspect. Its "simple perspective" (90 degree field of view, sides on the
 // planes x = +-z, y = +-z) is this with near/right = near/top = 1, i.e. exactly the normalisation N above.
-TEST(ProjectionTest, Seed003PerspectiveIsTheSymmetricFrustum) {
+TEST(ProjectionTest, LecturePerspectiveIsTheSymmetricFrustum) {
   for (float fovy_deg : {20.0f, 60.0f, 90.0f, 150.0f}) {
     const float fovy = glm::radians(fovy_deg), aspect = 1.6f, n = 0.2f, f = 75;
     const float top = n * std::tan(fovy / 2), right = top * aspect;
-    const glm::mat4 seed = from_rows({n / right, 0, 0, 0, 0, n / top, 0, 0,  //
-                                      0, 0, -(f + n) / (f - n), -2 * f * n / (f - n), 0, 0, -1, 0});
-    expect_mat_near(perspective(fovy, aspect, n, f), seed, 1e-4f);
+    const glm::mat4 expected = from_rows({n / right, 0, 0, 0, 0, n / top, 0, 0,  //
+                                          0, 0, -(f + n) / (f - n), -2 * f * n / (f - n), 0, 0, -1, 0});
+    expect_mat_near(perspective(fovy, aspect, n, f), expected, 1e-4f);
     expect_mat_near(perspective(fovy, aspect, n, f), frustum(-right, right, -top, top, n, f), 1e-4f);
   }
   const float n = 1, f = 9;
@@ -201,19 +202,19 @@ TEST(ProjectionTest, PerspectiveMapsTheFrustumOntoTheNdcCube) {
   EXPECT_NEAR(ndc(p, {0, 0, -d}).z, (f + n) / (f - n) - 2 * f * n / ((f - n) * d), 1e-5f);
 }
 
-glm::mat4 seed_shear(float cot_theta, float cot_phi) {
-  // Seed 003, "Shear matrix": H(theta, phi) = [1 0 -cot(theta) 0; 0 1 -cot(phi) 0; 0 0 1 0; 0 0 0 1].
+glm::mat4 lecture_shear(float cot_theta, float cot_phi) {
+  // The CIS367 lecture, "Shear matrix": H(theta, phi) = [1 0 -cot(theta) 0; 0 1 -cot(phi) 0; 0 0 1 0; 0 0 0 1].
   return from_rows({1, 0, -cot_theta, 0, 0, 1, -cot_phi, 0, 0, 0, 1, 0, 0, 0, 0, 1});
 }
 
-// Seed 003, "Oblique projection": P = M_orth S T H(theta, phi), i.e. ortho * shear.
-TEST(ProjectionTest, ObliqueIsOrthoTimesSeedShear) {
+// The CIS367 lecture, "Oblique projection": P = M_orth S T H(theta, phi), i.e. ortho * shear.
+TEST(ProjectionTest, ObliqueIsOrthoTimesLectureShear) {
   const float l = -2, r = 2, b = -2, t = 2, n = 1, f = 10;
   for (float angle_deg : {45.0f, 30.0f, 63.4f, 200.0f})
     for (float k : {1.0f, 0.5f, 0.25f}) {
       const float a = glm::radians(angle_deg);
       expect_mat_near(oblique(a, k, l, r, b, t, n, f),
-                      ortho(l, r, b, t, n, f) * seed_shear(k * std::cos(a), k * std::sin(a)));
+                      ortho(l, r, b, t, n, f) * lecture_shear(k * std::cos(a), k * std::sin(a)));
     }
   expect_mat_near(oblique(0.7f, 0.0f, l, r, b, t, n, f), ortho(l, r, b, t, n, f));
 
@@ -240,7 +241,7 @@ TEST(ProjectionTest, ObliquePivotKeepsThatDepthInPlace) {
   const glm::mat4 m = oblique(kPi / 4, 0.5f, l, r, b, t, n, f, pivot);
   const glm::mat4 o = ortho(l, r, b, t, n, f);
   expect_vec_near(ndc(m, {1.5f, -0.5f, -pivot}), ndc(o, {1.5f, -0.5f, -pivot}));
-  expect_mat_near(m, o * translate({0, 0, -pivot}) * seed_shear(0.5f * std::cos(kPi / 4), 0.5f * std::sin(kPi / 4)) *
+  expect_mat_near(m, o * translate({0, 0, -pivot}) * lecture_shear(0.5f * std::cos(kPi / 4), 0.5f * std::sin(kPi / 4)) *
                          translate({0, 0, pivot}));
 }
 
@@ -261,11 +262,11 @@ void expect_rotation(const glm::mat4& m, bool y_up = true) {
   EXPECT_GT(y.y, 0.0f);
 }
 
-TEST(ProjectionTest, IsometricPresetIsSeed003LookAtFromTheDiagonal) {
+TEST(ProjectionTest, IsometricPresetIsTheLectureLookAtFromTheDiagonal) {
   const glm::mat4 v = isometric_view();
   expect_rotation(v);
-  // Seed 003: "isometric view of cube aligned with axes": lookAt(eye (1,1,1), at (0,0,0), up (0,1,0)); the preset
-  // is its rotation (the translation back by sqrt3 removed).
+  // The CIS367 lecture: "isometric view of cube aligned with axes": lookAt(eye (1,1,1), at (0,0,0), up (0,1,0));
+  // the preset is its rotation (the translation back by sqrt3 removed).
   expect_mat_near(v, translate({0, 0, std::sqrt(3.0f)}) * look_at({1, 1, 1}, {0, 0, 0}, {0, 1, 0}));
   for (glm::vec3 axis : {glm::vec3(1, 0, 0), glm::vec3(0, 1, 0), glm::vec3(0, 0, 1)})
     EXPECT_NEAR(foreshortening(v, axis), std::sqrt(2.0f / 3.0f), 1e-6f);

@@ -287,7 +287,7 @@ TEST(TextureSampling, TrilinearLevelFromDerivatives) {
   EXPECT_NEAR(t.sample(uv, tri).x * 255.0f, 0.0f, 1e-4f);
 }
 
-TEST(CheckerTexture, TexelsFollowScenesMd) {
+TEST(CheckerTexture, TexelsFollowTheBenchmarkDefinition) {
   const Texture t = make_checker_texture();
   ASSERT_EQ(t.width(), 1024);
   ASSERT_EQ(t.height(), 1024);

@@ -1,4 +1,4 @@
-// test_transform.cpp - model transforms, look_at and the normal matrix against hand-computed matrices and the seeds.
+// test_transform.cpp - model transforms, look_at and the normal matrix against hand-computed and published matrices.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -19,7 +19,7 @@ constexpr float kPi = std::numbers::pi_v<float>;
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// `expected` is given the way the seeds write matrices: 16 numbers, column by column (OpenGL / WebGL order).
+// `expected` is given the way the WebGL tutorials write matrices: 16 numbers, column by column (OpenGL / WebGL order).
 void expect_columns(const glm::mat4& m, const float (&expected)[16], float tol = 1e-5f) {
   for (int c = 0; c < 4; ++c)
     for (int r = 0; r < 4; ++r) EXPECT_NEAR(m[c][r], expected[c * 4 + r], tol) << "column " << c << " row " << r;
@@ -34,7 +34,7 @@ TEST(TransformTest, TranslateAndScaleAreTheTextbookMatrices) {
   expect_columns(translate({1.0f, -2.0f, 3.5f}), {1, 0, 0, 0, 0, 1, 0, 0, 0, 0, 1, 0, 1, -2, 3.5f, 1});
   expect_columns(scale({2.0f, 3.0f, -4.0f}), {2, 0, 0, 0, 0, 3, 0, 0, 0, 0, -4, 0, 0, 0, 0, 1});
   expect_columns(scale(0.5f), {0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 0.5f, 0, 0, 0, 0, 1});
-  // A direction (w = 0) ignores the translation, a point (w = 1) does not (seed 001, "w = 0 as directions").
+  // A direction (w = 0) ignores the translation, a point (w = 1) does not (MDN's "WebGL model view projection").
   const glm::vec4 dir = translate({5.0f, 6.0f, 7.0f}) * glm::vec4(1.0f, 2.0f, 3.0f, 0.0f);
   EXPECT_EQ(dir, glm::vec4(1.0f, 2.0f, 3.0f, 0.0f));
   expect_vec_near(apply(translate({5.0f, 6.0f, 7.0f}), {1.0f, 2.0f, 3.0f}), {6.0f, 8.0f, 10.0f});
@@ -69,21 +69,22 @@ TEST(TransformTest, ArbitraryAxisRotationMatchesAxisRotationsAndRodrigues) {
   EXPECT_NEAR(glm::determinant(rotate(1.234f, {0.3f, -0.4f, 0.8f})), 1.0f, 1e-5f);
 }
 
-// Seed 000 ("Barebones 3D rendering with WebGL"): scale by 2, rotate about Y by a, rotate about X by a, translate
+// "Barebones 3D rendering with WebGL": scale by 2, rotate about Y by a, rotate about X by a, translate
 // z by -9, written out column-major as
 //   c*x,  s*s*x, -c*s*x, 0,   0, c*x, s*x, 0,   s*x, -c*s*x, c*c*x, 0,   0, 0, tz, 1.
-TEST(TransformTest, Seed000ModelMatrixIsTranslateRotateXRotateYScale) {
+TEST(TransformTest, RotatingCubeModelMatrixIsTranslateRotateXRotateYScale) {
   for (float t : {0.0f, 700.0f, 1234.5f, 3999.0f}) {
     const float a = t * kPi / 4000.0f, c = std::cos(a), s = std::sin(a), x = 2.0f, tz = -9.0f;
-    const float seed[16] = {c * x, s * s * x, -c * s * x, 0, 0, c * x, s * x, 0,
-                            s * x, -c * s * x, c * c * x, 0, 0, 0, tz, 1};
-    expect_columns(translate({0, 0, tz}) * rotate_x(a) * rotate_y(a) * scale(x), seed);
+    const float expected[16] = {c * x, s * s * x, -c * s * x, 0, 0, c * x, s * x, 0,
+                                s * x, -c * s * x, c * c * x, 0, 0, 0, tz, 1};
+    expect_columns(translate({0, 0, tz}) * rotate_x(a) * rotate_y(a) * scale(x), expected);
   }
 }
 
-// Seed 003 (CIS367, "Moving the camera"): model-view = mult(translate(0, 0, -d), rotateY(90)) shows the side of
-// the object: the camera sits on -X at distance d looking at the origin.
-TEST(TransformTest, Seed003SideViewIsTranslateAfterRotateY) {
+// The CIS367 lecture notes "Building models / Viewing", "Moving the camera": model-view =
+// mult(translate(0, 0, -d), rotateY(90)) shows the side of the object: the camera sits on -X at distance d looking
+// at the origin.
+TEST(TransformTest, LectureSideViewIsTranslateAfterRotateY) {
   const float d = 4.0f;
   expect_mat_near(translate({0, 0, -d}) * rotate_y(kPi / 2), look_at({-d, 0, 0}, {0, 0, 0}, {0, 1, 0}));
 }
