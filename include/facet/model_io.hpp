@@ -1,4 +1,4 @@
-// model_io.hpp - loading model files into meshes: Wavefront OBJ (with its MTL materials), PLY and STL.
+// model_io.hpp - loading model files into meshes: Wavefront OBJ (with its MTL materials), PLY, STL and glTF 2.0.
 #pragma once
 
 #include <cstdint>
@@ -12,8 +12,9 @@ namespace facet {
 inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 
 // Loads a model into an indexed, triangulated, validated mesh with at least one triangle. The reader is chosen by the
-// (case-insensitive) extension, ".obj", ".ply" or ".stl"; a file with another extension or none is recognised by its
-// content ("ply" magic line, a binary STL's size, "solid", or OBJ statements after any comments). Polygons are
+// (case-insensitive) extension, ".obj", ".ply", ".stl", ".gltf" or ".glb"; a file with another extension or none is
+// recognised by its content ("ply" magic line, GLB magic, glTF JSON, a binary STL's size, "solid", or OBJ
+// statements after any comments). Polygons are
 // triangulated as fans (c0 c1 c2), (c0 c2 c3), ... when convex and ear-clipped when concave, corner order kept;
 // triangles stay in file order.
 //   OBJ: one vertex per distinct position/uv/normal reference.
@@ -31,6 +32,13 @@ inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 //     skipped; a file with vertices but no faces (a point cloud) is refused.
 //   STL (binary, or ASCII with one or more solids): exactly equal positions are welded into one vertex (+0 and -0
 //     alike), numbered in order of first use; facet normals and colours are ignored (normals left empty).
+//   glTF 2.0 (.gltf with external or data: buffers and images, .glb), through tinygltf: the default scene (else
+//     every root node) flattened into one mesh in world space, node matrices and TRS applied (normals by the
+//     inverse transpose, mirrored nodes re-wound); triangles, strips and fans of every primitive, indexed or not;
+//     NORMAL, TEXCOORD_0 and COLOR_0 of any component type, sparse accessors; one material per glTF material
+//     (baseColorFactor -> diffuse, baseColorTexture decoded into diffuse_map, roughness -> specular and
+//     shininess). Points and lines are skipped with a warning; Draco, and any other extension the file lists as
+//     required except KHR_mesh_quantization, is refused naming it.
 // Throws InputError(path, problem) with a one-line problem, naming the line (text) or byte offset (binary) where
 // that helps, for: no such file, not a regular file, an empty or too large file, an unsupported format, a file
 // that does not parse or ends early, counts that do not fit in the file, references to vertices/uvs/normals that

@@ -1,4 +1,4 @@
-// loaders.hpp - the model readers behind load_model() (OBJ, PLY, STL) and the helpers they share.
+// loaders.hpp - the model readers behind load_model() (OBJ, PLY, STL, glTF) and the helpers they share.
 #pragma once
 
 #include <cstdint>
@@ -16,6 +16,11 @@ namespace facet {
 Mesh load_obj(const std::filesystem::path& path, std::string& bytes, const std::string& source);
 Mesh load_ply(std::string_view bytes, const std::string& source);
 Mesh load_stl(std::string_view bytes, const std::string& source);
+// glTF resolves external buffers and images against the path's folder.
+Mesh load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source);
+
+// A GLB file starts with the magic "glTF".
+bool is_gltf_binary(std::string_view bytes);
 
 // A binary STL is recognised by its size: an 80-byte header, a little-endian uint32 triangle count, 50 bytes per
 // triangle, nothing after. Its header may begin with "solid" like an ASCII STL, so this is asked first.

@@ -1,4 +1,4 @@
-// model_io.cpp - load_model(): checks and reads a model file once, then hands it to the OBJ, PLY or STL reader.
+// model_io.cpp - load_model(): checks and reads a model file once, then hands it to the OBJ, PLY, STL or glTF reader.
 #include "facet/model_io.hpp"
 
 #include <algorithm>
@@ -30,9 +30,9 @@ void warn(const std::string& source, const std::string& message) {
 
 namespace {
 
-enum class Format { kObj, kPly, kStl, kUnknown };
+enum class Format { kObj, kPly, kStl, kGltf, kUnknown };
 
-constexpr const char* kSupported = "supported: .obj, .ply, .stl";
+constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf, .glb";
 
 // Problems every format shares, checked before the format so a mistyped path says "no such file".
 std::uintmax_t checked_file_size(const fs::path& path, const std::string& source) {
@@ -64,6 +64,7 @@ Format format_of_extension(std::string extension) {
   if (extension == ".obj") return Format::kObj;
   if (extension == ".ply") return Format::kPly;
   if (extension == ".stl") return Format::kStl;
+  if (extension == ".gltf" || extension == ".glb") return Format::kGltf;
   return Format::kUnknown;
 }
 
@@ -90,9 +91,18 @@ bool looks_like_obj(std::string_view bytes) {
   return comments && pos >= bytes.size();  // only comments: an OBJ with nothing in it
 }
 
+// glTF JSON: an object whose text names its required "asset" member near the start.
+bool looks_like_gltf_json(std::string_view bytes) {
+  std::size_t first = 0;
+  while (first < bytes.size() && is_space(bytes[first])) ++first;
+  return first < bytes.size() && bytes[first] == '{' &&
+         bytes.substr(0, 4096).find("\"asset\"") != std::string_view::npos;
+}
+
 // For files whose extension names no supported format: magic numbers first, then the shape of the text.
 Format format_of_content(std::string_view bytes) {
   if (bytes.starts_with("ply\n") || bytes.starts_with("ply\r\n")) return Format::kPly;
+  if (is_gltf_binary(bytes) || looks_like_gltf_json(bytes)) return Format::kGltf;
   if (is_binary_stl(bytes)) return Format::kStl;
   if (bytes.starts_with("solid") && (bytes.size() == 5 || is_space(bytes[5]))) return Format::kStl;
   if (looks_like_obj(bytes)) return Format::kObj;
@@ -116,6 +126,8 @@ Mesh load_model(const fs::path& path) {
         return load_ply(bytes, source);
       case Format::kStl:
         return load_stl(bytes, source);
+      case Format::kGltf:
+        return load_gltf(path, bytes, source);
       case Format::kUnknown:
         break;
     }

@@ -92,8 +92,10 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   out.textures.assign(mesh.materials.size(), nullptr);
   for (const TriangleGroup& g : out.groups) {
     if (g.material < 0) continue;
-    const std::string& path = mesh.materials[static_cast<std::size_t>(g.material)].diffuse_texture;
-    if (!path.empty()) out.textures[static_cast<std::size_t>(g.material)] = textures.get(path);
+    const Material& material = mesh.materials[static_cast<std::size_t>(g.material)];
+    const Texture* texture = material.diffuse_map.get();
+    if (!texture && !material.diffuse_texture.empty()) texture = textures.get(material.diffuse_texture);
+    out.textures[static_cast<std::size_t>(g.material)] = texture && !texture->empty() ? texture : nullptr;
   }
 
   const Bounds box = bounds(mesh);

@@ -4,10 +4,9 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <glm/glm.hpp>
 #include <stdexcept>
 #include <string>
-
-#include <glm/glm.hpp>
 
 #include "facet/error.hpp"
 #include "facet/image_io.hpp"
@@ -84,8 +83,9 @@ TEST(MakeView, EveryProjectionFramesTheWholeModel) {
 }
 
 TEST(MakeView, DefaultViewKeepsTheModelUpAxisUpOnScreen) {
-  for (const auto& [axis, up] : {std::pair{UpAxis::pos_y, glm::vec3(0, 1, 0)}, std::pair{UpAxis::pos_z, glm::vec3(0, 0, 1)},
-                                 std::pair{UpAxis::neg_x, glm::vec3(-1, 0, 0)}}) {
+  for (const auto& [axis, up] :
+       {std::pair{UpAxis::pos_y, glm::vec3(0, 1, 0)}, std::pair{UpAxis::pos_z, glm::vec3(0, 0, 1)},
+        std::pair{UpAxis::neg_x, glm::vec3(-1, 0, 0)}}) {
     CameraSpec spec;
     spec.up = axis;
     const View view = make_view(spec, {{0, 0, 0}, 1.0f}, 1.0f);
@@ -165,7 +165,9 @@ TEST(Render, WritesTheImageAndDepthOfTheFramedModel) {
   ASSERT_EQ(width, 64);
   ASSERT_EQ(height, 48);
   // The framed box covers the centre and leaves the corners to the background.
-  const auto pixel = [&](int x, int y) { return glm::ivec3(rgba[(y * 64 + x) * 4], rgba[(y * 64 + x) * 4 + 1], rgba[(y * 64 + x) * 4 + 2]); };
+  const auto pixel = [&](int x, int y) {
+    return glm::ivec3(rgba[(y * 64 + x) * 4], rgba[(y * 64 + x) * 4 + 1], rgba[(y * 64 + x) * 4 + 2]);
+  };
   const glm::ivec3 background = glm::ivec3(glm::round(kDefaultBackground * 255.0f));
   EXPECT_EQ(pixel(0, 0), background);
   EXPECT_NE(pixel(32, 24), background);

@@ -1,0 +1,414 @@
+// gltf_loader.cpp - glTF 2.0 (.gltf with its buffers and images, .glb) through tinygltf: the default scene as one mesh.
+#include <tiny_gltf.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+#include <glm/gtc/quaternion.hpp>
+#include <glm/gtc/type_ptr.hpp>
+#include <limits>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "facet/error.hpp"
+#include "facet/texture.hpp"
+#include "io/loaders.hpp"
+
+namespace facet {
+namespace {
+
+// Extensions whose absence changes nothing facet draws: the reader handles any component type, so quantized
+// attributes (KHR_mesh_quantization) read like floats.
+const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization"};
+
+// Instancing can multiply a small file's triangles: a node graph that would expand past this is refused.
+constexpr std::size_t kMaxVertices = std::size_t{1} << 27;
+
+struct Reader {
+  const tinygltf::Model& model;
+  const std::string& source;
+
+  [[noreturn]] void fail(const std::string& problem) const { throw InputError(source, problem); }
+
+  // The accessor's elements as floats, `components` per element (normalized integers scaled to 0..1 or -1..1),
+  // sparse substitutions applied. Every byte range is checked against its buffer.
+  std::vector<float> floats(int index, int components, const char* what) const {
+    const tinygltf::Accessor& a = accessor(index, what);
+    if (tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type)) != components)
+      fail(std::string(what) + ": accessor " + std::to_string(index) + " has the wrong type for this attribute");
+    std::vector<float> out(a.count * static_cast<std::size_t>(components), 0.0f);
+    if (a.bufferView >= 0) {
+      const Span span = elements(a, components, what);
+      for (std::size_t i = 0; i < a.count; ++i)
+        for (int c = 0; c < components; ++c)
+          out[i * components + c] = component(span.data + i * span.stride, a.componentType, c, a.normalized);
+    }
+    if (a.sparse.isSparse) {
+      const std::vector<std::uint32_t> targets = sparse_indices(a, what);
+      tinygltf::Accessor values = a;
+      values.bufferView = a.sparse.values.bufferView;
+      values.byteOffset = static_cast<std::size_t>(a.sparse.values.byteOffset);
+      values.count = targets.size();
+      const Span span = elements(values, components, what);
+      for (std::size_t k = 0; k < targets.size(); ++k)
+        for (int c = 0; c < components; ++c)
+          out[targets[k] * components + c] = component(span.data + k * span.stride, a.componentType, c, a.normalized);
+    }
+    return out;
+  }
+
+  std::vector<std::uint32_t> indices(int index) const {
+    const tinygltf::Accessor& a = accessor(index, "indices");
+    if (a.type != TINYGLTF_TYPE_SCALAR || a.sparse.isSparse || a.bufferView < 0)
+      fail("indices: accessor " + std::to_string(index) + " is not a plain scalar index list");
+    const Span span = elements(a, 1, "indices");
+    std::vector<std::uint32_t> out(a.count);
+    for (std::size_t i = 0; i < a.count; ++i) out[i] = integer(span.data + i * span.stride, a.componentType, "indices");
+    return out;
+  }
+
+ private:
+  struct Span {
+    const unsigned char* data;
+    std::size_t stride;
+  };
+
+  const tinygltf::Accessor& accessor(int index, const char* what) const {
+    if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size())
+      fail(std::string(what) + ": accessor " + std::to_string(index) + " does not exist");
+    return model.accessors[static_cast<std::size_t>(index)];
+  }
+
+  Span elements(const tinygltf::Accessor& a, int components, const char* what) const {
+    const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
+    if (size <= 0) fail(std::string(what) + ": unknown component type " + std::to_string(a.componentType));
+    if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= model.bufferViews.size())
+      fail(std::string(what) + ": buffer view " + std::to_string(a.bufferView) + " does not exist");
+    const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(a.bufferView)];
+    if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size())
+      fail(std::string(what) + ": buffer " + std::to_string(view.buffer) + " does not exist");
+    const std::vector<unsigned char>& buffer = model.buffers[static_cast<std::size_t>(view.buffer)].data;
+    const std::size_t element = static_cast<std::size_t>(size) * static_cast<std::size_t>(components);
+    const std::size_t stride = view.byteStride ? view.byteStride : element;
+    // Sizes come from the file: each sum is checked before it is formed, so none can wrap.
+    const std::size_t limit = buffer.size();
+    const auto fits = [&](std::size_t offset, std::size_t length) {
+      return offset <= limit && length <= limit - offset;
+    };
+    if (!fits(view.byteOffset, view.byteLength))
+      fail(std::string(what) + ": buffer view " + std::to_string(a.bufferView) + " reaches past the end of its buffer");
+    const std::size_t needed = a.count == 0 ? 0 : (a.count - 1) * stride + element;
+    if (a.count != 0 && (a.count - 1) > (std::numeric_limits<std::size_t>::max() - element) / stride)
+      fail(std::string(what) + ": accessor count " + std::to_string(a.count) + " is too large");
+    if (a.byteOffset > view.byteLength || needed > view.byteLength - a.byteOffset)
+      fail(std::string(what) + ": accessor of " + std::to_string(a.count) +
+           " elements does not fit in its buffer view");
+    return {buffer.data() + view.byteOffset + a.byteOffset, stride};
+  }
+
+  std::vector<std::uint32_t> sparse_indices(const tinygltf::Accessor& a, const char* what) const {
+    tinygltf::Accessor list;
+    list.bufferView = a.sparse.indices.bufferView;
+    list.byteOffset = static_cast<std::size_t>(a.sparse.indices.byteOffset);
+    list.componentType = a.sparse.indices.componentType;
+    list.count = static_cast<std::size_t>(std::max(a.sparse.count, 0));
+    list.type = TINYGLTF_TYPE_SCALAR;
+    const Span span = elements(list, 1, what);
+    std::vector<std::uint32_t> out(list.count);
+    for (std::size_t i = 0; i < list.count; ++i) {
+      out[i] = integer(span.data + i * span.stride, list.componentType, what);
+      if (out[i] >= a.count) fail(std::string(what) + ": sparse index " + std::to_string(out[i]) + " is out of range");
+    }
+    return out;
+  }
+
+  std::uint32_t integer(const unsigned char* p, int type, const char* what) const {
+    switch (type) {
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return p[0];
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
+        return load<std::uint16_t>(p);
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        return load<std::uint32_t>(p);
+      default:
+        fail(std::string(what) + ": index component type " + std::to_string(type) + " is not unsigned");
+    }
+  }
+
+  template <class T>
+  static T load(const unsigned char* p) {
+    T v;
+    std::memcpy(&v, p, sizeof v);  // glTF is little-endian, as is every machine facet targets
+    return v;
+  }
+
+  static float component(const unsigned char* element, int type, int c, bool normalized) {
+    switch (type) {
+      case TINYGLTF_COMPONENT_TYPE_FLOAT:
+        return load<float>(element + 4 * c);
+      case TINYGLTF_COMPONENT_TYPE_BYTE: {
+        const float v = static_cast<std::int8_t>(element[c]);
+        return normalized ? std::max(v / 127.0f, -1.0f) : v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
+        return normalized ? element[c] / 255.0f : element[c];
+      case TINYGLTF_COMPONENT_TYPE_SHORT: {
+        const float v = load<std::int16_t>(element + 2 * c);
+        return normalized ? std::max(v / 32767.0f, -1.0f) : v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
+        const float v = load<std::uint16_t>(element + 2 * c);
+        return normalized ? v / 65535.0f : v;
+      }
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
+        return static_cast<float>(load<std::uint32_t>(element + 4 * c));
+      default:
+        return 0.0f;
+    }
+  }
+};
+
+glm::mat4 local_transform(const tinygltf::Node& node) {
+  if (node.matrix.size() == 16) {
+    glm::mat4 m;
+    for (int i = 0; i < 16; ++i) glm::value_ptr(m)[i] = static_cast<float>(node.matrix[static_cast<std::size_t>(i)]);
+    return m;
+  }
+  glm::mat4 m(1.0f);
+  if (node.translation.size() == 3)
+    m[3] = glm::vec4(static_cast<float>(node.translation[0]), static_cast<float>(node.translation[1]),
+                     static_cast<float>(node.translation[2]), 1.0f);
+  if (node.rotation.size() == 4) {
+    const glm::quat q(static_cast<float>(node.rotation[3]), static_cast<float>(node.rotation[0]),
+                      static_cast<float>(node.rotation[1]), static_cast<float>(node.rotation[2]));
+    m = m * glm::mat4_cast(glm::normalize(q));
+  }
+  if (node.scale.size() == 3)
+    m = m * glm::scale(glm::mat4(1.0f), glm::vec3(static_cast<float>(node.scale[0]), static_cast<float>(node.scale[1]),
+                                                  static_cast<float>(node.scale[2])));
+  return m;
+}
+
+// glTF images are stored top row first with v = 0 at the top, so rows are kept in file order.
+std::shared_ptr<const Texture> decode_texture(const tinygltf::Model& model, int texture_index,
+                                              const std::string& source) {
+  if (texture_index < 0 || static_cast<std::size_t>(texture_index) >= model.textures.size()) return nullptr;
+  const int image_index = model.textures[static_cast<std::size_t>(texture_index)].source;
+  if (image_index < 0 || static_cast<std::size_t>(image_index) >= model.images.size()) return nullptr;
+  const tinygltf::Image& image = model.images[static_cast<std::size_t>(image_index)];
+  const std::size_t texels = static_cast<std::size_t>(std::max(image.width, 0)) * std::max(image.height, 0);
+  if (texels == 0 || image.bits != 8 || image.component < 1 || image.component > 4 ||
+      image.image.size() != texels * static_cast<std::size_t>(image.component)) {
+    warn(source, "image " + std::to_string(image_index) + " (" + printable(image.uri) +
+                     ") could not be decoded; drawing its material untextured");
+    return nullptr;
+  }
+  std::vector<std::uint32_t> rgba(texels);
+  const int n = image.component;
+  for (std::size_t i = 0; i < texels; ++i) {
+    const unsigned char* p = image.image.data() + i * static_cast<std::size_t>(n);
+    const std::uint32_t r = p[0], g = n >= 3 ? p[1] : p[0], b = n >= 3 ? p[2] : p[0];
+    const std::uint32_t a = n == 4 ? p[3] : n == 2 ? p[1] : 255;
+    rgba[i] = r | g << 8 | b << 16 | a << 24;
+  }
+  try {
+    auto texture = std::make_shared<Texture>(image.width, image.height, std::move(rgba));
+    texture->generate_mipmaps();
+    return texture;
+  } catch (const std::invalid_argument& e) {
+    warn(source, "image " + std::to_string(image_index) + ": " + e.what() + "; drawing its material untextured");
+    return nullptr;
+  }
+}
+
+Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& source) {
+  Material out;
+  out.name = m.name;
+  const std::vector<double>& f = m.pbrMetallicRoughness.baseColorFactor;
+  if (f.size() == 4)
+    out.diffuse = glm::vec4(static_cast<float>(f[0]), static_cast<float>(f[1]), static_cast<float>(f[2]),
+                            static_cast<float>(f[3]));
+  // Metallic-roughness approximated for Blinn-Phong: rough surfaces get a weak, broad highlight.
+  const float roughness = static_cast<float>(std::clamp(m.pbrMetallicRoughness.roughnessFactor, 0.0, 1.0));
+  out.specular = glm::vec3(0.5f * (1.0f - roughness));
+  out.shininess = 2.0f + 126.0f * (1.0f - roughness) * (1.0f - roughness);
+  out.diffuse_map = decode_texture(model, m.pbrMetallicRoughness.baseColorTexture.index, source);
+  return out;
+}
+
+class Flattener {
+ public:
+  Flattener(const tinygltf::Model& model, const std::string& source) : model_(model), reader_{model, source} {}
+
+  void node(int index, const glm::mat4& parent, int depth) {
+    if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size())
+      reader_.fail("node " + std::to_string(index) + " does not exist");
+    if (depth > 64 || on_path_.count(index)) reader_.fail("node " + std::to_string(index) + " is its own ancestor");
+    const tinygltf::Node& n = model_.nodes[static_cast<std::size_t>(index)];
+    const glm::mat4 world = parent * local_transform(n);
+    if (n.mesh >= 0) mesh(n.mesh, world);
+    on_path_.insert(index);
+    for (int child : n.children) node(child, world, depth + 1);
+    on_path_.erase(index);
+  }
+
+  Mesh finish() {
+    if (out_.indices.empty()) reader_.fail("the default scene has no triangles");
+    if (!all_normals_) out_.normals.clear();
+    if (!any_uvs_) out_.uvs.clear();
+    if (!any_colors_) out_.colors.clear();
+    for (const tinygltf::Material& m : model_.materials)
+      out_.materials.push_back(material_of(model_, m, reader_.source));
+    validate(out_, reader_.source);
+    return std::move(out_);
+  }
+
+ private:
+  void mesh(int index, const glm::mat4& world) {
+    if (static_cast<std::size_t>(index) >= model_.meshes.size())
+      reader_.fail("mesh " + std::to_string(index) + " does not exist");
+    for (const tinygltf::Primitive& p : model_.meshes[static_cast<std::size_t>(index)].primitives) primitive(p, world);
+  }
+
+  void primitive(const tinygltf::Primitive& p, const glm::mat4& world) {
+    if (!p.extensions.empty() && p.extensions.count("KHR_draco_mesh_compression"))
+      reader_.fail("Draco-compressed meshes (KHR_draco_mesh_compression) are not supported");
+    if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      if (!warned_points_) warn(reader_.source, "points and lines are not drawn; skipping those primitives");
+      warned_points_ = true;
+      return;
+    }
+    const auto attribute = [&](const char* name) {
+      const auto it = p.attributes.find(name);
+      return it == p.attributes.end() ? -1 : it->second;
+    };
+    if (attribute("POSITION") < 0) reader_.fail("a primitive has no POSITION attribute");
+    const std::vector<float> positions = reader_.floats(attribute("POSITION"), 3, "POSITION");
+    const std::size_t count = positions.size() / 3, base = out_.positions.size();
+    if (count > kMaxVertices - base) reader_.fail("the scene expands to more than 2^27 vertices");
+
+    std::vector<std::uint32_t> corners;
+    if (p.indices >= 0) {
+      corners = reader_.indices(p.indices);
+    } else {
+      corners.resize(count);
+      for (std::size_t i = 0; i < count; ++i) corners[i] = static_cast<std::uint32_t>(i);
+    }
+    for (std::uint32_t c : corners)
+      if (c >= count)
+        reader_.fail("index " + std::to_string(c) + " is out of range (" + std::to_string(count) + " vertices)");
+    if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP) corners = triangles_from_strip(corners);
+    if (p.mode == TINYGLTF_MODE_TRIANGLE_FAN) corners = triangles_from_fan(corners);
+    corners.resize(corners.size() / 3 * 3);
+
+    const glm::mat3 normal_from_object = glm::transpose(glm::inverse(glm::mat3(world)));
+    for (std::size_t i = 0; i < count; ++i)
+      out_.positions.push_back(
+          glm::vec3(world * glm::vec4(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1)));
+    append_normals(attribute("NORMAL"), count, normal_from_object);
+    append_uvs(attribute("TEXCOORD_0"), count);
+    append_colors(attribute("COLOR_0"), count);
+
+    // A mirroring transform turns counter-clockwise triangles clockwise; swapping two corners restores the front.
+    const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
+    const int material =
+        p.material >= 0 && static_cast<std::size_t>(p.material) < model_.materials.size() ? p.material : -1;
+    for (std::size_t t = 0; t < corners.size(); t += 3) {
+      const auto a = static_cast<std::uint32_t>(base) + corners[t];
+      const auto b = static_cast<std::uint32_t>(base) + corners[t + (mirrored ? 2 : 1)];
+      const auto c = static_cast<std::uint32_t>(base) + corners[t + (mirrored ? 1 : 2)];
+      out_.indices.insert(out_.indices.end(), {a, b, c});
+      out_.face_materials.push_back(material);
+    }
+  }
+
+  void append_normals(int accessor, std::size_t count, const glm::mat3& normal_from_object) {
+    if (accessor < 0) {
+      all_normals_ = false;
+      out_.normals.resize(out_.positions.size(), glm::vec3(0, 0, 1));
+      return;
+    }
+    const std::vector<float> n = reader_.floats(accessor, 3, "NORMAL");
+    for (std::size_t i = 0; i < count; ++i) {
+      const glm::vec3 v = normal_from_object * glm::vec3(n[3 * i], n[3 * i + 1], n[3 * i + 2]);
+      const float length = glm::length(v);
+      out_.normals.push_back(std::isfinite(length) && length > 0.0f ? v / length : glm::vec3(0, 0, 1));
+    }
+  }
+
+  void append_uvs(int accessor, std::size_t count) {
+    if (accessor < 0) {
+      out_.uvs.resize(out_.positions.size(), glm::vec2(0.0f));
+      return;
+    }
+    any_uvs_ = true;
+    const std::vector<float> uv = reader_.floats(accessor, 2, "TEXCOORD_0");
+    for (std::size_t i = 0; i < count; ++i) out_.uvs.emplace_back(uv[2 * i], uv[2 * i + 1]);
+  }
+
+  void append_colors(int accessor, std::size_t count) {
+    if (accessor < 0) {
+      out_.colors.resize(out_.positions.size(), glm::vec4(1.0f));
+      return;
+    }
+    any_colors_ = true;
+    const int type = reader_.model.accessors[static_cast<std::size_t>(accessor)].type;
+    const int components = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+    const std::vector<float> c = reader_.floats(accessor, components, "COLOR_0");
+    for (std::size_t i = 0; i < count; ++i)
+      out_.colors.emplace_back(c[components * i], c[components * i + 1], c[components * i + 2],
+                               components == 4 ? c[components * i + 3] : 1.0f);
+  }
+
+  const tinygltf::Model& model_;
+  Reader reader_;
+  Mesh out_;
+  std::set<int> on_path_;
+  bool all_normals_ = true, any_uvs_ = false, any_colors_ = false, warned_points_ = false;
+};
+
+}  // namespace
+
+bool is_gltf_binary(std::string_view bytes) { return bytes.size() >= 12 && bytes.substr(0, 4) == "glTF"; }
+
+Mesh load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source) {
+  tinygltf::TinyGLTF gltf;
+  tinygltf::Model model;
+  std::string error, warning;
+  const std::string base = path.parent_path().string();
+  const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
+  const bool ok =
+      is_gltf_binary(bytes)
+          ? gltf.LoadBinaryFromMemory(&model, &error, &warning, data, static_cast<unsigned>(bytes.size()), base)
+          : gltf.LoadASCIIFromString(&model, &error, &warning, bytes.data(), static_cast<unsigned>(bytes.size()), base);
+  const auto first_line = [](std::string text) {
+    text = text.substr(0, text.find('\n'));
+    return printable(text.empty() ? "not a valid glTF file" : text);
+  };
+  if (!ok) throw InputError(source, first_line(error));
+  if (!warning.empty()) warn(source, first_line(warning));
+  for (const std::string& extension : model.extensionsRequired)
+    if (!kSupportedRequired.count(extension))
+      throw InputError(source,
+                       "requires the glTF extension " + printable(extension) + ", which facet does not support");
+
+  Flattener flat(model, source);
+  const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
+  if (static_cast<std::size_t>(scene) < model.scenes.size()) {
+    for (int root : model.scenes[static_cast<std::size_t>(scene)].nodes) flat.node(root, glm::mat4(1.0f), 0);
+  } else {
+    // No scenes: every node that is nobody's child is a root.
+    std::vector<bool> is_child(model.nodes.size(), false);
+    for (const tinygltf::Node& n : model.nodes)
+      for (int child : n.children)
+        if (child >= 0 && static_cast<std::size_t>(child) < is_child.size())
+          is_child[static_cast<std::size_t>(child)] = true;
+    for (std::size_t i = 0; i < model.nodes.size(); ++i)
+      if (!is_child[i]) flat.node(static_cast<int>(i), glm::mat4(1.0f), 0);
+  }
+  return flat.finish();
+}
+
+}  // namespace facet
