@@ -14,8 +14,6 @@ namespace {
 
 constexpr std::size_t kHeaderBytes = 84;  // 80 free bytes, then the uint32 triangle count
 constexpr std::size_t kFacetBytes = 50;   // normal, 3 corners (12 floats), uint16 attribute
-// The shortest ASCII facet: "facet normal 0 0 0 outer loop vertex 0 0 0 vertex 0 0 0 vertex 0 0 0 endloop endfacet ".
-constexpr std::size_t kMinAsciiFacetBytes = 84;
 
 bool finite(const glm::vec3& p) { return std::isfinite(p.x) && std::isfinite(p.y) && std::isfinite(p.z); }
 
@@ -54,9 +52,8 @@ class Welder {
     }
   }
 
-  // Where the search for p starts: binary facets are all in memory, so the caller can prefetch a later facet's
-  // slots and hide the table's cache misses. (A member function that only prefetched would be deleted: GCC deems
-  // it free of side effects.)
+  // Where the search for p starts, for weld() to prefetch. (A member function that only prefetched would be
+  // deleted: GCC deems it free of side effects.)
   const std::uint64_t* first_slot(const glm::vec3& p) const { return &slots_[hash(p + glm::vec3(0.0f)) & mask()]; }
 
  private:
@@ -95,28 +92,37 @@ glm::vec3 read_corner(const char* p) {
           std::bit_cast<float>(read_u32_le(p + 8))};
 }
 
+// Welds corners 0 .. n-1 (three per facet, in order) into mesh.positions and mesh.indices. The corners are all known
+// before welding starts, so the table's slots for a corner a few facets ahead are fetched while this one is looked
+// up: that hides the table's cache misses (binary 2 M facets: 238 -> 384 MB/s). non_finite(c) is called for a
+// corner that is not finite: the binary reader throws there (ASCII corners are checked as they are read).
+template <class Corner, class NonFinite>
+void weld(std::size_t n, Corner&& corner, NonFinite&& non_finite, Mesh& mesh) {
+  constexpr std::size_t kAhead = 24;
+  mesh.indices.resize(n);
+  // Closed meshes have about half as many vertices as facets; the table grows if there are more.
+  Welder welder(mesh.positions, n / 6 + 3);
+  for (std::size_t c = 0; c < n; ++c) {
+    if (c + kAhead < n) __builtin_prefetch(welder.first_slot(corner(c + kAhead)));
+    const glm::vec3 p = corner(c);
+    if (!finite(p)) non_finite(c);
+    mesh.indices[c] = welder.add(p);
+  }
+}
+
 Mesh load_binary(std::string_view bytes, const std::string& source) {
   const std::size_t count = read_u32_le(bytes.data() + 80);
-  Mesh mesh;
   if (count == 0) throw InputError(source, "no triangles found (binary STL with a triangle count of 0)");
-  mesh.indices.resize(3 * count);
-  // Closed meshes have about half as many vertices as facets; the table grows if there are more.
-  Welder welder(mesh.positions, count / 2 + 3);
-  constexpr std::size_t kAhead = 8;  // facets between a prefetch and its use
   const char* facets = bytes.data() + kHeaderBytes;
-  for (std::size_t t = 0; t < count; ++t) {
-    if (t + kAhead < count)
-      for (int k = 0; k < 3; ++k)
-        __builtin_prefetch(welder.first_slot(read_corner(facets + (t + kAhead) * kFacetBytes + 12 + 12 * k)));
-    const char* facet = facets + t * kFacetBytes;
-    for (int k = 0; k < 3; ++k) {
-      const glm::vec3 p = read_corner(facet + 12 + 12 * k);
-      if (!finite(p))
-        throw InputError(source, "non-finite vertex position in triangle " + std::to_string(t) + " (byte offset " +
-                                     std::to_string(facet + 12 + 12 * k - bytes.data()) + ")");
-      mesh.indices[3 * t + k] = welder.add(p);
-    }
-  }
+  const auto at = [&](std::size_t c) { return facets + c / 3 * kFacetBytes + 12 + 12 * (c % 3); };
+  Mesh mesh;
+  weld(
+      3 * count, [&](std::size_t c) { return read_corner(at(c)); },
+      [&](std::size_t c) {
+        throw InputError(source, "non-finite vertex position in triangle " + std::to_string(c / 3) + " (byte offset " +
+                                     std::to_string(at(c) - bytes.data()) + ")");
+      },
+      mesh);
   return mesh;
 }
 
@@ -134,9 +140,8 @@ class AsciiReader {
   AsciiReader(std::string_view text, const std::string& source)
       : in_(text.data(), text.data() + text.size(), 1), source_(source) {}
 
-  Mesh read(std::size_t size) {
-    Mesh mesh;
-    Welder welder(mesh.positions, size / kMinAsciiFacetBytes / 2 + 3);
+  Mesh read() {
+    std::vector<glm::vec3> corners;  // welded once all are read, as in binary files
     for (std::string_view token = in_.next(); !token.empty(); token = in_.next()) {
       if (!keyword(token, "solid")) fail("expected 'solid'", token);
       in_.skip_line();
@@ -151,14 +156,17 @@ class AsciiReader {
           expect("vertex");
           const glm::vec3 p{number(), number(), number()};  // braces: read left to right
           if (!finite(p)) throw InputError(source_, "non-finite vertex position on line " + std::to_string(in_.line()));
-          mesh.indices.push_back(welder.add(p));
+          corners.push_back(p);
         }
         expect("endloop");
         expect("endfacet");
       }
       in_.skip_line();
     }
-    if (mesh.indices.empty()) throw InputError(source_, "no triangles found (ASCII STL without facets)");
+    if (corners.empty()) throw InputError(source_, "no triangles found (ASCII STL without facets)");
+    Mesh mesh;
+    weld(
+        corners.size(), [&](std::size_t c) { return corners[c]; }, [](std::size_t) {}, mesh);
     return mesh;
   }
 
@@ -206,7 +214,7 @@ Mesh load_stl(std::string_view bytes, const std::string& source) {
   if (is_binary_stl(bytes)) {
     mesh = load_binary(bytes, source);
   } else if (text && starts_with_solid(bytes)) {
-    mesh = AsciiReader(bytes, source).read(bytes.size());
+    mesh = AsciiReader(bytes, source).read();
   } else if (bytes.size() < kHeaderBytes) {
     throw InputError(source, "not an STL file: " + std::to_string(bytes.size()) +
                                  " bytes is too short for a binary STL (84 or more) and there is no 'solid' keyword");
