@@ -19,6 +19,11 @@ Mesh load_stl(std::string_view bytes, const std::string& source);
 // glTF resolves external buffers and images against the path's folder.
 Mesh load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source);
 
+// Every other format Assimp reads, as one mesh in world space; Assimp opens the file (and its companions) itself.
+Mesh load_with_assimp(const std::filesystem::path& path, const std::string& source);
+// Whether Assimp has a reader for this extension (".fbx", with the dot).
+bool assimp_reads(const std::string& extension);
+
 // A GLB file starts with the magic "glTF".
 bool is_gltf_binary(std::string_view bytes);
 

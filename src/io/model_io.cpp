@@ -1,4 +1,4 @@
-// model_io.cpp - load_model(): checks and reads a model file once, then hands it to the OBJ, PLY, STL or glTF reader.
+// model_io.cpp - load_model(): checks and reads a model file once, then hands it to its reader.
 #include "facet/model_io.hpp"
 
 #include <algorithm>
@@ -30,9 +30,9 @@ void warn(const std::string& source, const std::string& message) {
 
 namespace {
 
-enum class Format { kObj, kPly, kStl, kGltf, kUnknown };
+enum class Format { kObj, kPly, kStl, kGltf, kAssimp, kUnknown };
 
-constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf, .glb";
+constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf, .glb and the formats Assimp reads";
 
 // Problems every format shares, checked before the format so a mistyped path says "no such file".
 std::uintmax_t checked_file_size(const fs::path& path, const std::string& source) {
@@ -65,6 +65,7 @@ Format format_of_extension(std::string extension) {
   if (extension == ".ply") return Format::kPly;
   if (extension == ".stl") return Format::kStl;
   if (extension == ".gltf" || extension == ".glb") return Format::kGltf;
+  if (assimp_reads(extension)) return Format::kAssimp;
   return Format::kUnknown;
 }
 
@@ -128,6 +129,8 @@ Mesh load_model(const fs::path& path) {
         return load_stl(bytes, source);
       case Format::kGltf:
         return load_gltf(path, bytes, source);
+      case Format::kAssimp:
+        return load_with_assimp(path, source);
       case Format::kUnknown:
         break;
     }

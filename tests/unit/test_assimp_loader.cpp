@@ -1,0 +1,77 @@
+// test_assimp_loader.cpp - the Assimp fallback: one real file of each of six formats, refusals, whole folders.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include "facet/error.hpp"
+#include "facet/model_io.hpp"
+#include "support/scratch_dir.hpp"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+const fs::path kModels = "/usr/share/assimp/models";
+
+TEST(AssimpLoader, OneFileOfEachOfSixFormatsLoads) {
+  const std::pair<const char*, std::size_t> files[] = {
+      {"FBX/box.fbx", 12},  {"Collada/duck.dae", 4212},      {"3DS/fels.3ds", 0},
+      {"OFF/Cube.off", 12}, {"X3D/ComputerKeyboard.x3d", 0}, {"3MF/box.3mf", 12}};
+  for (const auto& [file, triangles] : files) {
+    const Mesh m = load_model(kModels / file);
+    EXPECT_GT(m.triangle_count(), 0u) << file;
+    if (triangles) {
+      EXPECT_EQ(m.triangle_count(), triangles) << file;
+    }
+  }
+}
+
+TEST(AssimpLoader, MaterialsCarryTheirColoursAndTexturePaths) {
+  const Mesh duck = load_model(kModels / "Collada/duck.dae");
+  ASSERT_FALSE(duck.materials.empty());
+  EXPECT_EQ(duck.face_materials.size(), duck.triangle_count());
+  bool textured = false;
+  for (const Material& m : duck.materials)
+    textured = textured || fs::path(m.diffuse_texture) == kModels / "Collada/duckCM.tga";
+  EXPECT_TRUE(textured);
+  EXPECT_EQ(duck.uvs.size(), duck.vertex_count());
+}
+
+TEST(AssimpLoader, BrokenFilesAreRefusedNamingThePath) {
+  const fs::path dir = test::scratch_dir("assimp");
+  std::ofstream(dir / "broken.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n";
+  std::ofstream(dir / "garbage.fbx") << "this is not an FBX file at all\n";
+  for (const fs::path& p : {kModels / "OFF/invalid.off", dir / "broken.off", dir / "garbage.fbx"}) {
+    try {
+      load_model(p);
+      ADD_FAILURE() << p << " loaded";
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.source(), p.string());
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+    }
+  }
+}
+
+// Every file of these format folders either loads (validated, at least one triangle) or is refused cleanly.
+TEST(AssimpLoader, WholeFoldersLoadOrThrowInputError) {
+  int loaded = 0;
+  for (const char* folder : {"FBX", "Collada", "3DS", "OFF", "X3D", "3MF"}) {
+    for (const auto& entry : fs::directory_iterator(kModels / folder)) {
+      if (!entry.is_regular_file()) continue;
+      const std::string ext = entry.path().extension().string();
+      if (ext == ".jpg" || ext == ".png" || ext == ".tga" || ext == ".txt" || ext == ".bmp" || ext == ".dds") continue;
+      try {
+        EXPECT_GT(load_model(entry.path()).triangle_count(), 0u) << entry.path();
+        ++loaded;
+      } catch (const InputError& e) {
+        EXPECT_EQ(e.source(), entry.path().string());
+      }
+    }
+  }
+  EXPECT_GT(loaded, 30);
+}
+
+}  // namespace
+}  // namespace facet
