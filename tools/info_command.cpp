@@ -48,20 +48,25 @@ std::size_t distinct(const std::vector<std::uint32_t>& indices) {
 
 CLI::App* add_info_command(CLI::App& app, InfoArgs& args) {
   CLI::App* info = app.add_subcommand("info", "Print a model's vertex, triangle, edge and material counts and bounds");
-  info->add_option("model", args.model, "Model file (.obj)")->required()->type_name("MODEL");
+  info->add_option("model", args.model, "Model file (any format facet render reads)")->required()->type_name("MODEL");
   return info;
 }
 
 int run_info(const InfoArgs& args) {
-  const Mesh mesh = load_model(args.model);
+  std::string format;
+  const Mesh mesh = load_model(args.model, format);
   const Bounds box = bounds(mesh);
   std::printf("file: %s\n", args.model.c_str());
+  std::printf("format: %s\n", format.c_str());
   const Mesh weld = welded(mesh);
   std::printf("vertices: %zu\n", distinct(weld.indices));
   std::printf("render vertices: %zu\n", mesh.vertex_count());
   std::printf("triangles: %zu\n", mesh.triangle_count());
   std::printf("edges: %zu\n", unique_edges(weld).size());
   std::printf("materials: %zu\n", mesh.materials.size());
+  std::size_t textured = 0;
+  for (const Material& m : mesh.materials) textured += m.diffuse_map || !m.diffuse_texture.empty();
+  std::printf("textured materials: %zu\n", textured);
   print_vec3("bounds min", box.min);
   print_vec3("bounds max", box.max);
   print_vec3("size", box.max - box.min);

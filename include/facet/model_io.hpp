@@ -3,6 +3,7 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <string>
 
 #include "facet/mesh.hpp"
 
@@ -47,5 +48,8 @@ inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 // A missing MTL file, a missing texture file (diffuse_texture is then left empty), dropped faces, unknown PLY header
 // lines and data after a PLY's last element only print a one-line "facet: warning: ..." to stderr.
 Mesh load_model(const std::filesystem::path& path);
+
+// The same, also naming the reader that read it: "OBJ", "PLY", "STL", "glTF", "GLB" or "Assimp (ext)".
+Mesh load_model(const std::filesystem::path& path, std::string& format);
 
 }  // namespace facet

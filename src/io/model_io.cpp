@@ -113,12 +113,21 @@ Format format_of_content(std::string_view bytes) {
 }  // namespace
 
 Mesh load_model(const fs::path& path) {
+  std::string format;
+  return load_model(path, format);
+}
+
+Mesh load_model(const fs::path& path, std::string& format_name) {
   const std::string source = path.string();
   const std::uintmax_t size = checked_file_size(path, source);
   const std::string extension = path.extension().string();
   Format format = format_of_extension(extension);
   std::string bytes = read_file(path, size, source);
   if (format == Format::kUnknown) format = format_of_content(bytes);
+  constexpr const char* kNames[] = {"OBJ", "PLY", "STL", "glTF", "Assimp", ""};
+  format_name = kNames[static_cast<int>(format)];
+  if (format == Format::kGltf && is_gltf_binary(bytes)) format_name = "GLB";
+  if (format == Format::kAssimp) format_name += " (" + printable(extension.substr(1)) + ")";
   try {
     switch (format) {
       case Format::kObj:

@@ -171,13 +171,15 @@ done
 if info=$("$facet" info "$models/box.obj" 2>"$scratch/info.log") &&
   grep -qx 'vertices: 8' <<<"$info" && grep -qx 'triangles: 12' <<<"$info" && grep -qx 'edges: 18' <<<"$info" &&
   grep -qx 'materials: 0' <<<"$info" && grep -qx 'bounds min: -0.5 -0.5 -0.5' <<<"$info" &&
+  grep -qx 'format: OBJ' <<<"$info" &&
   grep -qx 'bounds max: 0.5 0.5 0.5' <<<"$info"; then
   ok "info box.obj"
 else
   bad "info box.obj" "$(tr '\n' ';' <<<"${info:-}") $(head -n 2 "$scratch/info.log")"
 fi
 if info=$("$facet" info "$stl_models/Spider_ascii.stl" 2>"$scratch/info_stl.log") &&
-  grep -qx 'vertices: 722' <<<"$info" && grep -qx 'triangles: 1368' <<<"$info"; then
+  grep -qx 'vertices: 722' <<<"$info" && grep -qx 'triangles: 1368' <<<"$info" &&
+  grep -qx 'format: STL' <<<"$info"; then
   ok "info Spider_ascii.stl"
 else
   bad "info Spider_ascii.stl" "$(tr '\n' ';' <<<"${info:-}") $(head -n 2 "$scratch/info_stl.log")"
@@ -188,5 +190,22 @@ if info=$("$facet" info "$models/spider.obj" 2>/dev/null) && grep -qx 'materials
 else
   bad "info spider.obj" "$(tr '\n' ';' <<<"${info:-}")"
 fi
+
+# Each reader names itself; glTF's textures are decoded with the model.
+gltf=/usr/share/assimp/models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb
+if info=$("$facet" info "$gltf" 2>/dev/null) && grep -qx 'format: GLB' <<<"$info" &&
+  grep -qx 'textured materials: 1' <<<"$info" && grep -qx 'triangles: 12' <<<"$info"; then
+  ok "info BoxTextured.glb"
+else
+  bad "info BoxTextured.glb" "$(tr '\n' ';' <<<"${info:-}")"
+fi
+if info=$("$facet" info /usr/share/assimp/models/Collada/duck.dae 2>/dev/null) &&
+  grep -qx 'format: Assimp (dae)' <<<"$info" && grep -qx 'triangles: 4212' <<<"$info"; then
+  ok "info duck.dae"
+else
+  bad "info duck.dae" "$(tr '\n' ';' <<<"${info:-}")"
+fi
+run gltf_binary image 160 120 inside -- render "$gltf" --resolution 160,120
+run collada image 160 120 inside -- render /usr/share/assimp/models/Collada/duck.dae --resolution 160,120
 
 finish
