@@ -1,5 +1,4 @@
 // obj_loader.cpp - load_obj(): Wavefront OBJ + MTL through tinyobjloader, checked, indexed and triangulated.
-#define TINYOBJLOADER_IMPLEMENTATION
 #include <tiny_obj_loader.h>
 
 #include <algorithm>
