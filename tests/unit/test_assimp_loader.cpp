@@ -7,6 +7,7 @@
 
 #include "facet/error.hpp"
 #include "facet/model_io.hpp"
+#include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace facet {
@@ -43,15 +44,8 @@ TEST(AssimpLoader, BrokenFilesAreRefusedNamingThePath) {
   const fs::path dir = test::scratch_dir("assimp");
   std::ofstream(dir / "broken.off") << "OFF\n3 1 0\n0 0 0\n1 0 0\n";
   std::ofstream(dir / "garbage.fbx") << "this is not an FBX file at all\n";
-  for (const fs::path& p : {kModels / "OFF/invalid.off", dir / "broken.off", dir / "garbage.fbx"}) {
-    try {
-      load_model(p);
-      ADD_FAILURE() << p << " loaded";
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.source(), p.string());
-      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
-    }
-  }
+  for (const fs::path& p : {kModels / "OFF/invalid.off", dir / "broken.off", dir / "garbage.fbx"})
+    EXPECT_FALSE(test::load_problem(p).empty()) << p;
 }
 
 // Every file of these format folders either loads (validated, at least one triangle) or is refused cleanly.

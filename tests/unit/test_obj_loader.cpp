@@ -13,6 +13,7 @@
 
 #include "facet/error.hpp"
 #include "facet/model_io.hpp"
+#include "support/load_problem.hpp"
 
 namespace facet {
 namespace {
@@ -37,28 +38,8 @@ class ObjLoader : public ::testing::Test {
     std::error_code ec;
     fs::remove_all(dir_, ec);
   }
-  fs::path write(const std::string& name, const std::string& text) const {
-    const fs::path p = dir_ / name;
-    fs::create_directories(p.parent_path());
-    std::ofstream(p, std::ios::binary) << text;
-    return p;
-  }
-  // Loads a file that must fail; checks the message is "<path>: ..." on one line and returns the problem part.
-  static std::string problem(const fs::path& p) {
-    try {
-      load_model(p);
-    } catch (const InputError& e) {
-      const std::string what = e.what();
-      EXPECT_TRUE(starts_with(what, p.string() + ": ")) << what;
-      EXPECT_EQ(what.find('\n'), std::string::npos) << what;
-      return e.problem();
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << "not an InputError: " << e.what();
-      return {};
-    }
-    ADD_FAILURE() << "loading " << p << " did not throw";
-    return {};
-  }
+  fs::path write(const std::string& name, const std::string& bytes) const { return test::write_file(dir_, name, bytes); }
+  static std::string problem(const fs::path& p) { return test::load_problem(p); }
   fs::path dir_;
 };
 

@@ -14,6 +14,7 @@
 
 #include "facet/error.hpp"
 #include "facet/model_io.hpp"
+#include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace facet {
@@ -135,26 +136,8 @@ std::string pyramid(const std::string& encoding, bool faces_first = false) {
 class PlyLoader : public ::testing::Test {
  protected:
   void SetUp() override { dir_ = test::scratch_dir("models"); }
-  fs::path write(const std::string& name, const std::string& bytes) const {
-    const fs::path p = dir_ / name;
-    std::ofstream(p, std::ios::binary) << bytes;
-    return p;
-  }
-  // Loads a file that must fail; checks the message is "<path>: ..." on one line and returns the problem part.
-  static std::string problem(const fs::path& p) {
-    try {
-      load_model(p);
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.source(), p.string());
-      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
-      return e.problem();
-    } catch (const std::exception& e) {
-      ADD_FAILURE() << "not an InputError: " << e.what();
-      return {};
-    }
-    ADD_FAILURE() << "loading " << p << " did not throw";
-    return {};
-  }
+  fs::path write(const std::string& name, const std::string& bytes) const { return test::write_file(dir_, name, bytes); }
+  static std::string problem(const fs::path& p) { return test::load_problem(p); }
   fs::path dir_;
 };
 
