@@ -67,9 +67,9 @@ struct LookArgs {
 void add_look_options(CLI::App& app, LookArgs& args);
 LookSpec look_spec(const LookArgs& args);
 
-// The output flags: --output, --output-depth, --resolution.
+// The output flags: --output, --output-depth, --resolution (and, for render, --output-mask, --output-camera).
 struct OutputArgs {
-  std::string output, output_depth;
+  std::string output, output_depth, output_mask, output_camera;
   std::string resolution;
 };
 void add_output_options(CLI::App& app, OutputArgs& args, const std::string& default_resolution);

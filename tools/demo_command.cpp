@@ -199,7 +199,7 @@ int run_demo(const DemoArgs& args) {
     std::string color_path, depth_path;
     expand_frame_pattern(args.output.output, i, color_path);
     if (!args.output.output_depth.empty()) expand_frame_pattern(args.output.output_depth, i, depth_path);
-    draw_and_write(renderer, target, scene, frame.view, options, clear, {color_path, depth_path});
+    draw_and_write(renderer, target, scene, frame.view, options, clear, {.color = color_path, .depth = depth_path});
   }
   return 0;
 }

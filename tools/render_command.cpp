@@ -9,6 +9,11 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
   CLI::App* render = app.add_subcommand("render", "Render a model file to a PNG");
   render->add_option("model", args.model, "Model file (.obj, .ply, .stl)")->required()->type_name("MODEL");
   add_output_options(*render, args.output, "1024,768");
+  render->add_option("--output-mask", args.output.output_mask, "Also write a mask: 8-bit PNG, 255 where drawn")
+      ->type_name("FILE.png");
+  render->add_option("--output-camera", args.output.output_camera,
+                     "Also write the camera as JSON: intrinsics K (OpenCV), poses, near, far")
+      ->type_name("FILE.json");
   add_camera_options(*render, args.camera);
   add_look_options(*render, args.look);
   return render;
@@ -22,9 +27,7 @@ RenderJob render_job(const RenderArgs& args) {
   job.height = size.y;
   job.camera = camera_spec(args.camera);
   job.look = look_spec(args.look);
-  job.outputs = {args.output.output, args.output.output_depth};
-  if (!job.outputs.depth.empty() && job.outputs.depth.lexically_normal() == job.outputs.color.lexically_normal())
-    throw UsageError("--output-depth: must differ from --output");
+  job.outputs = {args.output.output, args.output.output_depth, args.output.output_mask, args.output.output_camera};
   return job;
 }
 

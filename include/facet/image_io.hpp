@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace facet {
@@ -17,6 +18,12 @@ class Framebuffer;
 void write_png(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba,
                bool keep_alpha = true);
 void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha = true);
+
+// An 8-bit greyscale PNG of width * height values, top row first; written like write_png.
+void write_png_gray(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> gray);
+
+// A text file, written like write_png (a temporary file renamed into place).
+void write_text(const std::filesystem::path& path, const std::string& text);
 
 // Reads a PNG (or any format load_texture accepts) as RGBA bytes, top row first. Throws InputError naming the file.
 std::vector<std::uint8_t> read_png(const std::filesystem::path& path, int& width, int& height);

@@ -29,8 +29,10 @@ struct LookSpec {
 
 // The files a render writes; empty paths are not written.
 struct OutputSpec {
-  std::filesystem::path color;  // PNG: RGB, or RGBA with a transparent background
-  std::filesystem::path depth;  // linear eye-space depth, float32 H x W .npy, 0 where empty
+  std::filesystem::path color{};  // PNG: RGB, or RGBA with a transparent background
+  std::filesystem::path depth{};  // linear eye-space depth, float32 H x W .npy, 0 where empty
+  std::filesystem::path mask{};   // 8-bit greyscale PNG: 255 where a surface is drawn, 0 where empty
+  std::filesystem::path camera{};  // JSON: size, near, far, intrinsics and poses (camera_json in view_spec.hpp)
 };
 
 struct RenderJob {

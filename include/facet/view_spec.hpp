@@ -3,6 +3,7 @@
 
 #include <array>
 #include <optional>
+#include <string>
 #include <string_view>
 
 #include <glm/glm.hpp>
@@ -65,5 +66,22 @@ Framing framing_of(const Mesh& mesh, const std::string& source);
 // std::invalid_argument naming the field for a camera that cannot be built (the eye at the focal point, near not
 // positive for a perspective, far not beyond near, a degenerate window or view up).
 View make_view(const CameraSpec& camera, const Framing& framing, float aspect);
+
+// The camera of a View in the conventions of computer-vision tools, for turning depth back into world points.
+// OpenCV camera axes: x right, y down, z forward (into the scene); pixel (0, 0)'s centre is at u = v = 0.
+struct CameraModel {
+  bool perspective = true;       // false: a parallel projection (orthographic, oblique, the view presets)
+  glm::mat3 K{1.0f};             // intrinsics in pixels (perspective only): u = fx X/Z + cx, v = fy Y/Z + cy
+  glm::mat4 world_from_camera;   // OpenGL camera axes (x right, y up, looking down -z)
+  glm::mat4 camera_from_world_cv;  // OpenCV camera axes
+};
+
+// The camera model of `view` for a width x height image. A parallel projection has no K; its pixel-to-point map
+// is clip_from_view's inverse.
+CameraModel camera_model(const View& view, int width, int height);
+
+// JSON: width, height, near, far, projection ("perspective" or "parallel"), K (3x3, rows; null when parallel),
+// world_from_camera (OpenGL axes) and camera_from_world (OpenCV axes), 4x4 row by row, and clip_from_view.
+std::string camera_json(const View& view, int width, int height);
 
 }  // namespace facet

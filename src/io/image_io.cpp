@@ -106,6 +106,18 @@ void write_png(const std::filesystem::path& path, int width, int height, std::sp
   write_file_atomically(path, encoded);
 }
 
+void write_png_gray(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> gray) {
+  check_size(width, height, gray.size(), 1, "PNG");
+  std::vector<std::uint8_t> encoded;
+  if (!stbi_write_png_to_func(&append_to_vector, &encoded, width, height, 1, gray.data(), width))
+    write_failed(path, "PNG encoding failed");
+  write_file_atomically(path, encoded);
+}
+
+void write_text(const std::filesystem::path& path, const std::string& text) {
+  write_file_atomically(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+}
+
 void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha) {
   const std::vector<std::uint8_t> rgba = framebuffer.rgba8();
   write_png(path, framebuffer.width(), framebuffer.height(), rgba, keep_alpha);

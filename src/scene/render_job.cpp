@@ -1,6 +1,8 @@
 // render_job.cpp - a RenderJob performed: load, frame, view, look, draw, write every output or none.
 #include "facet/render_job.hpp"
 
+#include <cstdint>
+#include <iterator>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -53,10 +55,20 @@ void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const
       write_png(outputs.color, target, clear.a < 1.0f);
       written.push_back(outputs.color);
     }
+    // Depth and mask come from one depth read, so every buffer agrees on which pixels are empty.
+    const bool needs_depth = !outputs.depth.empty() || !outputs.mask.empty();
+    const std::vector<float> depth = needs_depth ? linear_depth(target, view.clip_from_view) : std::vector<float>{};
     if (!outputs.depth.empty()) {
-      const std::vector<float> depth = linear_depth(target, view.clip_from_view);
       write_npy(outputs.depth, target.width(), target.height(), depth);
+      written.push_back(outputs.depth);
     }
+    if (!outputs.mask.empty()) {
+      std::vector<std::uint8_t> mask(depth.size());
+      for (std::size_t i = 0; i < depth.size(); ++i) mask[i] = depth[i] > 0.0f ? 255 : 0;
+      write_png_gray(outputs.mask, target.width(), target.height(), mask);
+      written.push_back(outputs.mask);
+    }
+    if (!outputs.camera.empty()) write_text(outputs.camera, camera_json(view, target.width(), target.height()));
   } catch (...) {
     std::error_code ignored;
     for (const std::filesystem::path& path : written) std::filesystem::remove(path, ignored);
@@ -65,8 +77,12 @@ void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const
 }
 
 void render(const RenderJob& job, Renderer& renderer) {
-  if (!job.outputs.depth.empty() && job.outputs.depth.lexically_normal() == job.outputs.color.lexically_normal())
-    throw std::invalid_argument("depth output: must differ from the colour output");
+  const std::filesystem::path* paths[] = {&job.outputs.color, &job.outputs.depth, &job.outputs.mask,
+                                          &job.outputs.camera};
+  for (std::size_t i = 0; i < std::size(paths); ++i)
+    for (std::size_t k = i + 1; k < std::size(paths); ++k)
+      if (!paths[i]->empty() && paths[i]->lexically_normal() == paths[k]->lexically_normal())
+        throw std::invalid_argument("outputs: " + paths[k]->string() + " is named twice");
   if (job.width < 1 || job.height < 1 || job.width > kMaxDimension || job.height > kMaxDimension)
     throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
 

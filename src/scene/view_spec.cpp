@@ -8,6 +8,8 @@
 #include <stdexcept>
 #include <string>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include "facet/camera.hpp"
 #include "facet/error.hpp"
 #include "facet/projection.hpp"
@@ -15,9 +17,9 @@
 namespace facet {
 namespace {
 
-std::string format(float v) {
+std::string format(float v, const char* spec = "%g") {
   char text[32];
-  std::snprintf(text, sizeof text, "%g", static_cast<double>(v));
+  std::snprintf(text, sizeof text, spec, static_cast<double>(v));
   return text;
 }
 
@@ -163,6 +165,59 @@ View make_view(const CameraSpec& spec, const Framing& framing, float aspect) {
     }
   }
   return view;
+}
+
+CameraModel camera_model(const View& view, int width, int height) {
+  CameraModel model;
+  const glm::mat4& p = view.clip_from_view;
+  // A perspective divides by -z: its last row is (0, 0, -1, 0).
+  model.perspective = p[0][3] == 0.0f && p[1][3] == 0.0f && p[2][3] == -1.0f && p[3][3] == 0.0f;
+  const float w = static_cast<float>(width), h = static_cast<float>(height);
+  if (model.perspective) {
+    // x_ndc = p00 X/Z - p20 with X = x, Z = -z; pixel centres sit half a pixel in from the corner at 0.
+    model.K = glm::mat3(1.0f);
+    model.K[0][0] = p[0][0] * w * 0.5f;
+    model.K[1][1] = p[1][1] * h * 0.5f;
+    model.K[2][0] = (1.0f - p[2][0]) * w * 0.5f - 0.5f;
+    model.K[2][1] = (1.0f + p[2][1]) * h * 0.5f - 0.5f;
+  }
+  model.world_from_camera = glm::inverse(view.view_from_world);
+  const glm::mat4 cv_from_gl = glm::scale(glm::mat4(1.0f), glm::vec3(1.0f, -1.0f, -1.0f));
+  model.camera_from_world_cv = cv_from_gl * view.view_from_world;
+  return model;
+}
+
+std::string camera_json(const View& view, int width, int height) {
+  const CameraModel model = camera_model(view, width, height);
+  std::string out;
+  // Nine significant digits: enough for every float to read back exactly.
+  const auto number = [&](float v) { out += format(v, "%.9g"); };
+  const auto rows = [&](auto m, int n) {
+    out += '[';
+    for (int r = 0; r < n; ++r) {
+      out += r ? ", [" : "[";
+      for (int c = 0; c < n; ++c) {
+        if (c) out += ", ";
+        number(m[c][r]);
+      }
+      out += ']';
+    }
+    out += ']';
+  };
+  out += "{\n  \"width\": " + std::to_string(width) + ",\n  \"height\": " + std::to_string(height) + ",\n  \"near\": ";
+  number(view.near);
+  out += ",\n  \"far\": ";
+  number(view.far);
+  out += std::string(",\n  \"projection\": \"") + (model.perspective ? "perspective" : "parallel") + "\",\n  \"K\": ";
+  if (model.perspective) rows(model.K, 3); else out += "null";
+  out += ",\n  \"world_from_camera\": ";
+  rows(model.world_from_camera, 4);
+  out += ",\n  \"camera_from_world\": ";
+  rows(model.camera_from_world_cv, 4);
+  out += ",\n  \"clip_from_view\": ";
+  rows(view.clip_from_view, 4);
+  out += "\n}\n";
+  return out;
 }
 
 }  // namespace facet

@@ -89,6 +89,10 @@ expect unwritable_output 1 render "$box" --output "$scratch/no/such/folder/out.p
 expect output_is_directory 1 render "$box" --output "$scratch/folder.obj"
 expect unwritable_depth 1 render "$box" --output "$scratch/unwritable_depth.png" \
   --output-depth "$scratch/no/such/folder/depth.npy"
+expect unwritable_camera 1 render "$box" --output "$scratch/unwritable_camera.png" \
+  --output-mask "$scratch/unwritable_camera_mask.png" --output-camera "$scratch/no/such/folder/camera.json"
+[ ! -e "$scratch/unwritable_camera_mask.png" ] && ok "unwritable_camera left no mask" ||
+  bad unwritable_camera "the mask was left behind"
 expect info_missing 1 info "$scratch/does_not_exist.obj"
 expect info_garbage 1 info "$scratch/garbage.obj"
 expect demo_unwritable 1 demo cube --output "$scratch/no/such/folder/cube.png"
@@ -125,6 +129,7 @@ expect background_text 2 render "$box" --background-color red
 expect zero_light 2 render "$box" --light-direction 0,0,0
 expect threads_negative 2 render "$box" --threads=-1
 expect same_depth_and_color 2 render "$box" --output "$scratch/same.png" --output-depth "$scratch/same.png"
+expect same_mask_and_color 2 render "$box" --output "$scratch/same2.png" --output-mask "$scratch/same2.png"
 expect demo_unknown 2 demo teapot
 expect demo_frames_without_pattern 2 demo cube --frames 3
 expect demo_frames_zero 2 demo cube --frames 0

@@ -167,6 +167,20 @@ for p in perspective orthographic; do
   fi
 done
 
+# --output-mask and --output-camera: written beside the image, the camera as JSON with OpenCV intrinsics.
+if "$facet" render "$models/box.obj" --resolution 64,48 --output "$scratch/mc.png" \
+  --output-mask "$scratch/mc_mask.png" --output-camera "$scratch/mc.json" 2>"$scratch/mc.log" &&
+  python3 -c 'import json, sys
+c = json.load(open(sys.argv[1]))
+assert (c["width"], c["height"], c["projection"]) == (64, 48, "perspective"), c
+assert len(c["K"]) == 3 and c["K"][2] == [0, 0, 1] and c["K"][0][0] > 0, c["K"]
+assert len(c["camera_from_world"]) == 4 and c["near"] < c["far"], c' "$scratch/mc.json" &&
+  [ "$(head -c 8 "$scratch/mc_mask.png" | od -An -tx1 | tr -d ' ')" = 89504e470d0a1a0a ]; then
+  ok "mask and camera"
+else
+  bad "mask and camera" "$(head -n 2 "$scratch/mc.log")"
+fi
+
 # facet info: counts and bounds, one item per line.
 if info=$("$facet" info "$models/box.obj" 2>"$scratch/info.log") &&
   grep -qx 'vertices: 8' <<<"$info" && grep -qx 'triangles: 12' <<<"$info" && grep -qx 'edges: 18' <<<"$info" &&

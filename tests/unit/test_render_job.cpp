@@ -1,15 +1,19 @@
 // test_render_job.cpp - the library's render description: up axes, framing, make_view, looks, and render().
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <glm/glm.hpp>
+#include <iterator>
+#include <memory>
 #include <stdexcept>
 #include <string>
 
 #include "facet/error.hpp"
 #include "facet/image_io.hpp"
+#include "facet/model_io.hpp"
 #include "facet/primitives.hpp"
 #include "facet/render_job.hpp"
 #include "support/scratch_dir.hpp"
@@ -194,6 +198,80 @@ TEST(Render, AFailedRenderLeavesNoFile) {
   job.model = dir / "missing.obj";
   EXPECT_THROW(render(job, renderer), InputError);
   EXPECT_TRUE(std::filesystem::is_empty(dir));
+}
+
+// Depth plus the camera model turn every drawn pixel back into a point on the surface: the unit box's faces.
+TEST(CameraModel, DepthBackProjectsToTheSurfaceDrawn) {
+  for (const Projection projection : {Projection::perspective, Projection::frustum}) {
+    Scene scene;
+    scene.add(Instance{std::make_shared<Mesh>(load_model(kBox)), glm::mat4(1.0f)});
+    CameraSpec spec;
+    spec.projection = projection;
+    spec.azimuth_degrees = 20.0f;
+    const int width = 96, height = 64;
+    const View view = make_view(spec, {{0, 0, 0}, std::sqrt(0.75f)}, static_cast<float>(width) / height);
+    Renderer renderer(2);
+    Framebuffer target(width, height);
+    renderer.clear(target);
+    scene.render(renderer, target, view, SceneOptions{});
+    renderer.finish(target);
+    const std::vector<float> depth = linear_depth(target, view.clip_from_view);
+    const CameraModel camera = camera_model(view, width, height);
+    ASSERT_TRUE(camera.perspective);
+    const glm::mat4 world_from_cv = glm::inverse(camera.camera_from_world_cv);
+    int drawn = 0;
+    for (int v = 0; v < height; ++v)
+      for (int u = 0; u < width; ++u) {
+        const float d = depth[static_cast<std::size_t>(v * width + u)];
+        if (d == 0.0f) continue;
+        ++drawn;
+        const glm::vec3 cv((u - camera.K[2][0]) * d / camera.K[0][0], (v - camera.K[2][1]) * d / camera.K[1][1], d);
+        const glm::vec3 world(world_from_cv * glm::vec4(cv, 1.0f));
+        const float extent = std::max({std::abs(world.x), std::abs(world.y), std::abs(world.z)});
+        EXPECT_NEAR(extent, 0.5f, 2e-3f) << "pixel " << u << "," << v;
+      }
+    EXPECT_GT(drawn, width * height / 10);
+    // The OpenGL pose and the OpenCV one are the same camera with y and z flipped.
+    const glm::mat4 gl_from_cv = glm::inverse(camera.world_from_camera) * world_from_cv;
+    EXPECT_NEAR(gl_from_cv[1][1], -1.0f, 1e-5f);
+    EXPECT_NEAR(gl_from_cv[2][2], -1.0f, 1e-5f);
+  }
+}
+
+TEST(Render, MaskDepthCameraAndImageAgree) {
+  const std::filesystem::path dir = test::scratch_dir("render_job");
+  RenderJob job;
+  job.model = kBox;
+  job.width = 48;
+  job.height = 40;
+  job.look.background = glm::vec3(0.0f, 1.0f, 0.0f);
+  job.outputs = {dir / "c.png", dir / "d.npy", dir / "m.png", dir / "camera.json"};
+  Renderer renderer(2);
+  render(job, renderer);
+  int w = 0, h = 0;
+  const std::vector<std::uint8_t> color = read_png(dir / "c.png", w, h);
+  const std::vector<std::uint8_t> mask = read_png(dir / "m.png", w, h);
+  ASSERT_EQ(w * h, 48 * 40);
+  int drawn = 0;
+  for (int i = 0; i < w * h; ++i) {
+    const std::uint8_t m = mask[static_cast<std::size_t>(i) * 4];
+    ASSERT_TRUE(m == 0 || m == 255);
+    const bool background = color[i * 4] == 0 && color[i * 4 + 1] == 255 && color[i * 4 + 2] == 0;
+    EXPECT_EQ(m == 0, background) << "pixel " << i;
+    drawn += m == 255;
+  }
+  EXPECT_GT(drawn, 100);
+  std::ifstream json(dir / "camera.json");
+  const std::string text((std::istreambuf_iterator<char>(json)), std::istreambuf_iterator<char>());
+  for (const char* key : {"\"width\": 48", "\"height\": 40", "\"projection\": \"perspective\"", "\"K\": [[",
+                          "\"world_from_camera\"", "\"camera_from_world\""})
+    EXPECT_NE(text.find(key), std::string::npos) << key << " in " << text;
+
+  job.camera.projection = Projection::isometric;
+  render(job, renderer);
+  std::ifstream parallel(dir / "camera.json");
+  const std::string iso((std::istreambuf_iterator<char>(parallel)), std::istreambuf_iterator<char>());
+  EXPECT_NE(iso.find("\"projection\": \"parallel\",\n  \"K\": null"), std::string::npos) << iso;
 }
 
 }  // namespace
