@@ -4,9 +4,13 @@
 
 #include <algorithm>
 #include <assimp/Importer.hpp>
+#include <cctype>
+#include <charconv>
 #include <cmath>
+#include <cstdio>
 #include <filesystem>
 #include <string>
+#include <string_view>
 
 #include "facet/error.hpp"
 #include "io/loaders.hpp"
@@ -49,13 +53,48 @@ Material material_of(const aiMaterial& m, const std::filesystem::path& folder) {
   return out;
 }
 
+// Assimp's OFF reader believes the header's counts: 3.5e13 vertices in a 309-byte file keep it busy for good. An
+// ASCII vertex takes at least 6 bytes ("0 0 0\n") and a face 8 ("3 0 1 2\n"), so counts the file cannot hold are
+// refused first. Binary OFF ("OFF BINARY") is not read by Assimp at all.
+void check_off_counts(std::string_view bytes, const std::string& source) {
+  std::size_t pos = 0;
+  const auto next_token = [&]() -> std::string_view {
+    for (;;) {
+      while (pos < bytes.size() && std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
+      if (pos < bytes.size() && bytes[pos] == '#') {
+        while (pos < bytes.size() && bytes[pos] != '\n') ++pos;
+        continue;
+      }
+      const std::size_t start = pos;
+      while (pos < bytes.size() && !std::isspace(static_cast<unsigned char>(bytes[pos]))) ++pos;
+      return bytes.substr(start, pos - start);
+    }
+  };
+  const std::string_view keyword = next_token();
+  if (keyword.size() < 3 || keyword.substr(keyword.size() - 3) != "OFF") return;
+  double counts[2] = {0, 0};
+  for (double& count : counts) {
+    const std::string_view token = next_token();
+    if (std::from_chars(token.data(), token.data() + token.size(), count).ec != std::errc()) return;
+  }
+  if (counts[0] * 6 + counts[1] * 8 > static_cast<double>(bytes.size())) {
+    char text[96];
+    std::snprintf(text, sizeof text, "%.0f vertices, %.0f faces", counts[0], counts[1]);
+    throw InputError(source, std::string("the OFF header's counts (") + text + ") do not fit in its " +
+                                 std::to_string(bytes.size()) + " bytes");
+  }
+}
+
 }  // namespace
 
 bool assimp_reads(const std::string& extension) {
   return !extension.empty() && Assimp::Importer().IsExtensionSupported(extension);
 }
 
-Mesh load_with_assimp(const std::filesystem::path& path, const std::string& source) {
+Mesh load_with_assimp(const std::filesystem::path& path, std::string_view bytes, const std::string& source) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".off") check_off_counts(bytes, source);
   Assimp::Importer importer;
   // Lines and points are dropped by the sort; the pre-transform flattens the node hierarchy into world space,
   // as the glTF reader does.

@@ -20,7 +20,7 @@ Mesh load_stl(std::string_view bytes, const std::string& source);
 Mesh load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source);
 
 // Every other format Assimp reads, as one mesh in world space; Assimp opens the file (and its companions) itself.
-Mesh load_with_assimp(const std::filesystem::path& path, const std::string& source);
+Mesh load_with_assimp(const std::filesystem::path& path, std::string_view bytes, const std::string& source);
 // Whether Assimp has a reader for this extension (".fbx", with the dot).
 bool assimp_reads(const std::string& extension);
 

@@ -139,7 +139,7 @@ Mesh load_model(const fs::path& path, std::string& format_name) {
       case Format::kGltf:
         return load_gltf(path, bytes, source);
       case Format::kAssimp:
-        return load_with_assimp(path, source);
+        return load_with_assimp(path, bytes, source);
       case Format::kUnknown:
         break;
     }

@@ -67,5 +67,21 @@ TEST(AssimpLoader, WholeFoldersLoadOrThrowInputError) {
   EXPECT_GT(loaded, 30);
 }
 
+// Debian's collection of broken files: each is refused with a one-line error, or loads; none hangs or crashes.
+TEST(AssimpLoader, TheInvalidFolderIsRefusedCleanly) {
+  int refused = 0;
+  for (const auto& entry : fs::directory_iterator(kModels / "invalid")) {
+    try {
+      EXPECT_GT(load_model(entry.path()).triangle_count(), 0u) << entry.path();
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.source(), entry.path().string());
+      EXPECT_EQ(std::string(e.what()).find('\n'), std::string::npos) << e.what();
+      ++refused;
+    }
+  }
+  EXPECT_GE(refused, 13);
+  EXPECT_NE(test::load_problem(kModels / "invalid/OutOfMemory.off").find("do not fit"), std::string::npos);
+}
+
 }  // namespace
 }  // namespace facet
