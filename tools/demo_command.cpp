@@ -173,11 +173,7 @@ int run_demo(const DemoArgs& args) {
     model = make_pentagon();
   }
   const LookSpec look = look_spec(args.look);
-  // A colour asked for replaces the vertex and face colours too, so the whole model takes it.
-  if (look.color) {
-    model.colors.clear();
-    model.face_colors.clear();
-  }
+  apply_look_color(model, look);
   const std::shared_ptr<const Mesh> mesh = std::make_shared<Mesh>(std::move(model));
 
   const float aspect = static_cast<float>(size.x) / static_cast<float>(size.y);

@@ -52,6 +52,10 @@ inline constexpr glm::vec3 kDefaultBackground{0.42f, 0.45f, 0.5f};
 SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_world, Shading default_shading,
                            glm::vec3 background);
 
+// A colour the look asks for replaces the mesh's vertex and face colours too (the shaders prefer those over the
+// material), so the whole model takes it. Does nothing without one.
+void apply_look_color(Mesh& mesh, const LookSpec& look);
+
 // The clear colour of a look: its background (or `fallback`), alpha 0 when transparent.
 glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback);
 

@@ -40,6 +40,12 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
   return options;
 }
 
+void apply_look_color(Mesh& mesh, const LookSpec& look) {
+  if (!look.color) return;
+  mesh.colors.clear();
+  mesh.face_colors.clear();
+}
+
 glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback) {
   return {look.background.value_or(fallback), look.transparent_background ? 0.0f : 1.0f};
 }
@@ -87,12 +93,7 @@ void render(const RenderJob& job, Renderer& renderer) {
     throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
 
   auto mesh = std::make_shared<Mesh>(load_model(job.model));
-  // A colour asked for replaces the per-vertex and per-face colours too (the shaders prefer those over the
-  // material), so the whole model takes it.
-  if (job.look.color) {
-    mesh->colors.clear();
-    mesh->face_colors.clear();
-  }
+  apply_look_color(*mesh, job.look);
   const Framing framing = framing_of(*mesh, job.model.string());
   const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
   const View view = make_view(job.camera, framing, aspect);

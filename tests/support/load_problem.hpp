@@ -1,4 +1,4 @@
-// load_problem.hpp - loader tests' shared steps: write a model file, and load one that must be refused.
+// load_problem.hpp - loader tests' shared steps: write a model file, load one that must be refused, cut one short.
 #pragma once
 
 #include <exception>
@@ -36,6 +36,28 @@ inline std::string load_problem(const std::filesystem::path& p) {
   }
   ADD_FAILURE() << "loading " << p << " did not throw";
   return {};
+}
+
+// Every prefix of a valid file, written to path, loads into a valid mesh or throws InputError; never anything
+// else. Warnings (skipped lines, dropped faces) are captured rather than printed.
+inline void expect_every_prefix_loads_or_throws(const std::filesystem::path& path, const std::string& bytes) {
+  int loaded = 0, refused = 0;
+  testing::internal::CaptureStderr();
+  for (std::size_t n = 1; n < bytes.size(); ++n) {
+    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes.substr(0, n);
+    try {
+      const Mesh m = load_model(path);
+      validate(m, path.string());
+      EXPECT_GT(m.triangle_count(), 0u);
+      ++loaded;
+    } catch (const InputError& e) {
+      EXPECT_EQ(e.source(), path.string());
+      ++refused;
+    }
+  }
+  testing::internal::GetCapturedStderr();
+  EXPECT_GT(refused, 0);
+  EXPECT_EQ(loaded + refused, static_cast<int>(bytes.size()) - 1);
 }
 
 }  // namespace facet::test

@@ -437,31 +437,10 @@ TEST_F(PlyLoader, BadBodiesThrowInputErrorNamingTheEntryAndWhere) {
             "vertex 0: non-finite value of 'y' (byte offset " + std::to_string(nan.header_size() + 4) + ")");
 }
 
-// Every prefix of a valid file loads into a valid mesh or throws InputError; never anything else.
-void expect_every_prefix_loads_or_throws(const fs::path& path, const std::string& bytes) {
-  int loaded = 0, refused = 0;
-  testing::internal::CaptureStderr();  // warnings about skipped lines and dropped faces
-  for (std::size_t n = 1; n < bytes.size(); ++n) {
-    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes.substr(0, n);
-    try {
-      const Mesh m = load_model(path);
-      validate(m, path.string());
-      EXPECT_GT(m.triangle_count(), 0u);
-      ++loaded;
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.source(), path.string());
-      ++refused;
-    }
-  }
-  testing::internal::GetCapturedStderr();
-  EXPECT_GT(refused, 0);
-  EXPECT_EQ(loaded + refused, static_cast<int>(bytes.size()) - 1);
-}
-
 TEST_F(PlyLoader, EveryTruncationOfEachEncodingLoadsOrIsRefusedCleanly) {
   for (const char* encoding : kEncodings) {
     SCOPED_TRACE(encoding);
-    expect_every_prefix_loads_or_throws(dir_ / "cut.ply", pyramid(encoding, std::string(encoding) == "ascii"));
+    test::expect_every_prefix_loads_or_throws(dir_ / "cut.ply", pyramid(encoding, std::string(encoding) == "ascii"));
   }
 }
 

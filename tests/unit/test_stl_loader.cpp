@@ -208,33 +208,14 @@ TEST_F(StlLoader, BadFilesThrowInputErrorNamingThePath) {
             "non-finite vertex position in triangle 1 (byte offset 170)");  // 84 + 50 + 12 + 2 * 12
 }
 
-// Every prefix of a valid file loads into a valid mesh or throws InputError; never anything else.
-void expect_every_prefix_loads_or_throws(const fs::path& path, const std::string& bytes) {
-  int loaded = 0, refused = 0;
-  for (std::size_t n = 1; n < bytes.size(); ++n) {
-    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes.substr(0, n);
-    try {
-      const Mesh m = load_model(path);
-      validate(m, path.string());
-      EXPECT_GT(m.triangle_count(), 0u);
-      ++loaded;
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.source(), path.string());
-      ++refused;
-    }
-  }
-  EXPECT_GT(refused, 0);
-  EXPECT_EQ(loaded + refused, static_cast<int>(bytes.size()) - 1);
-}
-
 TEST_F(StlLoader, EveryTruncationOfABinaryFileIsRefusedCleanly) {
-  expect_every_prefix_loads_or_throws(dir_ / "cut.stl", binary_stl(cube()));
-  expect_every_prefix_loads_or_throws(dir_ / "cut.stl", binary_stl(cube(), "solid cube"));
+  test::expect_every_prefix_loads_or_throws(dir_ / "cut.stl", binary_stl(cube()));
+  test::expect_every_prefix_loads_or_throws(dir_ / "cut.stl", binary_stl(cube(), "solid cube"));
 }
 
 TEST_F(StlLoader, EveryTruncationOfAnAsciiFileLoadsOrIsRefusedCleanly) {
   const std::vector<Triangle> t = cube();
-  expect_every_prefix_loads_or_throws(dir_ / "cut.stl", ascii_stl({t[0], t[1], t[2]}));
+  test::expect_every_prefix_loads_or_throws(dir_ / "cut.stl", ascii_stl({t[0], t[1], t[2]}));
 }
 
 TEST_F(StlLoader, AssimpModelsLoadWithTheirKnownCounts) {
