@@ -87,8 +87,38 @@ FACET_LANES_INLINE void store(void* p, const V& v) {
   std::memcpy(p, &v, sizeof v);
 }
 
+// Lane k of the result is lane pattern[k] of v, or of the lanes of a followed by those of b. GCC spells this
+// __builtin_shuffle; Clang has only __builtin_shufflevector with literal indices, so its build uses a loop, which
+// it folds into one shuffle for the constant patterns facet passes.
+#if defined(__clang__)
+template <class V>
+FACET_LANES_INLINE V shuffle(V v, Int pattern) {
+  V r;
+  for (int k = 0; k < kLanes; ++k) r[k] = v[pattern[k] & (kLanes - 1)];
+  return r;
+}
+template <class V>
+FACET_LANES_INLINE V shuffle(V a, V b, Int pattern) {
+  V r;
+  for (int k = 0; k < kLanes; ++k) {
+    const int i = pattern[k] & (2 * kLanes - 1);
+    r[k] = i < kLanes ? a[i] : b[i - kLanes];
+  }
+  return r;
+}
+#else
+template <class V>
+FACET_LANES_INLINE V shuffle(V v, Int pattern) {
+  return __builtin_shuffle(v, pattern);
+}
+template <class V>
+FACET_LANES_INLINE V shuffle(V a, V b, Int pattern) {
+  return __builtin_shuffle(a, b, pattern);
+}
+#endif
+
 // Swaps lanes within each 2x2 quad: coarse derivatives are differences between a quad's pixels.
-FACET_LANES_INLINE Float quad_broadcast(Float v, Int pattern) { return __builtin_shuffle(v, pattern); }
+FACET_LANES_INLINE Float quad_broadcast(Float v, Int pattern) { return shuffle(v, pattern); }
 inline constexpr Int kQuadTopLeft = (kLaneIndex & ~9);        // lane of each quad's (0, 0) pixel
 inline constexpr Int kQuadTopRight = (kLaneIndex & ~9) | 1;   // ... (1, 0)
 inline constexpr Int kQuadBottomLeft = (kLaneIndex & ~9) | 8;  // ... (0, 1)

@@ -95,8 +95,7 @@ void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
       for (int k = 0; k < 3; ++k) {
         const int a = k, b = (k + 1) % 3;
         const std::int32_t dx = X[b] - X[a], dy = Y[b] - Y[a];
-        // The top-left rule, as classify: a point on an edge is inside only for top and left edges.
-        const std::uint32_t bias = ((dy == 0) & (dx > 0)) | (dy < 0) ? 0u : ~0u;
+        const auto bias = static_cast<std::uint32_t>(top_left_bias(dx, dy));
         // 32 bits are exact here: bounds of at most four centres span under 7 pixels (1792 units) each way, so
         // every product stays below 2^22. Other lanes may wrap (unsigned, so defined) and are masked by `few`.
         const auto u = [](std::int32_t v) { return static_cast<std::uint32_t>(v); };

@@ -56,9 +56,10 @@ void setup_cull_lanes(const SetupInput& input, std::size_t first, CullLanes& out
 // The edge function of clockwise edge (dx, dy) from corner (x_a, y_a) at a point is dx * (y - y_a) - dy * (x - x_a)
 // plus this bias, and the point is inside when that is >= 0. Top-left rule, with y down: a top edge is horizontal
 // going right, a left edge goes up; a point exactly on any other edge is outside. Bitwise logic, so that it
-// vectorises in setup_accepted_lanes.
-[[gnu::always_inline]] inline std::int64_t top_left_bias(std::int64_t dx, std::int64_t dy) {
-  return ((dy == 0) & (dx > 0)) | (dy < 0) ? 0 : -1;
+// vectorises in setup_accepted_lanes and setup_cull_lanes (which computes in 32 bits, hence the template).
+template <class I>
+[[gnu::always_inline]] inline I top_left_bias(I dx, I dy) {
+  return (((dy == 0) & (dx > 0)) | (dy < 0)) ? I{0} : I{-1};
 }
 
 // The edge of TriangleSetup from clockwise corner (x, y) along (dx, dy), all in 1/256 pixel (see Edge).

@@ -5,7 +5,9 @@
 // dynamic loader's ifunc resolver picks one, so a single portable binary uses the wide units where they exist.
 // Building with FACET_NO_DISPATCH keeps only the baseline: the sanitizer configuration does that, so the
 // scalar fallback is tested too.
-#if defined(FACET_NO_DISPATCH) || !defined(__x86_64__)
+// Clang 14 cannot clone function templates (the tile loop is one per shader), so a Clang build compiles them once,
+// for the target its flags name (-march=native, say).
+#if defined(FACET_NO_DISPATCH) || !defined(__x86_64__) || defined(__clang__)
 #define FACET_CPU_DISPATCH(...)
 #else
 #define FACET_CPU_DISPATCH(...) __attribute__((target_clones(__VA_ARGS__)))

@@ -19,8 +19,10 @@
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 // GCC 12 reports the strip's FragmentLanes members as maybe-uninitialized where the first triangle writes them;
-// prepare_strip_lanes fills every lane of every member before the shader reads it.
+// prepare_strip_lanes fills every lane of every member before the shader reads it. Clang has no such warning.
+#if !defined(__clang__)
 #pragma GCC diagnostic ignored "-Wmaybe-uninitialized"
+#endif
 
 namespace facet::detail {
 
@@ -78,7 +80,7 @@ inline unsigned strip_inside(const TileWork& work, int px, int py) {
 // triangle at a time, the loop over these bits carries no chain of vector compares from one triangle to the next.
 [[gnu::always_inline]] inline unsigned strip_triangle_starts(simd::UInt refs) {
   using namespace simd;
-  const UInt left = __builtin_shuffle(refs, (kLaneIndex - 1) & 15), above = __builtin_shuffle(refs, kLaneIndex ^ 8);
+  const UInt left = shuffle(refs, (kLaneIndex - 1) & 15), above = shuffle(refs, kLaneIndex ^ 8);
   const Mask row_start = (kLaneIndex & 7) == 0, row_1 = kLaneIndex >= 8;
   const Mask start = (refs != kNoTriangle) & ((refs != left) | row_start) & ~((refs == above) & row_1);
   unsigned bits = 0;
