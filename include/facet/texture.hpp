@@ -13,8 +13,8 @@
 
 #include "facet/simd.hpp"
 
-// FACET_NO_SIMD selects the portable scalar code (for testing that both agree); define it for the whole build.
-#if defined(__SSE2__) && defined(__x86_64__) && !defined(FACET_NO_SIMD)
+// x86-64 samples with SSE2 (every x86-64 CPU has it); elsewhere, the portable functions below, which it must match.
+#if defined(__SSE2__) && defined(__x86_64__)
 #define FACET_TEXTURE_SSE2 1
 #include <emmintrin.h>
 #endif
@@ -34,6 +34,96 @@ struct Sampler {
   Filter filter = Filter::trilinear;
   Wrap wrap_u = Wrap::repeat, wrap_v = Wrap::repeat;
 };
+
+namespace detail {
+
+// For s and t: floor as an int and the fraction s - floor(s), the texel index and weight of the bilinear formula.
+// The clamp keeps the conversion defined for huge, infinite or NaN coordinates (NaN goes to -2^30 with weight 0);
+// +-2^30 are multiples of every power-of-two size, so repeat wrapping of large values is unaffected. Exact: a
+// non-integer float is below 2^23 in magnitude, where i - 1 and float(i) are exact.
+struct Split {
+  int i, j;
+  float alpha, beta;
+};
+inline constexpr float kTexelCoordinateLimit = 1073741824.0f;  // 2^30
+
+inline Split split_floor_portable(float s, float t) {
+  constexpr float lo = -kTexelCoordinateLimit, hi = kTexelCoordinateLimit;
+  auto one = [](float v, float& fraction) {
+    v = lo < v ? v : lo;
+    v = v < hi ? v : hi;
+    int i = static_cast<int>(v);
+    i -= v < static_cast<float>(i) ? 1 : 0;
+    fraction = v - static_cast<float>(i);
+    return i;
+  };
+  Split r{};
+  r.i = one(s, r.alpha);
+  r.j = one(t, r.beta);
+  return r;
+}
+
+// A texel's channels as floats in 0..255: the bilinear formula interpolates these and divides by 255 last.
+inline glm::vec4 unpack_bytes(std::uint32_t p) {
+  return glm::vec4(static_cast<float>(p & 0xffu), static_cast<float>((p >> 8) & 0xffu),
+                   static_cast<float>((p >> 16) & 0xffu), static_cast<float>(p >> 24));
+}
+
+// lerp(lerp(T00, T10, alpha), lerp(T01, T11, alpha), beta) / 255 with lerp(a, b, w) = a + (b - a) * w, given the
+// pairs (T00 | T10 << 32) and (T01 | T11 << 32).
+inline glm::vec4 blend_portable(std::uint64_t bottom_pair, std::uint64_t top_pair, float alpha, float beta) {
+  const glm::vec4 t00 = unpack_bytes(static_cast<std::uint32_t>(bottom_pair));
+  const glm::vec4 t10 = unpack_bytes(static_cast<std::uint32_t>(bottom_pair >> 32));
+  const glm::vec4 t01 = unpack_bytes(static_cast<std::uint32_t>(top_pair));
+  const glm::vec4 t11 = unpack_bytes(static_cast<std::uint32_t>(top_pair >> 32));
+  const glm::vec4 bottom = t00 + (t10 - t00) * alpha;
+  const glm::vec4 top = t01 + (t11 - t01) * alpha;
+  return (bottom + (top - bottom) * beta) / 255.0f;
+}
+
+// The same two functions in SSE2, for the scalar sampling path's per-pixel work: the same IEEE operations per
+// lane, so they agree bit for bit with the portable ones (tests/unit/test_texture.cpp checks that).
+#if defined(FACET_TEXTURE_SSE2)
+inline Split split_floor_sse2(float s, float t) {
+  __m128 st = _mm_setr_ps(s, t, 0.0f, 0.0f);
+  st = _mm_min_ps(_mm_max_ps(st, _mm_set1_ps(-kTexelCoordinateLimit)), _mm_set1_ps(kTexelCoordinateLimit));
+  __m128i ij = _mm_cvttps_epi32(st);                                                 // truncates toward zero
+  ij = _mm_add_epi32(ij, _mm_castps_si128(_mm_cmplt_ps(st, _mm_cvtepi32_ps(ij))));  // -1 where that rounded up
+  const __m128 fraction = _mm_sub_ps(st, _mm_cvtepi32_ps(ij));
+  return Split{_mm_cvtsi128_si32(ij), _mm_cvtsi128_si32(_mm_shuffle_epi32(ij, 1)), _mm_cvtss_f32(fraction),
+               _mm_cvtss_f32(_mm_shuffle_ps(fraction, fraction, 1))};
+}
+
+inline glm::vec4 blend_sse2(std::uint64_t bottom_pair, std::uint64_t top_pair, float alpha, float beta) {
+  const __m128i zero = _mm_setzero_si128();
+  // bytes -> 16-bit -> 32-bit lanes, one texel per half of the 16-bit vector.
+  const __m128i b16 = _mm_unpacklo_epi8(_mm_cvtsi64_si128(static_cast<long long>(bottom_pair)), zero);
+  const __m128i t16 = _mm_unpacklo_epi8(_mm_cvtsi64_si128(static_cast<long long>(top_pair)), zero);
+  const __m128 t00 = _mm_cvtepi32_ps(_mm_unpacklo_epi16(b16, zero));
+  const __m128 t10 = _mm_cvtepi32_ps(_mm_unpackhi_epi16(b16, zero));
+  const __m128 t01 = _mm_cvtepi32_ps(_mm_unpacklo_epi16(t16, zero));
+  const __m128 t11 = _mm_cvtepi32_ps(_mm_unpackhi_epi16(t16, zero));
+  const __m128 a = _mm_set1_ps(alpha);
+  const __m128 bottom = _mm_add_ps(t00, _mm_mul_ps(_mm_sub_ps(t10, t00), a));
+  const __m128 top = _mm_add_ps(t01, _mm_mul_ps(_mm_sub_ps(t11, t01), a));
+  const __m128 mixed = _mm_add_ps(bottom, _mm_mul_ps(_mm_sub_ps(top, bottom), _mm_set1_ps(beta)));
+  glm::vec4 result;
+  _mm_storeu_ps(&result.x, _mm_div_ps(mixed, _mm_set1_ps(255.0f)));
+  return result;
+}
+
+inline Split split_floor(float s, float t) { return split_floor_sse2(s, t); }
+inline glm::vec4 blend(std::uint64_t bottom, std::uint64_t top, float alpha, float beta) {
+  return blend_sse2(bottom, top, alpha, beta);
+}
+#else
+inline Split split_floor(float s, float t) { return split_floor_portable(s, t); }
+inline glm::vec4 blend(std::uint64_t bottom, std::uint64_t top, float alpha, float beta) {
+  return blend_portable(bottom, top, alpha, beta);
+}
+#endif
+
+}  // namespace detail
 
 class Texture {
  public:
@@ -59,9 +149,7 @@ class Texture {
   // Level 0 only: nearest or bilinear (trilinear has no derivatives here, so it behaves like bilinear).
   glm::vec4 sample(glm::vec2 uv, const Sampler& sampler) const {
     // The benchmark's case (bilinear, repeat, power-of-two size) stays inline and branch-light.
-    if (pow2_ && sampler.filter != Filter::nearest && sampler.wrap_u == Wrap::repeat &&
-        sampler.wrap_v == Wrap::repeat)
-      return bilinear_repeat_pow2(uv);
+    if (bilinear_repeat_pow2_applies(sampler)) return bilinear_repeat_pow2(uv);
     return sample_level0(uv, sampler);
   }
 
@@ -89,82 +177,11 @@ class Texture {
     std::size_t offset = 0;              // of texel (0, 0) in texels_
   };
 
-  // For s and t: floor as an int and the fraction s - floor(s), the texel index and weight of the bilinear
-  // formula. The clamp keeps the conversion defined for huge, infinite or NaN coordinates (NaN goes to -2^30 with
-  // weight 0); +-2^30 are multiples of every power-of-two size, so repeat wrapping of large values is unaffected.
-  // Exact: a non-integer float is below 2^23 in magnitude, where i - 1 and float(i) are exact.
-  struct Split {
-    int i, j;
-    float alpha, beta;
-  };
-  static Split split_floor(float s, float t) {
-    constexpr float lo = -1073741824.0f, hi = 1073741824.0f;
-#if defined(FACET_TEXTURE_SSE2)
-    __m128 st = _mm_setr_ps(s, t, 0.0f, 0.0f);
-    st = _mm_min_ps(_mm_max_ps(st, _mm_set1_ps(lo)), _mm_set1_ps(hi));  // maxps returns lo for NaN
-    __m128i ij = _mm_cvttps_epi32(st);                                 // truncates toward zero
-    ij = _mm_add_epi32(ij, _mm_castps_si128(_mm_cmplt_ps(st, _mm_cvtepi32_ps(ij))));  // -1 where that rounded up
-    const __m128 fraction = _mm_sub_ps(st, _mm_cvtepi32_ps(ij));
-    return Split{_mm_cvtsi128_si32(ij), _mm_cvtsi128_si32(_mm_shuffle_epi32(ij, 1)), _mm_cvtss_f32(fraction),
-                 _mm_cvtss_f32(_mm_shuffle_ps(fraction, fraction, 1))};
-#else
-    auto one = [](float v, float& fraction) {
-      v = lo < v ? v : lo;
-      v = v < hi ? v : hi;
-      int i = static_cast<int>(v);
-      i -= v < static_cast<float>(i) ? 1 : 0;
-      fraction = v - static_cast<float>(i);
-      return i;
-    };
-    Split r{};
-    r.i = one(s, r.alpha);
-    r.j = one(t, r.beta);
-    return r;
-#endif
-  }
-
-  // A texel's channels as floats in 0..255: the bilinear formula interpolates these and divides by 255 last.
-  static glm::vec4 unpack_bytes(std::uint32_t p) {
-    return glm::vec4(static_cast<float>(p & 0xffu), static_cast<float>((p >> 8) & 0xffu),
-                     static_cast<float>((p >> 16) & 0xffu), static_cast<float>(p >> 24));
-  }
-
-  // lerp(lerp(T00, T10, alpha), lerp(T01, T11, alpha), beta) / 255 with lerp(a, b, w) = a + (b - a) * w, given
-  // the pairs (T00 | T10 << 32) and (T01 | T11 << 32). The SSE2 version does the same IEEE operations per lane as
-  // the scalar one, so both give identical results; it exists because this is the per-pixel hot path.
-  static glm::vec4 blend(std::uint64_t bottom_pair, std::uint64_t top_pair, float alpha, float beta) {
-#if defined(FACET_TEXTURE_SSE2)
-    const __m128i zero = _mm_setzero_si128();
-    // bytes -> 16-bit -> 32-bit lanes, one texel per half of the 16-bit vector.
-    const __m128i b16 = _mm_unpacklo_epi8(_mm_cvtsi64_si128(static_cast<long long>(bottom_pair)), zero);
-    const __m128i t16 = _mm_unpacklo_epi8(_mm_cvtsi64_si128(static_cast<long long>(top_pair)), zero);
-    const __m128 t00 = _mm_cvtepi32_ps(_mm_unpacklo_epi16(b16, zero));
-    const __m128 t10 = _mm_cvtepi32_ps(_mm_unpackhi_epi16(b16, zero));
-    const __m128 t01 = _mm_cvtepi32_ps(_mm_unpacklo_epi16(t16, zero));
-    const __m128 t11 = _mm_cvtepi32_ps(_mm_unpackhi_epi16(t16, zero));
-    const __m128 a = _mm_set1_ps(alpha);
-    const __m128 bottom = _mm_add_ps(t00, _mm_mul_ps(_mm_sub_ps(t10, t00), a));
-    const __m128 top = _mm_add_ps(t01, _mm_mul_ps(_mm_sub_ps(t11, t01), a));
-    const __m128 mixed = _mm_add_ps(bottom, _mm_mul_ps(_mm_sub_ps(top, bottom), _mm_set1_ps(beta)));
-    glm::vec4 result;
-    _mm_storeu_ps(&result.x, _mm_div_ps(mixed, _mm_set1_ps(255.0f)));
-    return result;
-#else
-    const glm::vec4 t00 = unpack_bytes(static_cast<std::uint32_t>(bottom_pair));
-    const glm::vec4 t10 = unpack_bytes(static_cast<std::uint32_t>(bottom_pair >> 32));
-    const glm::vec4 t01 = unpack_bytes(static_cast<std::uint32_t>(top_pair));
-    const glm::vec4 t11 = unpack_bytes(static_cast<std::uint32_t>(top_pair >> 32));
-    const glm::vec4 bottom = t00 + (t10 - t00) * alpha;
-    const glm::vec4 top = t01 + (t11 - t01) * alpha;
-    return (bottom + (top - bottom) * beta) / 255.0f;
-#endif
-  }
-
   // BENCHMARK.md section 7: s = u*W - 0.5, i = floor(s), alpha = s - i, indices wrapped by a mask; thanks to the
   // padding, texels i+1 and j+1 are the next ones in memory even at the last column and row.
   glm::vec4 bilinear_repeat_pow2(glm::vec2 uv) const {
     const Level& l = levels_[0];
-    const Split p = split_floor(uv.x * l.fwidth - 0.5f, uv.y * l.fheight - 0.5f);
+    const detail::Split p = detail::split_floor(uv.x * l.fwidth - 0.5f, uv.y * l.fheight - 0.5f);
     const std::uint32_t* t00 =
         texels_.data() + static_cast<std::size_t>(p.j & (l.height - 1)) * l.stride + (p.i & (l.width - 1));
     std::uint64_t bottom, top;
@@ -174,7 +191,7 @@ class Texture {
       bottom = bottom << 32 | bottom >> 32;
       top = top << 32 | top >> 32;
     }
-    return blend(bottom, top, p.alpha, p.beta);
+    return detail::blend(bottom, top, p.alpha, p.beta);
   }
 
   FACET_LANES_INLINE simd::Color bilinear_repeat_pow2_lanes(const simd::Vec2& uv) const;
@@ -218,7 +235,7 @@ inline simd::Color Texture::sample_lanes(const simd::Vec2& uv, const Sampler& sa
 
 inline simd::Float Texture::clamp_texel_coordinate(simd::Float v) {
   using namespace simd;
-  constexpr float lo = -1073741824.0f, hi = 1073741824.0f;
+  constexpr float lo = -detail::kTexelCoordinateLimit, hi = detail::kTexelCoordinateLimit;
   v = select(v > lo, v, splat(lo));
   return select(v < hi, v, splat(hi));
 }
@@ -279,8 +296,8 @@ inline simd::Color Texture::bilinear_repeat_pow2_lanes(const simd::Vec2& uv) con
   // On a little-endian machine the left texel of each pair is the lower 32 bits, i.e. the even lane.
   constexpr bool little = std::endian::native == std::endian::little;
   const Int even = kLaneIndex * 2 + (little ? 0 : 1), odd = kLaneIndex * 2 + (little ? 1 : 0);
-  const UInt t00 = __builtin_shuffle(b0, b1, even), t10 = __builtin_shuffle(b0, b1, odd);
-  const UInt t01 = __builtin_shuffle(u0, u1, even), t11 = __builtin_shuffle(u0, u1, odd);
+  const UInt t00 = shuffle(b0, b1, even), t10 = shuffle(b0, b1, odd);
+  const UInt t01 = shuffle(u0, u1, even), t11 = shuffle(u0, u1, odd);
   auto channel = [&](int shift) __attribute__((always_inline)) {
     auto bytes = [&](UInt t) __attribute__((always_inline)) {
       return to_float(__builtin_convertvector((t >> shift) & 0xffu, Int));

@@ -40,20 +40,20 @@ glm::vec4 Texture::sample_level0(glm::vec2 uv, const Sampler& sampler) const {
 
 glm::vec4 Texture::sample_nearest(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const {
   const Level& l = levels_[static_cast<std::size_t>(level)];
-  const Split p = split_floor(uv.x * l.fwidth, uv.y * l.fheight);
+  const detail::Split p = detail::split_floor(uv.x * l.fwidth, uv.y * l.fheight);
   const int i = wrap_index(p.i, l.width, wrap_u), j = wrap_index(p.j, l.height, wrap_v);
-  return unpack_bytes(texels_[l.offset + static_cast<std::size_t>(j) * l.stride + i]) / 255.0f;
+  return detail::unpack_bytes(texels_[l.offset + static_cast<std::size_t>(j) * l.stride + i]) / 255.0f;
 }
 
 // The same arithmetic as bilinear_repeat_pow2 (BENCHMARK.md section 7), with general wrapping.
 glm::vec4 Texture::sample_bilinear(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const {
   const Level& l = levels_[static_cast<std::size_t>(level)];
-  const Split p = split_floor(uv.x * l.fwidth - 0.5f, uv.y * l.fheight - 0.5f);
+  const detail::Split p = detail::split_floor(uv.x * l.fwidth - 0.5f, uv.y * l.fheight - 0.5f);
   const int i0 = wrap_index(p.i, l.width, wrap_u), i1 = wrap_index(p.i + 1, l.width, wrap_u);
   const int j0 = wrap_index(p.j, l.height, wrap_v), j1 = wrap_index(p.j + 1, l.height, wrap_v);
   const std::uint32_t* row0 = texels_.data() + l.offset + static_cast<std::size_t>(j0) * l.stride;
   const std::uint32_t* row1 = texels_.data() + l.offset + static_cast<std::size_t>(j1) * l.stride;
-  return blend(row0[i0] | std::uint64_t{row0[i1]} << 32, row1[i0] | std::uint64_t{row1[i1]} << 32, p.alpha, p.beta);
+  return detail::blend(row0[i0] | std::uint64_t{row0[i1]} << 32, row1[i0] | std::uint64_t{row1[i1]} << 32, p.alpha, p.beta);
 }
 
 glm::vec4 Texture::sample(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, const Sampler& sampler) const {

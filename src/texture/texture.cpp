@@ -67,7 +67,7 @@ void Texture::pad_level(int level) {
 
 glm::vec4 Texture::texel(int level, int x, int y) const {
   const Level& l = levels_[static_cast<std::size_t>(level)];
-  return unpack_bytes(texels_[l.offset + static_cast<std::size_t>(y) * l.stride + x]) / 255.0f;
+  return detail::unpack_bytes(texels_[l.offset + static_cast<std::size_t>(y) * l.stride + x]) / 255.0f;
 }
 
 namespace {
@@ -129,7 +129,7 @@ void Texture::generate_mipmaps() {
         for (int x = 0; x < w; ++x) {
           const AxisTaps& vx = tx[static_cast<std::size_t>(x)];
           glm::vec4 sum(0.0f);
-          for (int m = 0; m < vx.count; ++m) sum += unpack_bytes(row[vx.first + m]) * vx.weight[m];
+          for (int m = 0; m < vx.count; ++m) sum += detail::unpack_bytes(row[vx.first + m]) * vx.weight[m];
           row_sums[static_cast<std::size_t>(x)] += sum * vy.weight[k];
         }
       }

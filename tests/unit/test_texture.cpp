@@ -189,6 +189,37 @@ TEST(TextureSampling, LanesMatchTheScalarSampleBitForBit) {
   }
 }
 
+// The SSE2 split and blend that x86-64 uses must give exactly what the portable code gives on other machines.
+TEST(TextureSampling, Sse2AndPortableHelpersAgreeBitForBit) {
+#if defined(FACET_TEXTURE_SSE2)
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<float> coordinate(-3000.0f, 3000.0f);
+  std::uniform_real_distribution<float> weight(0.0f, 1.0f);
+  std::vector<float> values = {0.0f, -0.0f, 0.5f, -0.5f, 1.0f, -1.0f, 1e-30f, -1e-30f, 8388607.5f, -8388607.5f,
+                               2e9f, -2e9f, 1e38f, -1e38f, INFINITY, -INFINITY, NAN};
+  for (int k = 0; k < 20000; ++k) values.push_back(coordinate(rng));
+  const auto same_bits = [](float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); };
+  for (std::size_t k = 0; k < values.size(); ++k) {
+    const float s = values[k], t = values[(k * 7 + 3) % values.size()];
+    const detail::Split fast = detail::split_floor_sse2(s, t), portable = detail::split_floor_portable(s, t);
+    ASSERT_EQ(fast.i, portable.i) << "s = " << s;
+    ASSERT_EQ(fast.j, portable.j) << "t = " << t;
+    ASSERT_TRUE(same_bits(fast.alpha, portable.alpha)) << "s = " << s;
+    ASSERT_TRUE(same_bits(fast.beta, portable.beta)) << "t = " << t;
+  }
+  std::uniform_int_distribution<std::uint64_t> pair;
+  for (int k = 0; k < 20000; ++k) {
+    const std::uint64_t bottom = pair(rng), top = pair(rng);
+    const float alpha = weight(rng), beta = weight(rng);
+    const glm::vec4 fast = detail::blend_sse2(bottom, top, alpha, beta);
+    const glm::vec4 portable = detail::blend_portable(bottom, top, alpha, beta);
+    for (int c = 0; c < 4; ++c) ASSERT_TRUE(same_bits(fast[c], portable[c])) << "channel " << c;
+  }
+#else
+  GTEST_FAIL() << "this test runs on x86-64, where the SSE2 helpers exist";
+#endif
+}
+
 TEST(TextureSampling, ConstructorRejectsBadSizes) {
   EXPECT_THROW(Texture(0, 1, {}), std::invalid_argument);
   EXPECT_THROW(Texture(2, 2, std::vector<std::uint32_t>(3)), std::invalid_argument);
