@@ -1,12 +1,29 @@
 // bench_command.hpp - `facet bench`: the end-to-end benchmark defined in docs/BENCHMARK.md.
 #pragma once
 
-namespace facet::bench {
+#include <string>
 
-// Runs `facet bench` with argv[0] = "bench" and the flags after it; returns the process exit status (0 ok,
-// 2 bad arguments or an unloadable mesh, 1 any other failure).
-int run_bench(int argc, char** argv);
+#include <CLI/CLI.hpp>
 
-}  // namespace facet::bench
+namespace facet::cli {
 
-using facet::bench::run_bench;
+// The flags of docs/BENCHMARK.md section 1, as given; 0 or empty for a scene flag that was not.
+struct BenchArgs {
+  int sphere = 0, quads = 0;
+  std::string mesh, order = "b2f";
+  std::string resolution = "1920,1080";
+  int frames = 30, warmup = 5;
+  int threads = -1;  // not given: every hardware thread
+  float scale = 1.0f;
+  std::string png, depth;
+  bool json = false, stats = false;
+};
+
+// Adds the `bench` subcommand, filling `args` when it is parsed.
+CLI::App* add_bench_command(CLI::App& app, BenchArgs& args);
+
+// Times the frames and prints the result line; returns the exit status. Throws UsageError for a missing scene or
+// an unusable mesh (exit status 2), and anything else for other failures (status 1).
+int run_bench(const BenchArgs& args);
+
+}  // namespace facet::cli

@@ -34,25 +34,6 @@ std::vector<std::string> split(const std::string& text, const std::string& separ
   }
 }
 
-// Runs `parse` on the option's text inside a CLI11 validator, so a malformed value is reported (exit 2) while
-// parsing, before any model is loaded.
-template <class Parse>
-CLI::Validator parse_check(Parse parse, const std::string& description) {
-  return CLI::Validator(
-      [parse](std::string& value) -> std::string {
-        try {
-          parse(value);
-        } catch (const UsageError& e) {
-          // parse() names the option itself; CLI11 adds the name again, so keep only the problem.
-          const std::string what = e.what();
-          const auto colon = what.find(": ");
-          return colon == std::string::npos ? what : what.substr(colon + 2);
-        }
-        return {};
-      },
-      description);
-}
-
 template <class E>
 CLI::Option* add_enum_option(CLI::App& app, const std::string& name,
                              const std::vector<std::pair<std::string, E>>& names, std::function<void(E)> assign,

@@ -33,6 +33,25 @@ UpAxis parse_up(const std::string& text);
 // "W,H" or "WxH", each in 1..kMaxDimension.
 glm::ivec2 parse_resolution(const std::string& text, const std::string& option);
 
+// Runs `parse` on the option's text inside a CLI11 validator, so a malformed value is reported (exit 2) while
+// parsing, before any model is loaded.
+template <class Parse>
+CLI::Validator parse_check(Parse parse, const std::string& description) {
+  return CLI::Validator(
+      [parse](std::string& value) -> std::string {
+        try {
+          parse(value);
+        } catch (const UsageError& e) {
+          // parse() names the option itself; CLI11 adds the name again, so keep only the problem.
+          const std::string what = e.what();
+          const auto colon = what.find(": ");
+          return colon == std::string::npos ? what : what.substr(colon + 2);
+        }
+        return {};
+      },
+      description);
+}
+
 // A CLI11 check: a plain decimal number in lo..hi (no nan/inf, no trailing text), whole when `integer`.
 CLI::Validator number_in(double lo, double hi, bool integer = false);
 

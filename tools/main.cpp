@@ -34,22 +34,21 @@ int fail(std::string message, int status) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  // `facet bench` follows the argument rules (and exit statuses) of BENCHMARK.md section 1, so it bypasses CLI11.
-  if (argc >= 2 && std::string_view(argv[1]) == "bench") return run_bench(argc - 1, argv + 1);
-
   CLI::App app{"facet: a CPU 3D rendering pipeline", "facet"};
   app.set_version_flag("--version", std::string("facet ") + facet::kVersion);
-  app.footer("Also: facet bench [flags] times a scene (see facet bench --help).");
   facet::cli::RenderArgs render_args;
   facet::cli::DemoArgs demo_args;
   facet::cli::InfoArgs info_args;
+  facet::cli::BenchArgs bench_args;
   CLI::App* render = facet::cli::add_render_command(app, render_args);
   CLI::App* demo = facet::cli::add_demo_command(app, demo_args);
   CLI::App* info = facet::cli::add_info_command(app, info_args);
+  CLI::App* bench = facet::cli::add_bench_command(app, bench_args);
 
   // CLI11 would list every argument as unexpected; name the command instead.
   if (const std::string_view command = argc >= 2 ? argv[1] : "-";
-      (command.empty() || command[0] != '-') && command != "render" && command != "demo" && command != "info")
+      (command.empty() || command[0] != '-') && command != "render" && command != "demo" && command != "info" &&
+      command != "bench")
     return fail(std::string("unknown command '") + argv[1] + "': use render, demo, info or bench", kUsageError);
   try {
     app.parse(argc, argv);
@@ -67,6 +66,7 @@ int main(int argc, char** argv) {
     if (render->parsed()) return facet::cli::run_render(render_args);
     if (demo->parsed()) return facet::cli::run_demo(demo_args);
     if (info->parsed()) return facet::cli::run_info(info_args);
+    if (bench->parsed()) return facet::cli::run_bench(bench_args);
     return fail("no command given: use render, demo, info or bench (see facet --help)", kUsageError);
   } catch (const facet::InputError& e) {
     return fail(e.what(), kInputError);
