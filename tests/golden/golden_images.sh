@@ -1,12 +1,14 @@
 #!/usr/bin/env bash
 # golden_images.sh - renders the golden scenes with the CLI and compares them with tests/golden/images.
-# Usage: golden_images.sh FACET SCRATCH. FACET_UPDATE_GOLDENS=1 rewrites the goldens instead (commit them apart).
+# Usage: golden_images.sh FACET SCRATCH [EXAMPLE...]. Each EXAMPLE is a program of examples/ that writes the PNG named
+# by its one argument; its golden is example_<program name>.png. FACET_UPDATE_GOLDENS=1 rewrites the goldens instead (commit them apart).
 # Tolerance: a pixel differs when a channel is off by more than 24 levels; at most 0.5% of pixels may differ
 # (edge pixels move with float rounding across compilers and CPUs). A failure leaves NAME.actual.png and
 # NAME.diff.png (red = differing pixel) in SCRATCH.
 set -uo pipefail
 facet=$1
 scratch=$2
+examples=("${@:3}")
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 models=/usr/share/assimp/models/OBJ
 mkdir -p "$scratch"
@@ -31,6 +33,9 @@ cases+=("stl_binary|render /usr/share/assimp/models/STL/Spider_binary.stl ${size
 for p in perspective orthographic frustum oblique isometric dimetric trimetric front top side; do
   cases+=("projection_$p|render $models/WusonOBJ.obj --projection $p ${size[*]}")
 done
+for program in "${examples[@]}"; do
+  cases+=("example_$(basename "$program")|@$program")
+done
 
 passed=0 failed=0
 for entry in "${cases[@]}"; do
@@ -38,8 +43,13 @@ for entry in "${cases[@]}"; do
   read -r -a args <<<"${entry#*|}"
   actual=$scratch/$name.actual.png
   rm -f "$actual" "$scratch/$name.diff.png"
-  if ! "$facet" "${args[@]}" --output "$actual" 2>"$scratch/$name.log"; then
-    echo "FAIL $name: facet ${args[*]} failed: $(head -n 3 "$scratch/$name.log")"
+  if [[ ${args[0]} == @* ]]; then
+    command=("${args[0]#@}" "$actual")  # an example program
+  else
+    command=("$facet" "${args[@]}" --output "$actual")
+  fi
+  if ! "${command[@]}" 2>"$scratch/$name.log"; then
+    echo "FAIL $name: ${command[*]} failed: $(head -n 3 "$scratch/$name.log")"
     failed=$((failed + 1))
     continue
   fi
