@@ -6,12 +6,14 @@
 #include <vector>
 
 #include "bench/bench_shader.hpp"
-#include "facet/detail/clip.hpp"
+#include "clip/clip.hpp"
 #include "facet/detail/dispatch.hpp"
+#include "facet/draw.hpp"
 #include "facet/renderer.hpp"
 #include "setup/setup.hpp"
 #include "support/scenes.hpp"
 #include "support/test_shaders.hpp"
+#include "setup/project.hpp"
 
 namespace {
 

@@ -10,6 +10,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <facet/fragment_lanes.hpp>
+#include <facet/draw.hpp>
 #include <facet/framebuffer.hpp>
 #include <facet/image_io.hpp>
 #include <facet/renderer.hpp>

@@ -43,6 +43,17 @@ struct CacheAlignedAllocator {
   bool operator==(const CacheAlignedAllocator<U>&) const noexcept { return true; }
 };
 
+namespace detail {
+// A clear that Renderer::clear recorded and no tile has applied yet (see Framebuffer).
+struct PendingClear {
+  bool color = false, depth = false;
+  std::uint32_t color_value = 0;
+  float depth_value = 1.0f;
+};
+}  // namespace detail
+
+class Renderer;
+
 class Framebuffer {
  public:
   // Throws std::invalid_argument unless 1 <= width, height <= kMaxDimension.
@@ -54,7 +65,7 @@ class Framebuffer {
   int tiles_y() const { return tiles_y_; }
 
   // Rows are top to bottom; x grows to the right. Valid after Renderer::finish(). Writable access means the
-  // caller may store anything: the next clear then rewrites every tile (see request_clear).
+  // caller may store anything: the next clear then rewrites every tile.
   std::span<std::uint32_t> color() {
     contents_exposed_ = true;
     return color_;
@@ -73,15 +84,14 @@ class Framebuffer {
   // The colour as bytes R, G, B, A per pixel, top row first (what PNG writers take).
   std::vector<std::uint8_t> rgba8() const;
 
+ private:
+  // Renderer::clear and finish record and apply clears, and the tile loop writes the storage directly.
+  friend class Renderer;
+
   // A clear is recorded and applied to each tile just before the tile is first drawn (while it is in cache), or
   // at Renderer::finish() for tiles nothing touched. A tile that received the same colour and depth clear and
   // has not been written since (no draw touched it, no writable color() or depth() access) still holds it, and
   // is skipped: a model that covers part of the frame leaves the rest of the next frame's clear nothing to write.
-  struct PendingClear {
-    bool color = false, depth = false;
-    std::uint32_t color_value = 0;
-    float depth_value = 1.0f;
-  };
   void request_clear(glm::vec4 color, float depth, bool clear_color = true, bool clear_depth = true);
   // Applies the pending clear to one tile if it has not been applied yet. Only the tile's owner thread calls it.
   void resolve_clear(int tile_index);
@@ -89,7 +99,7 @@ class Framebuffer {
   // applies the pending clear first. deferred = true is for a draw that writes every pixel of the tile itself
   // (deferred shading): it marks the pending clear as applied and returns it, leaving the colour and depth writes
   // to the caller (no clear when nothing was pending); depth bounds are reset here.
-  PendingClear begin_tile_draw(int tile_index, bool deferred);
+  detail::PendingClear begin_tile_draw(int tile_index, bool deferred);
   // Applies the pending clear to every tile of one row of tiles that still needs it. When all of them do (the
   // common case at finish() after an empty or sparse frame), the row's pixels are contiguous in memory and are
   // filled in one pass, near memset speed; otherwise each run of neighbouring tiles that need it is filled one
@@ -109,18 +119,17 @@ class Framebuffer {
     return block_max_depth_.data() + static_cast<std::size_t>(tile_index) * kTileBlocks;
   }
 
- private:
   void reset_depth_bounds(int tile_index, float value);
 
   int width_, height_, tiles_x_, tiles_y_;
   std::vector<std::uint32_t, CacheAlignedAllocator<std::uint32_t>> color_;
   std::vector<float, CacheAlignedAllocator<float>> depth_;
   std::vector<float, CacheAlignedAllocator<float>> block_max_depth_;
-  PendingClear pending_;
+  detail::PendingClear pending_;
   std::vector<std::uint8_t> tile_needs_clear_;
   // Per tile: it holds `held_` (a colour and depth clear) in every pixel. Tiles drawn into lose the mark.
   std::vector<std::uint8_t> tile_holds_clear_;
-  PendingClear held_;
+  detail::PendingClear held_;
   bool contents_exposed_ = false;  // writable color() or depth() since the last request_clear
 };
 

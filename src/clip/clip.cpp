@@ -1,5 +1,5 @@
 // clip.cpp - Sutherland-Hodgman clipping in homogeneous clip space (before the w-divide).
-#include "facet/detail/clip.hpp"
+#include "clip/clip.hpp"
 
 #include <algorithm>
 #include <cmath>

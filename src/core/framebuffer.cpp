@@ -75,7 +75,7 @@ void Framebuffer::request_clear(glm::vec4 color, float depth, bool clear_color, 
                             held_.color_value == pending_.color_value &&
                             std::bit_cast<std::uint32_t>(held_.depth_value) == std::bit_cast<std::uint32_t>(depth);
   if (!same_as_held) std::fill(tile_holds_clear_.begin(), tile_holds_clear_.end(), std::uint8_t{0});
-  held_ = clear_color && clear_depth ? pending_ : PendingClear{};
+  held_ = clear_color && clear_depth ? pending_ : detail::PendingClear{};
   contents_exposed_ = false;
   for (std::size_t t = 0; t < tile_needs_clear_.size(); ++t) tile_needs_clear_[t] = tile_holds_clear_[t] ? 0 : 1;
 }
@@ -94,7 +94,7 @@ void Framebuffer::resolve_clear(int tile_index) {
   tile_holds_clear_[tile_index] = held_.color;
 }
 
-Framebuffer::PendingClear Framebuffer::begin_tile_draw(int tile_index, bool deferred) {
+detail::PendingClear Framebuffer::begin_tile_draw(int tile_index, bool deferred) {
   if (!deferred) resolve_clear(tile_index);
   tile_holds_clear_[tile_index] = 0;
   if (!deferred || !tile_needs_clear_[tile_index]) return {};

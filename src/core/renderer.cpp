@@ -5,6 +5,9 @@
 #include <numeric>
 #include <thread>
 
+#include <vector>
+
+#include "core/thread_pool.hpp"
 #include "setup/setup.hpp"
 
 namespace facet {
@@ -17,54 +20,79 @@ int resolve_thread_count(int threads) {
 
 }  // namespace
 
-Renderer::Renderer(int threads) : pool_(resolve_thread_count(threads)), scratch_(pool_.size()) {}
+struct Renderer::Work {
+  explicit Work(int threads) : pool(threads), scratch(static_cast<std::size_t>(pool.size())) {}
+
+  detail::VertexOutputs prepare_vertex_outputs(const detail::DrawRequest& request, std::size_t held,
+                                               std::size_t first, int width, int height);
+  detail::VertexRange batch_vertex_band(const detail::DrawRequest& request, std::size_t batch_first,
+                                        std::size_t batch_count);
+  void shade_vertex_range(const detail::DrawRequest& request, const detail::VertexOutputs& out, std::size_t begin,
+                          std::size_t end, DrawStats& stats);
+
+  detail::ThreadPool pool;
+  // Post-transform vertices of the range being drawn (see VertexOutputs).
+  std::vector<glm::vec4> clip;                    // clip positions, kept only for lines and the painter's sort
+  std::vector<detail::ProjectedVertex> projected;  // the same after the divide, viewport and snapping
+  std::vector<float> varyings;                     // varyings, float_count floats per vertex
+  std::vector<detail::SetupChunk> chunks;
+  std::vector<detail::VertexRange> chunk_bands;  // vertices each setup chunk of the batch references
+  std::vector<std::uint32_t> order;              // painter's order
+  std::vector<float> sort_keys;
+  std::vector<std::uint64_t> active_tiles;   // tiles with work, most binned triangles first (see execute)
+  std::vector<detail::TileScratch> scratch;  // one per thread, for deferred shading
+};
+
+Renderer::Renderer(int threads) : work_(std::make_unique<Work>(resolve_thread_count(threads))) {}
 
 Renderer::~Renderer() = default;
+
+int Renderer::threads() const { return work_->pool.size(); }
 
 void Renderer::clear(Framebuffer& target, glm::vec4 color, float depth) { target.request_clear(color, depth); }
 
 void Renderer::finish(Framebuffer& target) {
-  pool_.parallel_for(static_cast<std::size_t>(target.tiles_y()),
+  work_->pool.parallel_for(static_cast<std::size_t>(target.tiles_y()),
                      [&](std::size_t row, int) { target.resolve_clear_tile_row(static_cast<int>(row)); });
   target.resolve_all_clears();
 }
 
-detail::VertexOutputs Renderer::prepare_vertex_outputs(const detail::DrawRequest& request, std::size_t held,
+detail::VertexOutputs Renderer::Work::prepare_vertex_outputs(const detail::DrawRequest& request, std::size_t held,
                                                        std::size_t first, int width, int height) {
   // Triangles need clip positions only to clip the few that cross the frustum, and recompute those (see
   // ClipPositionFn); lines clip every segment and the painter's sort reads every depth, so those keep them all.
   const bool triangles = request.kind == detail::PrimitiveKind::triangles;
   const bool keep_clip = !triangles || request.state->order == DrawOrder::back_to_front;
-  if (keep_clip && clip_.size() < held) clip_.resize(held);
-  if (triangles && projected_.size() < held) projected_.resize(held);
-  if (varyings_.size() < held * request.varying_floats) varyings_.resize(held * request.varying_floats);
-  return {first, keep_clip ? clip_.data() : nullptr, triangles ? projected_.data() : nullptr, varyings_.data(), width,
+  if (keep_clip && clip.size() < held) clip.resize(held);
+  if (triangles && projected.size() < held) projected.resize(held);
+  if (varyings.size() < held * request.varying_floats) varyings.resize(held * request.varying_floats);
+  return {first, keep_clip ? clip.data() : nullptr, triangles ? projected.data() : nullptr, varyings.data(), width,
           height};
 }
 
 // The vertices that a batch's primitives reference (empty if none is valid), from a scan per setup chunk.
-detail::VertexRange Renderer::batch_vertex_band(const detail::DrawRequest& request, std::size_t batch_first,
-                                                std::size_t batch_count) {
+detail::VertexRange Renderer::Work::batch_vertex_band(const detail::DrawRequest& request, std::size_t batch_first,
+                                                      std::size_t batch_count) {
   using namespace detail;
   const std::size_t per_primitive = request.kind == PrimitiveKind::triangles ? 3 : 2;
   const std::size_t chunk_count = (batch_count + kSetupChunk - 1) / kSetupChunk;
-  chunk_bands_.resize(chunk_count);
-  pool_.parallel_for(chunk_count, [&](std::size_t c, int) {
+  chunk_bands.resize(chunk_count);
+  pool.parallel_for(chunk_count, [&](std::size_t c, int) {
     const std::size_t first = batch_first + c * kSetupChunk;
-    chunk_bands_[c] = setup_vertex_range(request.indices, per_primitive, request.vertex_count, first,
+    chunk_bands[c] = setup_vertex_range(request.indices, per_primitive, request.vertex_count, first,
                                          std::min(kSetupChunk, batch_first + batch_count - first));
   });
   VertexRange band{request.vertex_count, 0};
-  for (const VertexRange& b : chunk_bands_)
+  for (const VertexRange& b : chunk_bands)
     if (b.first < b.end) band = {std::min(band.first, b.first), std::max(band.end, b.end)};
   return band.first < band.end ? band : VertexRange{};
 }
 
-void Renderer::shade_vertex_range(const detail::DrawRequest& request, const detail::VertexOutputs& out,
-                                  std::size_t begin, std::size_t end) {
+void Renderer::Work::shade_vertex_range(const detail::DrawRequest& request, const detail::VertexOutputs& out,
+                                        std::size_t begin, std::size_t end, DrawStats& stats) {
   constexpr std::size_t kVertexChunk = 2048;
-  stats_.vertices_shaded += end - begin;
-  pool_.parallel_for((end - begin + kVertexChunk - 1) / kVertexChunk, [&](std::size_t chunk, int) {
+  stats.vertices_shaded += end - begin;
+  pool.parallel_for((end - begin + kVertexChunk - 1) / kVertexChunk, [&](std::size_t chunk, int) {
     const std::size_t first = begin + chunk * kVertexChunk;
     request.shade_vertices(request.source, first, std::min(end, first + kVertexChunk), out);
   });
@@ -72,6 +100,7 @@ void Renderer::shade_vertex_range(const detail::DrawRequest& request, const deta
 
 void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) {
   using namespace detail;
+  Work& w = *work_;
   const bool triangles = request.kind == PrimitiveKind::triangles;
   const std::size_t per_primitive = triangles ? 3 : 2;
   const std::size_t count = request.indices.size() / per_primitive;
@@ -93,24 +122,24 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   bool banded = !painter && batch_end(0) < count;
   VertexOutputs outputs{};
   const auto shade_band = [&](VertexRange band) {
-    outputs = prepare_vertex_outputs(request, band.end - band.first, band.first, target.width(), target.height());
+    outputs = w.prepare_vertex_outputs(request, band.end - band.first, band.first, target.width(), target.height());
     stats_.vertices_held = std::max(stats_.vertices_held, band.end - band.first);
-    shade_vertex_range(request, outputs, band.first, band.end);
+    w.shade_vertex_range(request, outputs, band.first, band.end, stats_);
   };
   if (!banded) shade_band({0, n});
 
   const std::uint32_t* order = nullptr;
   if (painter) {
-    sort_keys_.resize(count);
-    setup_depth_keys(outputs.clip, n, request.indices, sort_keys_);
+    w.sort_keys.resize(count);
+    setup_depth_keys(outputs.clip, n, request.indices, w.sort_keys);
     // Farthest first; equal depths keep index order. A total order lets std::sort (which, unlike stable_sort,
     // needs no buffer) give the same result every time.
-    order_.resize(count);
-    std::iota(order_.begin(), order_.end(), 0u);
-    std::sort(order_.begin(), order_.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return sort_keys_[a] != sort_keys_[b] ? sort_keys_[a] > sort_keys_[b] : a < b;
+    w.order.resize(count);
+    std::iota(w.order.begin(), w.order.end(), 0u);
+    std::sort(w.order.begin(), w.order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return w.sort_keys[a] != w.sort_keys[b] ? w.sort_keys[a] > w.sort_keys[b] : a < b;
     });
-    order = order_.data();
+    order = w.order.data();
   }
 
   const std::size_t tiles = static_cast<std::size_t>(target.tiles_x()) * target.tiles_y();
@@ -119,9 +148,9 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     const std::size_t batch_count = next_batch - batch_first;
     const std::size_t chunk_size = setup_chunk_size(batch_count);
     const std::size_t chunk_count = (batch_count + chunk_size - 1) / chunk_size;
-    if (chunks_.size() < chunk_count) chunks_.resize(chunk_count);
+    if (w.chunks.size() < chunk_count) w.chunks.resize(chunk_count);
     if (banded) {
-      const VertexRange band = batch_vertex_band(request, batch_first, batch_count);
+      const VertexRange band = w.batch_vertex_band(request, batch_first, batch_count);
       // Shading shared vertices again at batch boundaries is cheap; shading the mesh several times over is not. A
       // band of most of the mesh is a sign of an incoherent order: the whole span, once, costs little more.
       const std::size_t width = band.end - band.first;
@@ -129,8 +158,8 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       shade_band(banded ? band : VertexRange{0, n});
     }
 
-    pool_.parallel_for(chunk_count, [&](std::size_t c, int) {
-      SetupChunk& chunk = chunks_[c];
+    w.pool.parallel_for(chunk_count, [&](std::size_t c, int) {
+      SetupChunk& chunk = w.chunks[c];
       chunk.reset();
       const std::size_t first = batch_first + c * chunk_size;
       const SetupInput input{outputs.clip, outputs.projected, outputs.first, request.clip_position, request.source,
@@ -145,29 +174,29 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     // are short and the threads finish together (in row order the centre of a model came last and one thread ran
     // on alone: sphere:224 and 707 1.5-3% slower). Each key is the inverted count above the tile index, a total
     // order, so std::sort needs no buffer and the order is the same every frame.
-    active_tiles_.clear();
+    w.active_tiles.clear();
     for (std::size_t t = 0; t < tiles; ++t) {
       std::uint32_t binned = 0;
-      for (std::size_t c = 0; c < chunk_count; ++c) binned += chunks_[c].binned_count(t);
-      if (binned) active_tiles_.push_back(std::uint64_t{~binned} << 32 | t);
+      for (std::size_t c = 0; c < chunk_count; ++c) binned += w.chunks[c].binned_count(t);
+      if (binned) w.active_tiles.push_back(std::uint64_t{~binned} << 32 | t);
     }
-    std::sort(active_tiles_.begin(), active_tiles_.end());
+    std::sort(w.active_tiles.begin(), w.active_tiles.end());
     for (std::size_t c = 0; c < chunk_count; ++c) {
-      stats_.culled += chunks_[c].culled;
-      stats_.clipped += chunks_[c].clipped;
-      stats_.invalid += chunks_[c].invalid;
-      stats_.binned += chunks_[c].triangles.size();
+      stats_.culled += w.chunks[c].culled;
+      stats_.clipped += w.chunks[c].clipped;
+      stats_.invalid += w.chunks[c].invalid;
+      stats_.binned += w.chunks[c].triangles.size();
     }
 
     // One owner per tile: no two threads ever write the same pixel, so the tile loop needs no locks.
-    pool_.parallel_for(active_tiles_.size(), [&](std::size_t i, int thread) {
-      const int tile = static_cast<int>(active_tiles_[i] & 0xffffffffu);
-      const Framebuffer::PendingClear clear = target.begin_tile_draw(tile, request.deferred);
+    w.pool.parallel_for(w.active_tiles.size(), [&](std::size_t i, int thread) {
+      const int tile = static_cast<int>(w.active_tiles[i] & 0xffffffffu);
+      const detail::PendingClear clear = target.begin_tile_draw(tile, request.deferred);
       const int x0 = (tile % target.tiles_x()) * kTileSize, y0 = (tile / target.tiles_x()) * kTileSize;
       const TileWork work{tile, x0, y0, std::min(x0 + kTileSize, target.width()),
                           std::min(y0 + kTileSize, target.height()), target.width(), target.color_storage(),
-                          target.depth_storage(), target.tile_depth_bounds(tile), chunks_.data(),
-                          chunk_count, outputs.varyings, &scratch_[static_cast<std::size_t>(thread)], clear,
+                          target.depth_storage(), target.tile_depth_bounds(tile), w.chunks.data(),
+                          chunk_count, outputs.varyings, &w.scratch[static_cast<std::size_t>(thread)], clear,
                           next_batch == count};
       request.raster(request.draw, work);
     });

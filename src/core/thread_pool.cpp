@@ -1,5 +1,5 @@
 // thread_pool.cpp - workers that spin briefly, then sleep, between jobs and pull indices from one atomic counter.
-#include "facet/detail/thread_pool.hpp"
+#include "core/thread_pool.hpp"
 
 #include <algorithm>
 #include <atomic>

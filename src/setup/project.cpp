@@ -3,9 +3,10 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "facet/detail/clip.hpp"
+#include "clip/clip.hpp"
 #include "facet/detail/dispatch.hpp"
 #include "facet/detail/triangle_setup.hpp"
+#include "setup/project.hpp"
 
 namespace facet::detail {
 namespace {

@@ -7,8 +7,9 @@
 #include <utility>
 
 #include "facet/framebuffer.hpp"
-#include "facet/detail/clip.hpp"
+#include "clip/clip.hpp"
 #include "facet/detail/dispatch.hpp"
+#include "setup/project.hpp"
 
 namespace facet::detail {
 namespace {

@@ -9,7 +9,7 @@
 
 #include "facet/render_state.hpp"
 #include "facet/detail/binning.hpp"
-#include "facet/detail/clip.hpp"
+#include "clip/clip.hpp"
 #include "facet/detail/triangle_setup.hpp"
 #include "facet/detail/vertex_stage.hpp"
 

@@ -1,4 +1,5 @@
 // plain_instances.cpp - the pipeline compiled for the unlit, normal, depth and line shaders, once each.
+#include "facet/draw.hpp"
 #include "facet/shaders/stock.hpp"
 
 FACET_INSTANTIATE_SHADER(facet::UnlitShader);

@@ -8,6 +8,7 @@
 #include <random>
 
 #include "bench/bench_shader.hpp"
+#include "facet/draw.hpp"
 #include "facet/detail/raster_deferred.hpp"
 #include "facet/fragment_lanes.hpp"
 #include "support/draw_helpers.hpp"

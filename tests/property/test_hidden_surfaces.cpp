@@ -134,8 +134,9 @@ TEST(HiddenSurfaces, HierarchicalDepthRejectsOnlyHiddenBlocks) {
   ClipMesh behind = quads;  // every quad but the nearest
   behind.indices.erase(behind.indices.begin(), behind.indices.begin() + 6);
   auto draw_all = [&](Framebuffer& fb, bool reference_path) {
-    fb.request_clear(glm::vec4(0, 0, 0, 1), 1.0f);
     Renderer renderer(2);
+    if (reference_path) reference::clear(fb, glm::vec4(0, 0, 0, 1));
+    else renderer.clear(fb, glm::vec4(0, 0, 0, 1));
     auto draw = [&](const std::vector<ColorShader::Vertex>& v, const ClipMesh& m, const RenderState& s) {
       if (reference_path) reference::draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(v), m.indices, s);
       else renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(v), m.indices, s);

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "facet/draw.hpp"
 #include "facet/renderer.hpp"
 #include "support/test_shaders.hpp"
 

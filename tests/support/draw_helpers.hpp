@@ -4,7 +4,7 @@
 #include <span>
 #include <vector>
 
-#include "facet/reference_rasterizer.hpp"
+#include "support/reference_rasterizer.hpp"
 #include "facet/renderer.hpp"
 #include "support/scenes.hpp"
 #include "support/test_shaders.hpp"
@@ -43,7 +43,7 @@ inline Framebuffer render_colors(const ClipMesh& m, int width, int height, const
   const std::vector<ColorShader::Vertex> vertices = color_vertices(m);
   const ColorShader shader;
   if (reference_path) {
-    fb.request_clear(glm::vec4(0.1f, 0.1f, 0.15f, 1.0f), 1.0f);
+    reference::clear(fb, glm::vec4(0.1f, 0.1f, 0.15f, 1.0f));
     reference::draw(fb, shader, std::span<const ColorShader::Vertex>(vertices), m.indices, state);
   } else {
     Renderer renderer(threads);

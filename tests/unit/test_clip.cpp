@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "facet/detail/clip.hpp"
+#include "clip/clip.hpp"
 
 namespace facet::detail {
 namespace {

@@ -10,6 +10,7 @@
 
 #include "facet/framebuffer.hpp"
 #include "facet/detail/triangle_setup.hpp"
+#include "setup/project.hpp"
 
 namespace facet::detail {
 namespace {

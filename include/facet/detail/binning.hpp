@@ -126,7 +126,7 @@ struct TileWork {
   std::size_t chunk_count;
   const float* varyings;  // post-transform varyings, indexed by TriangleSetup::vertex
   TileScratch* scratch;  // the running thread's, for deferred shading
-  Framebuffer::PendingClear clear;  // deferred shading: the clear the tile applies itself as it writes its pixels
+  detail::PendingClear clear;  // deferred shading: the clear the tile applies itself as it writes its pixels
   bool last_batch;  // no later batch of the draw visits the tile: deferred shading may stream its depth out
 };
 

@@ -1,14 +1,8 @@
 // triangle_setup.hpp - what setup hands to rasterization: fixed-point edges, bounds and interpolation planes.
 #pragma once
 
-#include <algorithm>
-#include <cmath>
 #include <cstddef>
 #include <cstdint>
-
-#include <glm/glm.hpp>
-
-#include "facet/detail/clip.hpp"
 
 namespace facet::detail {
 
@@ -46,13 +40,6 @@ struct TriangleSetup {
 
 inline float evaluate(const Plane& p, float dx, float dy) { return p.at_origin + p.ddx * dx + p.ddy * dy; }
 
-// Screen coordinate to fixed point. The clamp keeps snapped values within the budget above even when clipping
-// rounds a vertex a hair outside the target.
-inline std::int32_t snap_to_subpixel(float v, int extent) {
-  const float limit = static_cast<float>(extent + 1);
-  return static_cast<std::int32_t>(std::lrint(std::clamp(v, -1.0f, limit) * kSubpixelScale));
-}
-
 // A vertex after the w-divide, viewport transform and snapping, computed once per vertex in the vertex stage
 // (the post-transform cache) so that setup does not repeat it for each of the ~6 triangles sharing the vertex.
 // Vertices outside a frustum plane keep only their outcode: their triangles go through the clipper.
@@ -61,22 +48,6 @@ struct ProjectedVertex {
   float z, inv_w;     // window depth and 1/w
   std::uint32_t outcode;
 };
-
-// The viewport transform of BENCHMARK.md section 5, in this exact float order (the reference rasterizer repeats it).
-inline glm::vec3 screen_from_clip(const glm::vec4& clip, float inv_w, int width, int height) {
-  const glm::vec3 ndc = glm::vec3(clip) * inv_w;
-  return {(ndc.x + 1.0f) * 0.5f * static_cast<float>(width), (1.0f - ndc.y) * 0.5f * static_cast<float>(height),
-          (ndc.z + 1.0f) * 0.5f};
-}
-
-// The definition of a projected vertex, one at a time; project_vertices below must agree with it bit for bit.
-inline ProjectedVertex project_vertex(const glm::vec4& clip, int width, int height) {
-  const std::uint32_t code = outcode(clip);
-  if (code) return {0, 0, 0.0f, 0.0f, code};
-  const float inv_w = 1.0f / clip.w;
-  const glm::vec3 screen = screen_from_clip(clip, inv_w, width, height);
-  return {snap_to_subpixel(screen.x, width), snap_to_subpixel(screen.y, height), screen.z, inv_w, 0};
-}
 
 // Clip positions of up to kProjectBlock vertices, one array per coordinate: the vertex stage gathers each block's
 // positions here, so that project_vertices runs over whole vectors of vertices.
@@ -89,7 +60,8 @@ struct ClipBlock {
 };
 
 // project_vertex of clip positions [0, count) of the block into out[0, count), branch-free and vectorised in each
-// dispatch clone; compiled once (src/setup/project.cpp), not per shader.
+// dispatch clone; compiled once (src/setup/project.cpp), not per shader. The one-vertex definition it must agree
+// with, project_vertex, is in src/setup/project.hpp.
 void project_vertices(const ClipBlock& clip, std::size_t count, ProjectedVertex* out, int width, int height);
 
 }  // namespace facet::detail

@@ -13,7 +13,6 @@
 #include "facet/simd.hpp"
 #include "facet/vertex_lanes.hpp"
 #include "facet/detail/binning.hpp"
-#include "facet/detail/clip.hpp"
 #include "facet/detail/dispatch.hpp"
 #include "facet/detail/triangle_setup.hpp"
 
@@ -39,6 +38,10 @@ struct VertexOutputs {
 struct VertexRange {
   std::size_t first = 0, end = 0;
 };
+
+// Recomputes one vertex's clip-space position (the shader's vertex function again). The vertex stage keeps no
+// clip positions for triangles: only the few that cross the frustum need them, and they ask for them here.
+using ClipPositionFn = glm::vec4 (*)(const void* source, std::uint32_t vertex);
 
 // Shades vertices [begin, end) of the draw into `out`.
 using VertexStageFn = void (*)(const void* source, std::size_t begin, std::size_t end, const VertexOutputs& out);

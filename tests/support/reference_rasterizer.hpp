@@ -11,21 +11,32 @@
 #include "facet/framebuffer.hpp"
 #include "facet/render_state.hpp"
 #include "facet/shader.hpp"
-#include "facet/detail/clip.hpp"
+#include "clip/clip.hpp"
 #include "facet/detail/raster.hpp"
 
 namespace facet::reference {
 
+// Fills the target with a colour and a depth, pixel by pixel: the reference's Renderer::clear plus finish.
+inline void clear(Framebuffer& target, glm::vec4 color, float depth = 1.0f) {
+  const std::span<std::uint32_t> pixels = target.color();
+  std::fill(pixels.begin(), pixels.end(), pack_rgba8(color));
+  const std::span<float> depths = target.depth();
+  std::fill(depths.begin(), depths.end(), depth);
+}
+
 // Draws like Renderer::draw, one triangle and one pixel at a time, straight from the definitions: edge functions
 // in 64-bit integers at every pixel centre, barycentric weights E_k / area, perspective correction by 1/w. It shares
-// only the clipper and the fixed-point snapping convention (8 sub-pixel bits) with the fast path.
+// only the clipper and the fixed-point snapping convention (8 sub-pixel bits) with the fast path, and writes the
+// target's pixels through its public spans (clear it with reference::clear, or with a Renderer and finish()).
+// Its top-left rule is its own, written from the definition, as an oracle's should be.
 template <Shader S>
 void draw(Framebuffer& target, const S& shader, std::span<const typename S::Vertex> vertices,
           std::span<const std::uint32_t> indices, const RenderState& state = {}) {
   using Varyings = typename S::Varyings;
   constexpr std::size_t kFloats = float_count_v<Varyings>;
-  target.resolve_all_clears();
   const int width = target.width(), height = target.height();
+  const std::span<std::uint32_t> color_buffer = target.color();
+  const std::span<float> depth_buffer = target.depth();
   const std::size_t count = indices.size() / 3;
 
   std::vector<VertexOut<Varyings>> shaded;
@@ -124,7 +135,7 @@ void draw(Framebuffer& target, const S& shader, std::span<const typename S::Vert
           const float z = std::clamp(
               static_cast<float>(lambda[0] * v[0].z + lambda[1] * v[1].z + lambda[2] * v[2].z) + state.depth_offset,
               0.0f, 1.0f);
-          float& stored = target.depth()[static_cast<std::size_t>(y) * width + x];
+          float& stored = depth_buffer[static_cast<std::size_t>(y) * width + x];
           if (state.depth_test && !detail::depth_passes(state.depth_func, z, stored)) continue;
 
           FloatArray<Varyings> value{};
@@ -147,7 +158,7 @@ void draw(Framebuffer& target, const S& shader, std::span<const typename S::Vert
           }
           if (state.depth_test && state.depth_write) stored = z;
           if (!state.color_write) continue;
-          std::uint32_t& pixel = target.color()[static_cast<std::size_t>(y) * width + x];
+          std::uint32_t& pixel = color_buffer[static_cast<std::size_t>(y) * width + x];
           if (state.blend == BlendMode::alpha) {
             const float a = std::clamp(color.a, 0.0f, 1.0f);
             color = color * a + unpack_rgba8(pixel) * (1.0f - a);

@@ -47,10 +47,6 @@ inline std::uint32_t outcode(const glm::vec4& c) {
          static_cast<std::uint32_t>(c.w - kMinW < 0.0f) << 6;
 }
 
-// Recomputes one vertex's clip-space position (the shader's vertex function again). The vertex stage keeps no
-// clip positions for triangles: only the few that cross the frustum need them, and they ask for them here.
-using ClipPositionFn = glm::vec4 (*)(const void* source, std::uint32_t vertex);
-
 // Clips a triangle; returns the vertex count of the visible convex polygon (0 when nothing is visible), written to
 // `out` in the source winding. Triangles with every outcode zero should not be passed here (fast path).
 int clip_triangle(const glm::vec4 (&clip)[3], ClipVertex (&out)[kMaxClipVertices]);

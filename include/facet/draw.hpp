@@ -1,0 +1,51 @@
+// draw.hpp - the pipeline's shader-specific stages: include it in a file that draws with a shader of its own.
+#pragma once
+
+#include <cstdint>
+#include <span>
+
+#include "facet/framebuffer.hpp"
+#include "facet/render_state.hpp"
+#include "facet/renderer.hpp"
+#include "facet/shader.hpp"
+#include "facet/detail/raster_tile.hpp"
+#include "facet/detail/vertex_stage.hpp"
+
+namespace facet::detail {
+
+// Renderer::draw and draw_lines for shader S: the typed halves of the vertex stage and of the tile loop, handed to
+// the shader-independent rest of the pipeline (Renderer::execute) as plain function pointers.
+template <class S>
+struct DrawWith {
+  using Vertex = typename S::Vertex;
+
+  static void triangles(Renderer& renderer, Framebuffer& target, const S& shader, std::span<const Vertex> vertices,
+                        std::span<const std::uint32_t> indices, const RenderState& state) {
+    primitives(PrimitiveKind::triangles, renderer, target, shader, vertices, indices, state);
+  }
+
+  static void lines(Renderer& renderer, Framebuffer& target, const S& shader, std::span<const Vertex> vertices,
+                    std::span<const std::uint32_t> indices, const RenderState& state) {
+    primitives(PrimitiveKind::lines, renderer, target, shader, vertices, indices, state);
+  }
+
+  static void primitives(PrimitiveKind kind, Renderer& renderer, Framebuffer& target, const S& shader,
+                         std::span<const Vertex> vertices, std::span<const std::uint32_t> indices,
+                         const RenderState& state) {
+    const ShadeContext<S> context{&shader, &state};
+    const VertexSource<S> source{&shader, vertices.data()};
+    renderer.execute(target, {.kind = kind,
+                              .vertex_count = vertices.size(),
+                              .varying_floats = float_count_v<typename S::Varyings>,
+                              .shade_vertices = &VertexSource<S>::shade,
+                              .clip_position = &VertexSource<S>::clip_position,
+                              .source = &source,
+                              .indices = indices,
+                              .state = &state,
+                              .raster = &raster_tile<S>,
+                              .draw = &context,
+                              .deferred = shades_deferred<S>(state)});
+  }
+};
+
+}  // namespace facet::detail
