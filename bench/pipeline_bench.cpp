@@ -123,8 +123,21 @@ void BM_SetupChunk(benchmark::State& state) {
   const std::size_t tiles = static_cast<std::size_t>(fb.tiles_x()) * fb.tiles_y();
   for (auto _ : state) {
     chunk.reset();
-    const detail::SetupInput input{mesh.clip.data(), projected.data(), 0, nullptr, nullptr, mesh.clip.size(), mesh.indices, nullptr, 200000,
-                                   detail::kSetupChunk, kWidth, kHeight, fb.tiles_x(), CullMode::back, 1.0f};
+    const detail::SetupInput input{.clip = mesh.clip.data(),
+                                   .projected = projected.data(),
+                                   .vertex_first = 0,
+                                   .clip_position = nullptr,
+                                   .clip_source = nullptr,
+                                   .vertex_count = mesh.clip.size(),
+                                   .indices = mesh.indices,
+                                   .order = nullptr,
+                                   .first = 200000,
+                                   .count = detail::kSetupChunk,
+                                   .width = kWidth,
+                                   .height = kHeight,
+                                   .tiles_x = fb.tiles_x(),
+                                   .cull = CullMode::back,
+                                   .line_width = 1.0f};
     detail::setup_triangles(input, chunk);
     chunk.sort_by_tile(tiles);
     benchmark::DoNotOptimize(chunk.binned.data());

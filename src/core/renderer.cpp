@@ -162,10 +162,21 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       SetupChunk& chunk = w.chunks[c];
       chunk.reset();
       const std::size_t first = batch_first + c * chunk_size;
-      const SetupInput input{outputs.clip, outputs.projected, outputs.first, request.clip_position, request.source,
-                             request.vertex_count, request.indices, order, first,
-                             std::min(chunk_size, batch_first + batch_count - first), target.width(), target.height(),
-                             target.tiles_x(), state.cull, state.line_width};
+      const SetupInput input{.clip = outputs.clip,
+                             .projected = outputs.projected,
+                             .vertex_first = outputs.first,
+                             .clip_position = request.clip_position,
+                             .clip_source = request.source,
+                             .vertex_count = request.vertex_count,
+                             .indices = request.indices,
+                             .order = order,
+                             .first = first,
+                             .count = std::min(chunk_size, batch_first + batch_count - first),
+                             .width = target.width(),
+                             .height = target.height(),
+                             .tiles_x = target.tiles_x(),
+                             .cull = state.cull,
+                             .line_width = state.line_width};
       if (triangles) setup_triangles(input, chunk);
       else setup_lines(input, chunk);
       chunk.sort_by_tile(tiles);
@@ -193,11 +204,21 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       const int tile = static_cast<int>(w.active_tiles[i] & 0xffffffffu);
       const detail::PendingClear clear = target.begin_tile_draw(tile, request.deferred);
       const int x0 = (tile % target.tiles_x()) * kTileSize, y0 = (tile / target.tiles_x()) * kTileSize;
-      const TileWork work{tile, x0, y0, std::min(x0 + kTileSize, target.width()),
-                          std::min(y0 + kTileSize, target.height()), target.width(), target.color_storage(),
-                          target.depth_storage(), target.tile_depth_bounds(tile), w.chunks.data(),
-                          chunk_count, outputs.varyings, &w.scratch[static_cast<std::size_t>(thread)], clear,
-                          next_batch == count};
+      const TileWork work{.tile = tile,
+                          .x0 = x0,
+                          .y0 = y0,
+                          .x1 = std::min(x0 + kTileSize, target.width()),
+                          .y1 = std::min(y0 + kTileSize, target.height()),
+                          .stride = target.width(),
+                          .color = target.color_storage(),
+                          .depth = target.depth_storage(),
+                          .depth_bounds = target.tile_depth_bounds(tile),
+                          .chunks = w.chunks.data(),
+                          .chunk_count = chunk_count,
+                          .varyings = outputs.varyings,
+                          .scratch = &w.scratch[static_cast<std::size_t>(thread)],
+                          .clear = clear,
+                          .last_batch = next_batch == count};
       request.raster(request.draw, work);
     });
   }
