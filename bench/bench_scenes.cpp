@@ -80,7 +80,7 @@ BenchGeometry make_quads(int k, bool front_to_back) {
   // The aspect is 16:9 whatever the target size, so the geometry never depends on --resolution.
   const float tan_half_fovy = std::tan(45.0f * kPi / 180.0f / 2.0f), aspect = 1920.0f / 1080.0f, eye_z = 3.0f;
   const float xs[4] = {-1, 1, 1, -1}, ys[4] = {-1, -1, 1, 1}, us[4] = {0, 1, 1, 0}, vs[4] = {0, 0, 1, 1};
-  for (int i = 0; i < k; ++i) {  // i is the draw order
+  for (int i = 0; i < k; ++i) {                      // i is the draw order
     const int rank = front_to_back ? i : k - 1 - i;  // depth rank, 0 = nearest
     const float d = static_cast<float>(rank);
     const float z = 1.5f - 4.5f * d / static_cast<float>(std::max(1, k - 1));

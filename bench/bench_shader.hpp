@@ -64,8 +64,8 @@ struct BenchShader {
   FACET_LANES_INLINE VertexOutLanes<Varyings> vertex_lanes(const VertexLanes<Vertex>& v) const {
     using simd::Float;
     const simd::Vec3 pos = v.get(&Vertex::pos), normal = v.get(&Vertex::normal);
-    const auto transform = [](const glm::mat4& m, int row, Float x, Float y, Float z,
-                              Float w) __attribute__((always_inline)) {
+    const auto transform =
+        [](const glm::mat4& m, int row, Float x, Float y, Float z, Float w) __attribute__((always_inline)) {
       return (m[0][row] * x + m[1][row] * y) + (m[2][row] * z + m[3][row] * w);
     };
     const Float one = simd::splat(1.0f);

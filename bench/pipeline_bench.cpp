@@ -10,10 +10,10 @@
 #include "facet/detail/dispatch.hpp"
 #include "facet/draw.hpp"
 #include "facet/renderer.hpp"
+#include "setup/project.hpp"
 #include "setup/setup.hpp"
 #include "support/scenes.hpp"
 #include "support/test_shaders.hpp"
-#include "setup/project.hpp"
 
 namespace {
 
@@ -152,8 +152,8 @@ void BM_BlockCoverage(benchmark::State& state) {
   detail::SetupChunk chunk;
   chunk.reset();
   const std::vector<detail::ProjectedVertex> projected = project(mesh);
-  detail::setup_triangles({mesh.clip.data(), projected.data(), 0, nullptr, nullptr, mesh.clip.size(), mesh.indices, nullptr, 0, mesh.indices.size() / 3,
-                           kWidth, kHeight, fb.tiles_x(), CullMode::back, 1.0f},
+  detail::setup_triangles({mesh.clip.data(), projected.data(), 0, nullptr, nullptr, mesh.clip.size(), mesh.indices,
+                           nullptr, 0, mesh.indices.size() / 3, kWidth, kHeight, fb.tiles_x(), CullMode::back, 1.0f},
                           chunk);
   std::size_t blocks = 0;
   for (auto _ : state)

@@ -41,10 +41,11 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
   CLI::Option* quads = bench->add_option("--quads", args.quads, "K overlapping screen-filling quads, 2K triangles")
                            ->check(number_in(1, 4096, true))
                            ->type_name("K");
-  CLI::Option* mesh = bench->add_option("--mesh", args.mesh, "Triangle mesh (any format facet reads), unit-sphere sized")
-                          ->check(CLI::Validator(
-                              [](std::string& v) { return v.empty() ? std::string("expects a file path") : ""; }, ""))
-                          ->type_name("PATH");
+  CLI::Option* mesh =
+      bench->add_option("--mesh", args.mesh, "Triangle mesh (any format facet reads), unit-sphere sized")
+          ->check(
+              CLI::Validator([](std::string& v) { return v.empty() ? std::string("expects a file path") : ""; }, ""))
+          ->type_name("PATH");
   sphere->excludes(quads)->excludes(mesh);
   quads->excludes(mesh);
   bench->add_option("--order", args.order, "Draw the quads back to front (b2f, default) or front to back (f2b)")
@@ -56,8 +57,9 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
   bench->add_option("--frames", args.frames, "Timed frames (default 30)")->check(number_in(1, 100000, true));
   bench->add_option("--warmup", args.warmup, "Frames rendered first and not timed (default 5)")
       ->check(number_in(0, 100000, true));
-  bench->add_option("--threads", args.threads,
-                    "Rendering threads, the calling thread included; 0 and 1 mean one (default: hardware threads)")
+  bench
+      ->add_option("--threads", args.threads,
+                   "Rendering threads, the calling thread included; 0 and 1 mean one (default: hardware threads)")
       ->check(number_in(0, 1024, true));
   // 0 < S: the smallest normal float is the least value that does not round to zero on the way to float.
   bench->add_option("--scale", args.scale, "Object scale of the sphere and the mesh, 0 < S <= 1000 (default 1)")
@@ -150,15 +152,17 @@ int run(const BenchArgs& o, int width, int height, int threads, const BenchGeome
   const std::string renderer_name = std::string("facet ") + kVersion;
   const std::size_t triangles = g.indices.size() / 3;
   if (o.json)
-    std::printf("{\"renderer\":\"%s\",\"scene\":\"%s\",\"triangles\":%zu,\"width\":%d,\"height\":%d,\"threads\":%d,"
-                "\"warmup\":%d,\"frames\":%d,\"median_ms\":%.3f,\"min_ms\":%.3f,\"max_ms\":%.3f}\n",
-                json_escape(renderer_name).c_str(), json_escape(g.name).c_str(), triangles, width, height,
-                threads, o.warmup, o.frames, t.median, t.min, t.max);
+    std::printf(
+        "{\"renderer\":\"%s\",\"scene\":\"%s\",\"triangles\":%zu,\"width\":%d,\"height\":%d,\"threads\":%d,"
+        "\"warmup\":%d,\"frames\":%d,\"median_ms\":%.3f,\"min_ms\":%.3f,\"max_ms\":%.3f}\n",
+        json_escape(renderer_name).c_str(), json_escape(g.name).c_str(), triangles, width, height, threads, o.warmup,
+        o.frames, t.median, t.min, t.max);
   else
-    std::printf("%s  %s  %zu triangles  %dx%d  threads %d  median %.3f ms (min %.3f, max %.3f), %d frames after %d "
-                "warm-up\n",
-                renderer_name.c_str(), g.name.c_str(), triangles, width, height, threads, t.median, t.min,
-                t.max, o.frames, o.warmup);
+    std::printf(
+        "%s  %s  %zu triangles  %dx%d  threads %d  median %.3f ms (min %.3f, max %.3f), %d frames after %d "
+        "warm-up\n",
+        renderer_name.c_str(), g.name.c_str(), triangles, width, height, threads, t.median, t.min, t.max, o.frames,
+        o.warmup);
   return std::fflush(stdout) == 0 ? 0 : 1;
 }
 
@@ -168,7 +172,8 @@ int run_bench(const BenchArgs& args) {
   if (args.sphere == 0 && args.quads == 0 && args.mesh.empty())
     throw UsageError("no scene given: use --sphere N, --quads K or --mesh PATH (see facet bench --help)");
   const glm::ivec2 size = parse_resolution(args.resolution, "--resolution");
-  const int threads = args.threads >= 0 ? args.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int threads =
+      args.threads >= 0 ? args.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   BenchGeometry geometry;
   if (!args.mesh.empty()) {
     try {

@@ -9,8 +9,8 @@
 #include "facet/mesh.hpp"
 #include "facet/primitives.hpp"
 #include "facet/projection.hpp"
-#include "facet/transform.hpp"
 #include "facet/render_job.hpp"
+#include "facet/transform.hpp"
 #include "render_command.hpp"
 
 namespace facet::cli {
@@ -183,12 +183,9 @@ int run_demo(const DemoArgs& args) {
   for (int i = 0; i < args.frames; ++i) {
     const double seconds = args.time + i / 30.0;
     DemoFrame frame;
-    if (args.name == "cube" || args.name == "torus")
-      frame = rotating_model_frame(mesh, seconds, aspect);
-    else if (args.name == "two-cubes")
-      frame = two_cubes_frame(mesh, aspect);
-    else
-      frame = turning_pentagon_frame(mesh, seconds, aspect);
+    if (args.name == "cube" || args.name == "torus") frame = rotating_model_frame(mesh, seconds, aspect);
+    else if (args.name == "two-cubes") frame = two_cubes_frame(mesh, aspect);
+    else frame = turning_pentagon_frame(mesh, seconds, aspect);
     Scene scene;
     for (Instance& instance : frame.instances) scene.add(std::move(instance));
     const SceneOptions options = scene_options(look, frame.view.view_from_world, shading, glm::vec3(clear));

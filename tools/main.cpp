@@ -46,9 +46,9 @@ int main(int argc, char** argv) {
   CLI::App* bench = facet::cli::add_bench_command(app, bench_args);
 
   // CLI11 would list every argument as unexpected; name the command instead.
-  if (const std::string_view command = argc >= 2 ? argv[1] : "-";
-      (command.empty() || command[0] != '-') && command != "render" && command != "demo" && command != "info" &&
-      command != "bench")
+  if (const std::string_view command = argc >= 2 ? argv[1] : "-"; (command.empty() || command[0] != '-') &&
+                                                                  command != "render" && command != "demo" &&
+                                                                  command != "info" && command != "bench")
     return fail(std::string("unknown command '") + argv[1] + "': use render, demo, info or bench", kUsageError);
   try {
     app.parse(argc, argv);

@@ -11,8 +11,9 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
   add_output_options(*render, args.output, "1024,768");
   render->add_option("--output-mask", args.output.output_mask, "Also write a mask: 8-bit PNG, 255 where drawn")
       ->type_name("FILE.png");
-  render->add_option("--output-camera", args.output.output_camera,
-                     "Also write the camera as JSON: intrinsics K (OpenCV), poses, near, far")
+  render
+      ->add_option("--output-camera", args.output.output_camera,
+                   "Also write the camera as JSON: intrinsics K (OpenCV), poses, near, far")
       ->type_name("FILE.json");
   add_camera_options(*render, args.camera);
   add_look_options(*render, args.look);

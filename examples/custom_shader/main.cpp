@@ -9,8 +9,8 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/matrix_transform.hpp>
 
-#include <facet/fragment_lanes.hpp>
 #include <facet/draw.hpp>
+#include <facet/fragment_lanes.hpp>
 #include <facet/framebuffer.hpp>
 #include <facet/image_io.hpp>
 #include <facet/renderer.hpp>

@@ -4,12 +4,12 @@
 #include <cstdint>
 #include <span>
 
+#include "facet/detail/raster_tile.hpp"
+#include "facet/detail/vertex_stage.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/render_state.hpp"
 #include "facet/renderer.hpp"
 #include "facet/shader.hpp"
-#include "facet/detail/raster_tile.hpp"
-#include "facet/detail/vertex_stage.hpp"
 
 namespace facet::detail {
 

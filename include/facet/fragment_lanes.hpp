@@ -23,19 +23,20 @@ struct alignas(simd::kLaneAlign) FragmentLanes {
   static constexpr std::size_t kFloats = float_count_v<V>;
   std::array<simd::Float, kFloats> varyings;
   std::array<simd::Float, kFloats> ddx, ddy;  // coarse, per 2x2 quad; filled only when needs_derivatives
-  simd::Float screen_x, screen_y, depth;     // as Fragment::screen
+  simd::Float screen_x, screen_y, depth;      // as Fragment::screen
   simd::Mask active;                          // the lanes whose colour will be written
   // Per lane, as Fragment's: the lanes of one strip may come from different triangles. Unset for a shader that
   // declares it does not read them (see lanes_read_primitive).
   simd::UInt primitive;
-  simd::Mask front_facing;                    // -1 where front-facing
+  simd::Mask front_facing;  // -1 where front-facing
 
   // Position of a member within V, in floats. The probe object is folded away by the optimiser.
   template <class M>
   static std::size_t float_index(M V::*member) {
     const V probe{};
     return static_cast<std::size_t>(reinterpret_cast<const char*>(&(probe.*member)) -
-                                    reinterpret_cast<const char*>(&probe)) / sizeof(float);
+                                    reinterpret_cast<const char*>(&probe)) /
+           sizeof(float);
   }
 
   FACET_LANES_INLINE simd::Float get(float V::*member) const { return varyings[float_index(member)]; }
@@ -57,10 +58,10 @@ struct alignas(simd::kLaneAlign) FragmentLanes {
 // returns lane types always_inline too: one left out of line is compiled for the baseline ISA and called from an
 // AVX-512 or AVX2 clone, which passes the vectors differently (simd.hpp).
 template <class S>
-concept LaneShader = Shader<S> && !S::may_discard &&
-                     requires(const S& shader, const FragmentLanes<typename S::Varyings>& fragment) {
-                       { shader.fragment_lanes(fragment) } -> std::same_as<simd::Color>;
-                     };
+concept LaneShader =
+    Shader<S> && !S::may_discard && requires(const S& shader, const FragmentLanes<typename S::Varyings>& fragment) {
+  { shader.fragment_lanes(fragment) } -> std::same_as<simd::Color>;
+};
 
 // A LaneShader may also declare
 //     static constexpr bool lanes_read_primitive = false;
@@ -69,10 +70,8 @@ concept LaneShader = Shader<S> && !S::may_discard &&
 // instructions (AVX2 clone) for values the benchmark shader never looks at.
 template <class S>
 constexpr bool lanes_read_primitive() {
-  if constexpr (requires { S::lanes_read_primitive; })
-    return S::lanes_read_primitive;
-  else
-    return true;
+  if constexpr (requires { S::lanes_read_primitive; }) return S::lanes_read_primitive;
+  else return true;
 }
 
 // A LaneShader may also have
@@ -81,10 +80,10 @@ constexpr bool lanes_read_primitive() {
 // that the memory the shader will read (texture lines, mostly: see Texture::prefetch_lanes) is on its way by then.
 // It must not change anything the shader computes; it only hides memory latency.
 template <class S>
-concept PrefetchingLaneShader =
-    LaneShader<S> && requires(const S& shader, const FragmentLanes<typename S::Varyings>& fragment) {
-                       { shader.prefetch_lanes(fragment) } -> std::same_as<void>;
-                     };
+concept PrefetchingLaneShader = LaneShader<S> &&
+    requires(const S& shader, const FragmentLanes<typename S::Varyings>& fragment) {
+  { shader.prefetch_lanes(fragment) } -> std::same_as<void>;
+};
 
 }  // namespace facet
 

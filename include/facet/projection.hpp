@@ -29,8 +29,8 @@ glm::mat4 ortho(float left, float right, float bottom, float top, float near, fl
 // The shear leaves the plane z = -pivot_distance in place; the default 0 is the lecture's matrix exactly (the
 // eye plane is fixed, so objects at distance d move by depth_scale * d). Pass the distance of the object of
 // interest to keep it where ortho alone would put it.
-glm::mat4 oblique(float angle_radians, float depth_scale, float left, float right, float bottom, float top,
-                  float near, float far, float pivot_distance = 0.0f);
+glm::mat4 oblique(float angle_radians, float depth_scale, float left, float right, float bottom, float top, float near,
+                  float far, float pivot_distance = 0.0f);
 
 // Axonometric presets: VIEW rotations (eye space from world space, no translation) to be placed between a
 // look-at/translation and an ortho projection. World +Y stays vertical on screen in all three.

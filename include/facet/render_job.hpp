@@ -15,23 +15,23 @@ namespace facet {
 
 // The look of a render. Unset fields take the defaults of `facet render`.
 struct LookSpec {
-  std::optional<Shading> shading;       // default: the caller's (the model's own look for `facet render`)
-  bool wireframe = false;               // draw only the edges
-  bool edges = false;                   // draw the edges over the surfaces
-  bool depth_test = true;               // off: draw in submission order
-  bool painter = false;                 // sort triangles back to front instead of depth-testing them
+  std::optional<Shading> shading;  // default: the caller's (the model's own look for `facet render`)
+  bool wireframe = false;          // draw only the edges
+  bool edges = false;              // draw the edges over the surfaces
+  bool depth_test = true;          // off: draw in submission order
+  bool painter = false;            // sort triangles back to front instead of depth-testing them
   CullMode cull = CullMode::back;
-  std::optional<glm::vec3> background;  // RGB in 0..1; default: the caller's
-  bool transparent_background = false;  // alpha 0 where nothing is drawn (RGBA PNG)
-  std::optional<glm::vec3> color;       // replaces every material, vertex and face colour
+  std::optional<glm::vec3> background;       // RGB in 0..1; default: the caller's
+  bool transparent_background = false;       // alpha 0 where nothing is drawn (RGBA PNG)
+  std::optional<glm::vec3> color;            // replaces every material, vertex and face colour
   std::optional<glm::vec3> light_direction;  // towards the light, world space; default: a headlight above left
 };
 
 // The files a render writes; empty paths are not written.
 struct OutputSpec {
-  std::filesystem::path color{};  // PNG: RGB, or RGBA with a transparent background
-  std::filesystem::path depth{};  // linear eye-space depth, float32 H x W .npy, 0 where empty
-  std::filesystem::path mask{};   // 8-bit greyscale PNG: 255 where a surface is drawn, 0 where empty
+  std::filesystem::path color{};   // PNG: RGB, or RGBA with a transparent background
+  std::filesystem::path depth{};   // linear eye-space depth, float32 H x W .npy, 0 where empty
+  std::filesystem::path mask{};    // 8-bit greyscale PNG: 255 where a surface is drawn, 0 where empty
   std::filesystem::path camera{};  // JSON: size, near, far, intrinsics and poses (camera_json in view_spec.hpp)
 };
 

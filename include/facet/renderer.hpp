@@ -3,9 +3,9 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <glm/glm.hpp>
 #include <memory>
 #include <span>
-#include <glm/glm.hpp>
 
 #include "facet/framebuffer.hpp"
 #include "facet/render_state.hpp"
@@ -24,11 +24,11 @@ struct DrawWith;
 
 // Counters of the last draw, for tests and tuning.
 struct DrawStats {
-  std::size_t primitives = 0;  // submitted
-  std::size_t culled = 0;      // back/front-face or zero area
-  std::size_t clipped = 0;     // crossed a frustum plane and were split
-  std::size_t invalid = 0;     // referenced a vertex outside the vertex span; skipped
-  std::size_t binned = 0;      // set-up triangles that reached rasterization
+  std::size_t primitives = 0;       // submitted
+  std::size_t culled = 0;           // back/front-face or zero area
+  std::size_t clipped = 0;          // crossed a frustum plane and were split
+  std::size_t invalid = 0;          // referenced a vertex outside the vertex span; skipped
+  std::size_t binned = 0;           // set-up triangles that reached rasterization
   std::size_t vertices_shaded = 0;  // vertex shader runs (batches of large meshes repeat their shared vertices)
   std::size_t vertices_held = 0;    // post-transform vertices stored at once: the band of one batch, or all
 };
@@ -97,10 +97,10 @@ void Renderer::draw_lines(Framebuffer& target, const S& shader, std::span<const 
 // FACET_EXTERN_SHADER(S) after the shader's definition in a header those files include, and
 // FACET_INSTANTIATE_SHADER(S) in one .cpp file, which includes facet/draw.hpp. The library does this for its stock
 // shaders.
-#define FACET_SHADER_DRAWS_(prefix, S)                                                                             \
-  prefix void ::facet::Renderer::draw<S>(::facet::Framebuffer&, const S&, std::span<const S::Vertex>,              \
-                                         std::span<const std::uint32_t>, const ::facet::RenderState&);             \
-  prefix void ::facet::Renderer::draw_lines<S>(::facet::Framebuffer&, const S&, std::span<const S::Vertex>,        \
+#define FACET_SHADER_DRAWS_(prefix, S)                                                                      \
+  prefix void ::facet::Renderer::draw<S>(::facet::Framebuffer&, const S&, std::span<const S::Vertex>,       \
+                                         std::span<const std::uint32_t>, const ::facet::RenderState&);      \
+  prefix void ::facet::Renderer::draw_lines<S>(::facet::Framebuffer&, const S&, std::span<const S::Vertex>, \
                                                std::span<const std::uint32_t>, const ::facet::RenderState&)
 #define FACET_EXTERN_SHADER(S) FACET_SHADER_DRAWS_(extern template, S)
 #define FACET_INSTANTIATE_SHADER(S) FACET_SHADER_DRAWS_(template, S)

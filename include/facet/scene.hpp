@@ -47,9 +47,9 @@ struct SceneOptions {
   // With depth_test off or painter on, surfaces pass the depth test unconditionally (DepthFunc::always) but still
   // write depth, so edges and linear_depth() see the surface that ended up visible.
   bool depth_test = true;
-  bool painter = false;     // sort triangles (and instances) back to front instead of depth-testing them
-  bool wireframe = false;   // draw only the edges, in `color` (white if unset), depth-tested among themselves
-  bool edges = false;       // draw the surfaces, then each edge once on top (depth-tested with a small offset)
+  bool painter = false;    // sort triangles (and instances) back to front instead of depth-testing them
+  bool wireframe = false;  // draw only the edges, in `color` (white if unset), depth-tested among themselves
+  bool edges = false;      // draw the surfaces, then each edge once on top (depth-tested with a small offset)
   glm::vec4 edge_color{0.05f, 0.05f, 0.05f, 1.0f};
   float line_width = 1.0f;
   Sampler sampler{};

@@ -16,8 +16,9 @@ namespace facet {
 // Varyings are interpolated as a flat array of floats, so a varyings struct may hold only floats and glm float
 // vectors (vec2, vec3, vec4). That keeps interpolation generic, branch-free and ready for SIMD.
 template <class V>
-concept Interpolatable = std::is_trivially_copyable_v<V> && std::is_standard_layout_v<V> &&
-                         sizeof(V) % sizeof(float) == 0 && alignof(V) <= alignof(float) * 4;
+concept Interpolatable = std::is_trivially_copyable_v<V> && std::is_standard_layout_v<V> && sizeof(V) % sizeof(float) ==
+                             0 &&
+                         alignof(V) <= alignof(float) * 4;
 
 template <Interpolatable V>
 inline constexpr std::size_t float_count_v = sizeof(V) / sizeof(float);
@@ -71,15 +72,17 @@ concept Shader = requires(const S& shader, const typename S::Vertex& vertex,
 
 template <class S>
 constexpr bool needs_derivatives() {
-  if constexpr (requires { S::needs_derivatives; })
-    return S::needs_derivatives;
-  else
-    return false;
+  if constexpr (requires { S::needs_derivatives; }) return S::needs_derivatives;
+  else return false;
 }
 
 template <Interpolatable V>
-inline FloatArray<V> to_floats(const V& v) { return std::bit_cast<FloatArray<V>>(v); }
+inline FloatArray<V> to_floats(const V& v) {
+  return std::bit_cast<FloatArray<V>>(v);
+}
 template <Interpolatable V>
-inline V from_floats(const FloatArray<V>& f) { return std::bit_cast<V>(f); }
+inline V from_floats(const FloatArray<V>& f) {
+  return std::bit_cast<V>(f);
+}
 
 }  // namespace facet

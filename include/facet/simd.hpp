@@ -119,8 +119,8 @@ FACET_LANES_INLINE V shuffle(V a, V b, Int pattern) {
 
 // Swaps lanes within each 2x2 quad: coarse derivatives are differences between a quad's pixels.
 FACET_LANES_INLINE Float quad_broadcast(Float v, Int pattern) { return shuffle(v, pattern); }
-inline constexpr Int kQuadTopLeft = (kLaneIndex & ~9);        // lane of each quad's (0, 0) pixel
-inline constexpr Int kQuadTopRight = (kLaneIndex & ~9) | 1;   // ... (1, 0)
+inline constexpr Int kQuadTopLeft = (kLaneIndex & ~9);         // lane of each quad's (0, 0) pixel
+inline constexpr Int kQuadTopRight = (kLaneIndex & ~9) | 1;    // ... (1, 0)
 inline constexpr Int kQuadBottomLeft = (kLaneIndex & ~9) | 8;  // ... (0, 1)
 
 struct alignas(kLaneAlign) Vec2 {

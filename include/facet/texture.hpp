@@ -87,7 +87,7 @@ inline glm::vec4 blend_portable(std::uint64_t bottom_pair, std::uint64_t top_pai
 inline Split split_floor_sse2(float s, float t) {
   __m128 st = _mm_setr_ps(s, t, 0.0f, 0.0f);
   st = _mm_min_ps(_mm_max_ps(st, _mm_set1_ps(-kTexelCoordinateLimit)), _mm_set1_ps(kTexelCoordinateLimit));
-  __m128i ij = _mm_cvttps_epi32(st);                                                 // truncates toward zero
+  __m128i ij = _mm_cvttps_epi32(st);                                                // truncates toward zero
   ij = _mm_add_epi32(ij, _mm_castps_si128(_mm_cmplt_ps(st, _mm_cvtepi32_ps(ij))));  // -1 where that rounded up
   const __m128 fraction = _mm_sub_ps(st, _mm_cvtepi32_ps(ij));
   return Split{_mm_cvtsi128_si32(ij), _mm_cvtsi128_si32(_mm_shuffle_epi32(ij, 1)), _mm_cvtss_f32(fraction),
@@ -174,7 +174,7 @@ class Texture {
     int width = 0, height = 0;
     int stride = 0;                       // texels per stored row: width + 1, padded (row_stride)
     float fwidth = 0.0f, fheight = 0.0f;  // the size as floats, so sampling does not convert per call
-    std::size_t offset = 0;              // of texel (0, 0) in texels_
+    std::size_t offset = 0;               // of texel (0, 0) in texels_
   };
 
   // BENCHMARK.md section 7: s = u*W - 0.5, i = floor(s), alpha = s - i, indices wrapped by a mask; thanks to the
@@ -213,7 +213,7 @@ class Texture {
 
   std::array<Level, kMaxTextureLevels> levels_{};
   int level_count_ = 0;
-  bool pow2_ = false;  // level 0 has power-of-two sides: the inline fast path applies
+  bool pow2_ = false;                  // level 0 has power-of-two sides: the inline fast path applies
   std::vector<std::uint32_t> texels_;  // all levels, level 0 first, each padded and row-major, row 0 at v = 0
 };
 
@@ -241,12 +241,12 @@ inline simd::Float Texture::clamp_texel_coordinate(simd::Float v) {
 }
 
 inline simd::Int Texture::bilinear_repeat_pow2_first(const simd::Vec2& uv, simd::Float& alpha,
-                                                      simd::Float& beta) const {
+                                                     simd::Float& beta) const {
   using namespace simd;
   const Level& l = levels_[0];
   // Lambdas over lane types are forced inline, like every lane function: one left out of line would be compiled
   // for the baseline ISA while its caller is an AVX-512 or AVX2 clone, which passes vectors differently.
-  auto split = [&](Float v, Int& index, Float& fraction) __attribute__((always_inline)) {
+  auto split = [&](Float v, Int & index, Float & fraction) __attribute__((always_inline)) {
     v = clamp_texel_coordinate(v);
     // split_floor's values: within the clamp's +-2^30, floor(v) converts to an int exactly. One rounding
     // instruction instead of a truncation corrected by one where it rounded up (a compare and a masked add).

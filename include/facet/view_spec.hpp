@@ -48,8 +48,8 @@ struct CameraSpec {
   Projection projection = Projection::perspective;
   std::optional<std::array<float, 4>> frustum_window;  // L, R, B, T at the near plane (frustum)
   std::optional<std::array<float, 4>> ortho_window;    // L, R, B, T (orthographic, oblique, presets); default: fit
-  float oblique_angle_degrees = 45.0f;  // receding direction, from +X
-  float oblique_scale = 0.5f;           // 1 cavalier, 0.5 cabinet
+  float oblique_angle_degrees = 45.0f;                 // receding direction, from +X
+  float oblique_scale = 0.5f;                          // 1 cavalier, 0.5 cabinet
   UpAxis up = UpAxis::pos_y;
 };
 
@@ -70,9 +70,9 @@ View make_view(const CameraSpec& camera, const Framing& framing, float aspect);
 // The camera of a View in the conventions of computer-vision tools, for turning depth back into world points.
 // OpenCV camera axes: x right, y down, z forward (into the scene); pixel (0, 0)'s centre is at u = v = 0.
 struct CameraModel {
-  bool perspective = true;       // false: a parallel projection (orthographic, oblique, the view presets)
-  glm::mat3 K{1.0f};             // intrinsics in pixels (perspective only): u = fx X/Z + cx, v = fy Y/Z + cy
-  glm::mat4 world_from_camera;   // OpenGL camera axes (x right, y up, looking down -z)
+  bool perspective = true;         // false: a parallel projection (orthographic, oblique, the view presets)
+  glm::mat3 K{1.0f};               // intrinsics in pixels (perspective only): u = fx X/Z + cx, v = fy Y/Z + cy
+  glm::mat4 world_from_camera;     // OpenGL camera axes (x right, y up, looking down -z)
   glm::mat4 camera_from_world_cv;  // OpenCV camera axes
 };
 

@@ -23,8 +23,8 @@ int resolve_thread_count(int threads) {
 struct Renderer::Work {
   explicit Work(int threads) : pool(threads), scratch(static_cast<std::size_t>(pool.size())) {}
 
-  detail::VertexOutputs prepare_vertex_outputs(const detail::DrawRequest& request, std::size_t held,
-                                               std::size_t first, int width, int height);
+  detail::VertexOutputs prepare_vertex_outputs(const detail::DrawRequest& request, std::size_t held, std::size_t first,
+                                               int width, int height);
   detail::VertexRange batch_vertex_band(const detail::DrawRequest& request, std::size_t batch_first,
                                         std::size_t batch_count);
   void shade_vertex_range(const detail::DrawRequest& request, const detail::VertexOutputs& out, std::size_t begin,
@@ -32,7 +32,7 @@ struct Renderer::Work {
 
   detail::ThreadPool pool;
   // Post-transform vertices of the range being drawn (see VertexOutputs).
-  std::vector<glm::vec4> clip;                    // clip positions, kept only for lines and the painter's sort
+  std::vector<glm::vec4> clip;                     // clip positions, kept only for lines and the painter's sort
   std::vector<detail::ProjectedVertex> projected;  // the same after the divide, viewport and snapping
   std::vector<float> varyings;                     // varyings, float_count floats per vertex
   std::vector<detail::SetupChunk> chunks;
@@ -53,12 +53,12 @@ void Renderer::clear(Framebuffer& target, glm::vec4 color, float depth) { target
 
 void Renderer::finish(Framebuffer& target) {
   work_->pool.parallel_for(static_cast<std::size_t>(target.tiles_y()),
-                     [&](std::size_t row, int) { target.resolve_clear_tile_row(static_cast<int>(row)); });
+                           [&](std::size_t row, int) { target.resolve_clear_tile_row(static_cast<int>(row)); });
   target.resolve_all_clears();
 }
 
 detail::VertexOutputs Renderer::Work::prepare_vertex_outputs(const detail::DrawRequest& request, std::size_t held,
-                                                       std::size_t first, int width, int height) {
+                                                             std::size_t first, int width, int height) {
   // Triangles need clip positions only to clip the few that cross the frustum, and recompute those (see
   // ClipPositionFn); lines clip every segment and the painter's sort reads every depth, so those keep them all.
   const bool triangles = request.kind == detail::PrimitiveKind::triangles;
@@ -80,7 +80,7 @@ detail::VertexRange Renderer::Work::batch_vertex_band(const detail::DrawRequest&
   pool.parallel_for(chunk_count, [&](std::size_t c, int) {
     const std::size_t first = batch_first + c * kSetupChunk;
     chunk_bands[c] = setup_vertex_range(request.indices, per_primitive, request.vertex_count, first,
-                                         std::min(kSetupChunk, batch_first + batch_count - first));
+                                        std::min(kSetupChunk, batch_first + batch_count - first));
   });
   VertexRange band{request.vertex_count, 0};
   for (const VertexRange& b : chunk_bands)

@@ -26,7 +26,8 @@ class ThreadPool {
       for (std::size_t i = 0; i < count; ++i) body(i, 0);
       return;
     }
-    run(count, [](void* context, std::size_t index, int thread) { (*static_cast<Body*>(context))(index, thread); },
+    run(
+        count, [](void* context, std::size_t index, int thread) { (*static_cast<Body*>(context))(index, thread); },
         const_cast<void*>(static_cast<const void*>(&body)));
   }
 

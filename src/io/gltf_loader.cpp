@@ -125,14 +125,10 @@ struct Reader {
 
   std::uint32_t integer(const unsigned char* p, int type, const char* what) const {
     switch (type) {
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return p[0];
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT:
-        return load<std::uint16_t>(p);
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        return load<std::uint32_t>(p);
-      default:
-        fail(std::string(what) + ": index component type " + std::to_string(type) + " is not unsigned");
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load<std::uint16_t>(p);
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load<std::uint32_t>(p);
+      default: fail(std::string(what) + ": index component type " + std::to_string(type) + " is not unsigned");
     }
   }
 
@@ -145,14 +141,12 @@ struct Reader {
 
   static float component(const unsigned char* element, int type, int c, bool normalized) {
     switch (type) {
-      case TINYGLTF_COMPONENT_TYPE_FLOAT:
-        return load<float>(element + 4 * c);
+      case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(element + 4 * c);
       case TINYGLTF_COMPONENT_TYPE_BYTE: {
         const float v = static_cast<std::int8_t>(element[c]);
         return normalized ? std::max(v / 127.0f, -1.0f) : v;
       }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE:
-        return normalized ? element[c] / 255.0f : element[c];
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? element[c] / 255.0f : element[c];
       case TINYGLTF_COMPONENT_TYPE_SHORT: {
         const float v = load<std::int16_t>(element + 2 * c);
         return normalized ? std::max(v / 32767.0f, -1.0f) : v;
@@ -161,10 +155,8 @@ struct Reader {
         const float v = load<std::uint16_t>(element + 2 * c);
         return normalized ? v / 65535.0f : v;
       }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT:
-        return static_cast<float>(load<std::uint32_t>(element + 4 * c));
-      default:
-        return 0.0f;
+      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return static_cast<float>(load<std::uint32_t>(element + 4 * c));
+      default: return 0.0f;
     }
   }
 };

@@ -130,18 +130,12 @@ Mesh load_model(const fs::path& path, std::string& format_name) {
   if (format == Format::kAssimp) format_name += " (" + printable(extension.substr(1)) + ")";
   try {
     switch (format) {
-      case Format::kObj:
-        return load_obj(path, bytes, source);
-      case Format::kPly:
-        return load_ply(bytes, source);
-      case Format::kStl:
-        return load_stl(bytes, source);
-      case Format::kGltf:
-        return load_gltf(path, bytes, source);
-      case Format::kAssimp:
-        return load_with_assimp(path, bytes, source);
-      case Format::kUnknown:
-        break;
+      case Format::kObj: return load_obj(path, bytes, source);
+      case Format::kPly: return load_ply(bytes, source);
+      case Format::kStl: return load_stl(bytes, source);
+      case Format::kGltf: return load_gltf(path, bytes, source);
+      case Format::kAssimp: return load_with_assimp(path, bytes, source);
+      case Format::kUnknown: break;
     }
   } catch (const std::bad_alloc&) {
     throw InputError(source, "out of memory while loading");

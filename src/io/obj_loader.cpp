@@ -214,8 +214,7 @@ std::vector<Material> convert_materials(const std::vector<tinyobj::material_t>& 
     mat.shininess = m.shininess;
     if (!m.diffuse_texname.empty()) {
       const fs::path texture = resolve(folder, m.diffuse_texname);
-      if (regular_file_exists(texture))
-        mat.diffuse_texture = texture.string();
+      if (regular_file_exists(texture)) mat.diffuse_texture = texture.string();
       else
         warn(source, "texture '" + printable(m.diffuse_texname) + "' of material '" + printable(m.name) +
                          "' not found (looked for " + printable(texture.string()) + ")");

@@ -100,14 +100,10 @@ class HeaderParser {
   void parse_format(const std::vector<std::string_view>& w) {
     if (have_format_) fail("a second 'format' line");
     if (w.size() != 3) fail("expected 'format <encoding> 1.0'");
-    if (w[1] == "ascii")
-      header_.encoding = Encoding::kAscii;
-    else if (w[1] == "binary_little_endian")
-      header_.encoding = Encoding::kBinaryLittleEndian;
-    else if (w[1] == "binary_big_endian")
-      header_.encoding = Encoding::kBinaryBigEndian;
-    else
-      fail("unknown encoding " + in_quotes(w[1]) + " (ascii, binary_little_endian or binary_big_endian)");
+    if (w[1] == "ascii") header_.encoding = Encoding::kAscii;
+    else if (w[1] == "binary_little_endian") header_.encoding = Encoding::kBinaryLittleEndian;
+    else if (w[1] == "binary_big_endian") header_.encoding = Encoding::kBinaryBigEndian;
+    else fail("unknown encoding " + in_quotes(w[1]) + " (ascii, binary_little_endian or binary_big_endian)");
     if (w[2] != "1.0") fail("unsupported PLY version " + in_quotes(w[2]) + " (only 1.0)");
     have_format_ = true;
   }

@@ -36,31 +36,21 @@ class BinaryReader {
 
   double scalar(Type t) {
     switch (t) {
-      case Type::kFloat32:
-        return std::bit_cast<float>(load<std::uint32_t>());
-      case Type::kFloat64:
-        return std::bit_cast<double>(load<std::uint64_t>());
-      default:
-        return static_cast<double>(integer(t));
+      case Type::kFloat32: return std::bit_cast<float>(load<std::uint32_t>());
+      case Type::kFloat64: return std::bit_cast<double>(load<std::uint64_t>());
+      default: return static_cast<double>(integer(t));
     }
   }
 
   std::int64_t integer(Type t) {
     switch (t) {
-      case Type::kInt8:
-        return static_cast<std::int8_t>(load<std::uint8_t>());
-      case Type::kUInt8:
-        return load<std::uint8_t>();
-      case Type::kInt16:
-        return static_cast<std::int16_t>(load<std::uint16_t>());
-      case Type::kUInt16:
-        return load<std::uint16_t>();
-      case Type::kInt32:
-        return static_cast<std::int32_t>(load<std::uint32_t>());
-      case Type::kUInt32:
-        return load<std::uint32_t>();
-      default:
-        throw Problem{std::string("a ") + ply::type_name(t) + " where an integer is needed"};
+      case Type::kInt8: return static_cast<std::int8_t>(load<std::uint8_t>());
+      case Type::kUInt8: return load<std::uint8_t>();
+      case Type::kInt16: return static_cast<std::int16_t>(load<std::uint16_t>());
+      case Type::kUInt16: return load<std::uint16_t>();
+      case Type::kInt32: return static_cast<std::int32_t>(load<std::uint32_t>());
+      case Type::kUInt32: return load<std::uint32_t>();
+      default: throw Problem{std::string("a ") + ply::type_name(t) + " where an integer is needed"};
     }
   }
 
@@ -185,12 +175,28 @@ Role role_of(std::string_view name) {
     std::string_view name;
     Role role;
   };
-  constexpr Name kNames[] = {
-      {"x", kX},         {"y", kY},         {"z", kZ},         {"nx", kNx},           {"ny", kNy},
-      {"nz", kNz},       {"red", kRed},     {"green", kGreen}, {"blue", kBlue},       {"alpha", kAlpha},
-      {"s", kU},         {"t", kV},         {"u", kU},         {"v", kV},             {"texture_u", kU},
-      {"texture_v", kV}, {"texture_s", kU}, {"texture_t", kV}, {"diffuse_red", kRed}, {"diffuse_green", kGreen},
-      {"diffuse_blue", kBlue}, {"diffuse_alpha", kAlpha}};
+  constexpr Name kNames[] = {{"x", kX},
+                             {"y", kY},
+                             {"z", kZ},
+                             {"nx", kNx},
+                             {"ny", kNy},
+                             {"nz", kNz},
+                             {"red", kRed},
+                             {"green", kGreen},
+                             {"blue", kBlue},
+                             {"alpha", kAlpha},
+                             {"s", kU},
+                             {"t", kV},
+                             {"u", kU},
+                             {"v", kV},
+                             {"texture_u", kU},
+                             {"texture_v", kV},
+                             {"texture_s", kU},
+                             {"texture_t", kV},
+                             {"diffuse_red", kRed},
+                             {"diffuse_green", kGreen},
+                             {"diffuse_blue", kBlue},
+                             {"diffuse_alpha", kAlpha}};
   for (const Name& n : kNames)
     if (n.name == name) return n.role;
   return kSkip;

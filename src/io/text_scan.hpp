@@ -73,10 +73,8 @@ bool parse_real(std::string_view token, Real& out) {
   if (ptr != end) return false;
   if (ec == std::errc::result_out_of_range) {
     const std::string copy(token);
-    if constexpr (sizeof(Real) == sizeof(float))
-      out = std::strtof(copy.c_str(), nullptr);
-    else
-      out = std::strtod(copy.c_str(), nullptr);
+    if constexpr (sizeof(Real) == sizeof(float)) out = std::strtof(copy.c_str(), nullptr);
+    else out = std::strtod(copy.c_str(), nullptr);
     return true;
   }
   return ec == std::errc();

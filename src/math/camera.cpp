@@ -67,9 +67,7 @@ glm::mat4 OrbitCamera::view() const {
   return look_at(e, target, tangent);
 }
 
-glm::mat4 view_from_world(const Camera& camera) {
-  return look_at(camera.position, camera.focal_point, camera.view_up);
-}
+glm::mat4 view_from_world(const Camera& camera) { return look_at(camera.position, camera.focal_point, camera.view_up); }
 
 glm::mat4 clip_from_view(const Camera& camera, float aspect) {
   require(std::isfinite(camera.view_angle_degrees), "clip_from_view", "view angle must be finite");
@@ -111,8 +109,7 @@ Camera frame_sphere(glm::vec3 center, float radius, float aspect, float view_ang
 void apply_azimuth_elevation(Camera& camera, float azimuth_deg, float elevation_deg) {
   const char* fn = "apply_azimuth_elevation";
   require(std::isfinite(azimuth_deg) && std::isfinite(elevation_deg), fn, "angles must be finite");
-  require(finite(camera.position) && finite(camera.focal_point) && finite(camera.view_up), fn,
-          "camera must be finite");
+  require(finite(camera.position) && finite(camera.focal_point) && finite(camera.view_up), fn, "camera must be finite");
   const glm::dvec3 fp(camera.focal_point);
   glm::dvec3 offset = glm::dvec3(camera.position) - fp;
   require(glm::length(offset) > 0.0, fn, "position and focal point must differ");

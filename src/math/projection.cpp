@@ -87,8 +87,8 @@ glm::mat4 ortho(float left, float right, float bottom, float top, float near, fl
   return m;
 }
 
-glm::mat4 oblique(float angle_radians, float depth_scale, float left, float right, float bottom, float top,
-                  float near, float far, float pivot_distance) {
+glm::mat4 oblique(float angle_radians, float depth_scale, float left, float right, float bottom, float top, float near,
+                  float far, float pivot_distance) {
   const char* fn = "oblique";
   require_finite(angle_radians, fn, "angle");
   require_finite(depth_scale, fn, "depth_scale");

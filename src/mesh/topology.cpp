@@ -329,10 +329,8 @@ void triangulate_polygon(std::span<const glm::vec3> positions, std::span<const s
   if (!(mag.x + mag.y + mag.z > 0) || !std::isfinite(mag.x + mag.y + mag.z)) return fan(polygon, out);
   // Drop the dominant axis; the remaining two are ordered so the polygon winds counter-clockwise in 2D.
   int axis = 2;
-  if (mag.x >= mag.y && mag.x >= mag.z)
-    axis = 0;
-  else if (mag.y >= mag.z)
-    axis = 1;
+  if (mag.x >= mag.y && mag.x >= mag.z) axis = 0;
+  else if (mag.y >= mag.z) axis = 1;
   int u = (axis + 1) % 3, v = (axis + 2) % 3;  // cyclic, so (u, v, axis) is right-handed
   if (normal[axis] < 0) std::swap(u, v);
   std::vector<glm::dvec2> p(n);

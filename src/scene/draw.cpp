@@ -76,12 +76,8 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
       draw(shader);
       break;
     }
-    case Shading::unlit:
-      draw(UnlitShader{transforms.clip_from_object, surface});
-      break;
-    case Shading::normals:
-      draw(NormalShader{transforms});
-      break;
+    case Shading::unlit: draw(UnlitShader{transforms.clip_from_object, surface}); break;
+    case Shading::normals: draw(NormalShader{transforms}); break;
     case Shading::depth:
       draw(DepthShader{transforms.clip_from_object, frame.view->view_from_world * instance.world_from_object,
                        frame.view->near, frame.view->far});
@@ -132,9 +128,8 @@ void draw_instance(Renderer& renderer, Framebuffer& target, const FrameContext& 
     color = options.color.value_or(glm::vec4(1.0f));
   } else {
     const glm::vec3 center(frame.view->view_from_world * instance.world_from_object * glm::vec4(prepared.center, 1));
-    lines.depth_offset = edge_depth_offset(frame.view->clip_from_view, -center.z, frame.view->near,
-                                           options.line_width, target.height(),
-                                           prepared.radius * max_scale(instance.world_from_object));
+    lines.depth_offset = edge_depth_offset(frame.view->clip_from_view, -center.z, frame.view->near, options.line_width,
+                                           target.height(), prepared.radius * max_scale(instance.world_from_object));
   }
   renderer.draw_lines(target, LineShader{transforms.clip_from_object, color}, vertices, prepared.edge_indices, lines);
 }

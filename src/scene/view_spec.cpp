@@ -85,8 +85,8 @@ Camera place_camera(const CameraSpec& spec, const Framing& framing, float aspect
   if (!orthographic && !(camera.near > 0.0f))
     throw std::invalid_argument("near: must be positive for a perspective projection, got " + format(camera.near));
   if (!(camera.far > camera.near))
-    throw std::invalid_argument("far: must be greater than the near distance (near " + format(camera.near) +
-                                ", far " + format(camera.far) + ")");
+    throw std::invalid_argument("far: must be greater than the near distance (near " + format(camera.near) + ", far " +
+                                format(camera.far) + ")");
   return camera;
 }
 
@@ -140,9 +140,7 @@ View make_view(const CameraSpec& spec, const Framing& framing, float aspect) {
   view.near = camera.near;
   view.far = camera.far;
   switch (spec.projection) {
-    case Projection::perspective:
-      view.clip_from_view = clip_from_view(camera, aspect);
-      break;
+    case Projection::perspective: view.clip_from_view = clip_from_view(camera, aspect); break;
     case Projection::frustum: {
       const float t = camera.near * std::tan(glm::radians(camera.view_angle_degrees) * 0.5f);
       const std::array<float, 4> w = spec.frustum_window.value_or(std::array<float, 4>{-t * aspect, t * aspect, -t, t});
@@ -209,7 +207,8 @@ std::string camera_json(const View& view, int width, int height) {
   out += ",\n  \"far\": ";
   number(view.far);
   out += std::string(",\n  \"projection\": \"") + (model.perspective ? "perspective" : "parallel") + "\",\n  \"K\": ";
-  if (model.perspective) rows(model.K, 3); else out += "null";
+  if (model.perspective) rows(model.K, 3);
+  else out += "null";
   out += ",\n  \"world_from_camera\": ";
   rows(model.world_from_camera, 4);
   out += ",\n  \"camera_from_world\": ";

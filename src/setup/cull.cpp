@@ -50,8 +50,8 @@ void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
   for (int i = 0; i < N; ++i) {
     // classify: twice the signed area; counter-clockwise on screen (y down) is negative and front-facing. Culled
     // when zero or facing the culled way.
-    area[i] = std::int64_t{x[1][i] - x[0][i]} * (y[2][i] - y[0][i]) -
-              std::int64_t{x[2][i] - x[0][i]} * (y[1][i] - y[0][i]);
+    area[i] =
+        std::int64_t{x[1][i] - x[0][i]} * (y[2][i] - y[0][i]) - std::int64_t{x[2][i] - x[0][i]} * (y[1][i] - y[0][i]);
     const std::int32_t front = area[i] < 0;
     const std::int32_t faced_away = (area[i] == 0) | (cull_back & (front ^ 1)) | (cull_front & front);
     away |= static_cast<std::uint32_t>(faced_away) << i;

@@ -26,7 +26,8 @@ inline glm::vec3 screen_from_clip(const glm::vec4& clip, float inv_w, int width,
           (ndc.z + 1.0f) * 0.5f};
 }
 
-// The definition of a projected vertex, one at a time; project_vertices (triangle_setup.hpp) must agree with it bit for bit.
+// The definition of a projected vertex, one at a time; project_vertices (triangle_setup.hpp) must agree with it bit for
+// bit.
 inline ProjectedVertex project_vertex(const glm::vec4& clip, int width, int height) {
   const std::uint32_t code = outcode(clip);
   if (code) return {0, 0, 0.0f, 0.0f, code};

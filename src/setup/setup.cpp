@@ -6,9 +6,9 @@
 #include <cmath>
 #include <utility>
 
-#include "facet/framebuffer.hpp"
 #include "clip/clip.hpp"
 #include "facet/detail/dispatch.hpp"
+#include "facet/framebuffer.hpp"
 #include "setup/project.hpp"
 
 namespace facet::detail {
@@ -70,8 +70,8 @@ class Binner {
     const std::int64_t area = std::int64_t{x[1] - x[0]} * (y[2] - y[0]) - std::int64_t{x[2] - x[0]} * (y[1] - y[0]);
     s.front = facing != 0 ? facing > 0 : area < 0;
     const bool sliver = facing != 0 && (area < 0) != s.front;  // a clipped polygon's piece flipped by snapping
-    if (area == 0 || sliver || (cull && ((in_.cull == CullMode::back && !s.front) ||
-                                         (in_.cull == CullMode::front && s.front)))) {
+    if (area == 0 || sliver ||
+        (cull && ((in_.cull == CullMode::back && !s.front) || (in_.cull == CullMode::front && s.front)))) {
       ++out_.culled;
       return false;
     }
@@ -296,8 +296,7 @@ Corners corners_of(const SetupInput& in, const std::uint32_t source[3]) {
     return;
   }
   glm::vec4 clip[3];
-  for (int k = 0; k < 3; ++k)
-    clip[k] = in.clip ? in.clip[slot[k]] : in.clip_position(in.clip_source, source[k]);
+  for (int k = 0; k < 3; ++k) clip[k] = in.clip ? in.clip[slot[k]] : in.clip_position(in.clip_source, source[k]);
   ClipVertex polygon[kMaxClipVertices];
   const int n = clip_triangle(clip, polygon);
   ++out.clipped;
@@ -386,17 +385,20 @@ void setup_lines(const SetupInput& in, SetupChunk& out) {
       dy /= length;
     }
     const float ax = dx * half_width, ay = dy * half_width;  // along the line
-    const float nx = -ay, ny = ax;                            // across it
+    const float nx = -ay, ny = ax;                           // across it
     auto corner = [](ScreenVertex s, float ox, float oy) {
       s.x += ox;
       s.y += oy;
       return s;
     };
-    const auto slot_a = static_cast<std::uint32_t>(a - in.vertex_first), slot_b = static_cast<std::uint32_t>(b - in.vertex_first);
+    const auto slot_a = static_cast<std::uint32_t>(a - in.vertex_first),
+               slot_b = static_cast<std::uint32_t>(b - in.vertex_first);
     const std::uint32_t vertex[3] = {slot_a, slot_b, slot_b};
     const auto primitive = static_cast<std::uint32_t>(p);
-    ScreenVertex first[3] = {corner(s0, -ax + nx, -ay + ny), corner(s1, ax + nx, ay + ny), corner(s1, ax - nx, ay - ny)};
-    ScreenVertex second[3] = {corner(s0, -ax + nx, -ay + ny), corner(s1, ax - nx, ay - ny), corner(s0, -ax - nx, -ay - ny)};
+    ScreenVertex first[3] = {corner(s0, -ax + nx, -ay + ny), corner(s1, ax + nx, ay + ny),
+                             corner(s1, ax - nx, ay - ny)};
+    ScreenVertex second[3] = {corner(s0, -ax + nx, -ay + ny), corner(s1, ax - nx, ay - ny),
+                              corner(s0, -ax - nx, -ay - ny)};
     for (ScreenVertex* quad_half : {first, second}) {
       SnappedVertex snapped[3] = {snap(quad_half[0], in.width, in.height), snap(quad_half[1], in.width, in.height),
                                   snap(quad_half[2], in.width, in.height)};

@@ -7,21 +7,21 @@
 
 #include <glm/glm.hpp>
 
-#include "facet/render_state.hpp"
-#include "facet/detail/binning.hpp"
 #include "clip/clip.hpp"
+#include "facet/detail/binning.hpp"
 #include "facet/detail/triangle_setup.hpp"
 #include "facet/detail/vertex_stage.hpp"
+#include "facet/render_state.hpp"
 
 namespace facet::detail {
 
 struct SetupInput {
   // Post-transform vertices of the range [vertex_first, ...) (see VertexOutputs): vertex i is at i - vertex_first.
-  const glm::vec4* clip;                  // clip positions, or nullptr: ask clip_position
-  const ProjectedVertex* projected;       // projected and snapped (triangles only)
+  const glm::vec4* clip;             // clip positions, or nullptr: ask clip_position
+  const ProjectedVertex* projected;  // projected and snapped (triangles only)
   std::size_t vertex_first;
   ClipPositionFn clip_position;
-  const void* clip_source;                // what clip_position reads
+  const void* clip_source;                 // what clip_position reads
   std::size_t vertex_count;                // of the whole draw: indices at or above it are invalid
   std::span<const std::uint32_t> indices;  // 3 per triangle or 2 per line
   const std::uint32_t* order;              // primitive permutation (painter's algorithm) or nullptr
@@ -47,9 +47,9 @@ inline constexpr int kCullLanes = 16;
 struct CullLanes {
   std::uint32_t keep, accepted;
   std::int32_t x[3][kCullLanes], y[3][kCullLanes];  // snapped corners, clockwise on screen
-  std::int64_t area[kCullLanes];                     // twice the area, positive
+  std::int64_t area[kCullLanes];                    // twice the area, positive
   std::int32_t px0[kCullLanes], py0[kCullLanes], px1[kCullLanes], py1[kCullLanes];  // pixel bounds
-  std::int32_t front[kCullLanes];                    // 1 when front-facing (then corners 1 and 2 were swapped)
+  std::int32_t front[kCullLanes];  // 1 when front-facing (then corners 1 and 2 were swapped)
 };
 void setup_cull_lanes(const SetupInput& input, std::size_t first, CullLanes& out);
 

@@ -17,8 +17,7 @@ inline int wrap_index(int i, int n, Wrap wrap) {
       const int m = i % n;
       return m < 0 ? m + n : m;
     }
-    case Wrap::clamp:
-      return std::clamp(i, 0, n - 1);
+    case Wrap::clamp: return std::clamp(i, 0, n - 1);
     case Wrap::mirror: {
       // Period 2n: the first n texels forward, the next n backward.
       const int period = 2 * n;
@@ -53,7 +52,8 @@ glm::vec4 Texture::sample_bilinear(int level, glm::vec2 uv, Wrap wrap_u, Wrap wr
   const int j0 = wrap_index(p.j, l.height, wrap_v), j1 = wrap_index(p.j + 1, l.height, wrap_v);
   const std::uint32_t* row0 = texels_.data() + l.offset + static_cast<std::size_t>(j0) * l.stride;
   const std::uint32_t* row1 = texels_.data() + l.offset + static_cast<std::size_t>(j1) * l.stride;
-  return detail::blend(row0[i0] | std::uint64_t{row0[i1]} << 32, row1[i0] | std::uint64_t{row1[i1]} << 32, p.alpha, p.beta);
+  return detail::blend(row0[i0] | std::uint64_t{row0[i1]} << 32, row1[i0] | std::uint64_t{row1[i1]} << 32, p.alpha,
+                       p.beta);
 }
 
 glm::vec4 Texture::sample(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, const Sampler& sampler) const {

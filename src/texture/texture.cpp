@@ -117,7 +117,11 @@ void Texture::generate_mipmaps() {
   while (levels_[level_count_ - 1].width > 1 || levels_[level_count_ - 1].height > 1) {
     const Level& src = levels_[level_count_ - 1];
     const int w = std::max(1, src.width / 2), h = std::max(1, src.height / 2);
-    const Level dst{w, h, row_stride(w), static_cast<float>(w), static_cast<float>(h),
+    const Level dst{w,
+                    h,
+                    row_stride(w),
+                    static_cast<float>(w),
+                    static_cast<float>(h),
                     src.offset + static_cast<std::size_t>(src.stride) * (src.height + 1)};
     const std::vector<AxisTaps> tx = axis_taps(src.width, w), ty = axis_taps(src.height, h);
     row_sums.assign(static_cast<std::size_t>(w), glm::vec4(0.0f));

@@ -8,8 +8,8 @@
 #include <random>
 
 #include "bench/bench_shader.hpp"
-#include "facet/draw.hpp"
 #include "facet/detail/raster_deferred.hpp"
+#include "facet/draw.hpp"
 #include "facet/fragment_lanes.hpp"
 #include "support/draw_helpers.hpp"
 
@@ -40,14 +40,12 @@ struct ProbeShader {
       r += 40.0f * f.ddx.u;
       g += 40.0f * f.ddy.color.g;
     }
-    const float b = 0.5f * f.screen.z + 0.25f * static_cast<float>(f.primitive % 3) +
-                    (f.front_facing ? 0.0f : 0.125f) + 0.001f * f.screen.x - 0.001f * f.screen.y;
+    const float b = 0.5f * f.screen.z + 0.25f * static_cast<float>(f.primitive % 3) + (f.front_facing ? 0.0f : 0.125f) +
+                    0.001f * f.screen.x - 0.001f * f.screen.y;
     return {r, g, b, 1.0f};
   }
 
-  simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const
-    requires kLanes
-  {
+  simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const requires kLanes {
     using namespace simd;
     const Vec3 color = f.get(&Varyings::color);
     Float r = color.x, g = color.y;
@@ -135,7 +133,8 @@ void expect_same(const Framebuffer& expected, const Framebuffer& actual, const c
   std::size_t colour_diffs = 0, depth_diffs = 0, first = expected.color().size();
   for (std::size_t i = 0; i < expected.color().size(); ++i) {
     const bool colour = expected.color()[i] != actual.color()[i];
-    const bool depth = std::bit_cast<std::uint32_t>(expected.depth()[i]) != std::bit_cast<std::uint32_t>(actual.depth()[i]);
+    const bool depth =
+        std::bit_cast<std::uint32_t>(expected.depth()[i]) != std::bit_cast<std::uint32_t>(actual.depth()[i]);
     colour_diffs += colour;
     depth_diffs += depth;
     if ((colour || depth) && i < first) first = i;
@@ -259,7 +258,8 @@ TEST(DeferredShading, BenchShaderLanesMatchItsScalarFragment) {
   for (int i = 0; i < n; ++i)
     for (int j = 0; j < n; ++j) {
       const auto at = [&](int a, int b) { return static_cast<std::uint32_t>(a * (n + 1) + b); };
-      indices.insert(indices.end(), {at(i, j), at(i, j + 1), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)});
+      indices.insert(indices.end(),
+                     {at(i, j), at(i, j + 1), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)});
     }
   std::mt19937 rng(5);
   std::vector<std::uint32_t> texels(64 * 64);

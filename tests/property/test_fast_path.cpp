@@ -1,4 +1,5 @@
-// test_fast_path.cpp - the tiled, threaded rasterizer against the scalar reference, and against itself per thread count.
+// test_fast_path.cpp - the tiled, threaded rasterizer against the scalar reference, and against itself per thread
+// count.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -36,8 +37,7 @@ ClipMesh perspective_sphere(int width, int height, int stacks, int slices) {
 // Coverage is exact integer arithmetic in both rasterizers, so the pixels each triangle covers must be identical.
 TEST(FastPath, CoverageEqualsReferenceExactly) {
   const RenderState state = no_depth_no_cull();
-  const ClipMesh scenes[] = {triangle_soup(300, 5), jittered_grid(11, 7, 3, true),
-                             perspective_sphere(173, 97, 17, 29)};
+  const ClipMesh scenes[] = {triangle_soup(300, 5), jittered_grid(11, 7, 3, true), perspective_sphere(173, 97, 17, 29)};
   for (const ClipMesh& scene : scenes) {
     const std::vector<int> fast = coverage_counts(scene, 173, 97, state, 2, false);
     const std::vector<int> slow = coverage_counts(scene, 173, 97, state, 1, true);

@@ -48,7 +48,7 @@ CheckerResult render_floor(bool affine) {
       const glm::vec2 uv = glm::vec2(hit.x, hit.z) / 2.0f;
       // Skip pixels near a cell border (their footprint straddles it) and far away where cells alias.
       const float footprint = std::abs(hit.z) * 2.0f * tan_half / height;  // world size of one pixel, roughly
-      const float step = footprint * std::abs(hit.z) / 1.0f;              // grazing stretch along z
+      const float step = footprint * std::abs(hit.z) / 1.0f;               // grazing stretch along z
       if (step > 0.25f) continue;
       const glm::vec2 f = uv - glm::floor(uv);
       const float margin = std::max(0.02f, step);

@@ -45,8 +45,21 @@ Soup tiny_triangles(std::size_t count, unsigned seed) {
 
 SetupInput input_for(const Soup& soup, CullMode cull, std::size_t first, std::size_t count) {
   const int tiles_x = (kWidth + kTileSize - 1) / kTileSize;
-  return {nullptr, soup.projected.data(), 0, nullptr, nullptr, soup.projected.size(), soup.indices, nullptr,
-          first, count, kWidth, kHeight, tiles_x, cull, 1.0f};
+  return {nullptr,
+          soup.projected.data(),
+          0,
+          nullptr,
+          nullptr,
+          soup.projected.size(),
+          soup.indices,
+          nullptr,
+          first,
+          count,
+          kWidth,
+          kHeight,
+          tiles_x,
+          cull,
+          1.0f};
 }
 
 CullLanes cull_lanes(const SetupInput& in, std::size_t first) {
@@ -76,7 +89,8 @@ void expect_same_setup(const TriangleSetup& a, const TriangleSetup& b) {
   EXPECT_EQ(a.max_y, b.max_y);
   EXPECT_EQ(a.origin_x, b.origin_x);
   EXPECT_EQ(a.origin_y, b.origin_y);
-  for (const auto plane : {&TriangleSetup::depth, &TriangleSetup::inv_w, &TriangleSetup::b1_over_w, &TriangleSetup::b2_over_w}) {
+  for (const auto plane :
+       {&TriangleSetup::depth, &TriangleSetup::inv_w, &TriangleSetup::b1_over_w, &TriangleSetup::b2_over_w}) {
     EXPECT_EQ((a.*plane).at_origin, (b.*plane).at_origin);
     EXPECT_EQ((a.*plane).ddx, (b.*plane).ddx);
     EXPECT_EQ((a.*plane).ddy, (b.*plane).ddy);
@@ -167,7 +181,7 @@ TEST(SetupCull, BlocksThatAllFaceAwayKeepOnlyTrianglesOutsideTheFrustum) {
 // the same order, and the same counts as setting the triangles up one at a time.
 TEST(SetupCull, ChunkSetupMatchesOneTriangleAtATime) {
   Soup soup = tiny_triangles(16 * 64 + 5, 11);  // a tail shorter than 16 takes the per-triangle path
-  soup.indices[3 * 40 + 1] = 99999;            // one invalid triangle
+  soup.indices[3 * 40 + 1] = 99999;             // one invalid triangle
   const std::size_t count = soup.indices.size() / 3;
   SetupChunk whole;
   whole.reset();

@@ -4,8 +4,8 @@
 #include <span>
 #include <vector>
 
-#include "support/reference_rasterizer.hpp"
 #include "facet/renderer.hpp"
+#include "support/reference_rasterizer.hpp"
 #include "support/scenes.hpp"
 #include "support/test_shaders.hpp"
 
@@ -19,8 +19,8 @@ inline std::vector<ColorShader::Vertex> color_vertices(const ClipMesh& m) {
 
 // How many times each pixel is shaded when `m` is drawn with `state` (depth test off unless the state says so).
 // Counting invocations is a side effect, so shading is immediate: deferred shading would shade each pixel once.
-inline std::vector<int> coverage_counts(const ClipMesh& m, int width, int height, RenderState state,
-                                        int threads = 2, bool reference_path = false) {
+inline std::vector<int> coverage_counts(const ClipMesh& m, int width, int height, RenderState state, int threads = 2,
+                                        bool reference_path = false) {
   state.defer_shading = false;
   std::vector<int> counts(static_cast<std::size_t>(width) * height, 0);
   std::vector<CountingShader::Vertex> vertices;

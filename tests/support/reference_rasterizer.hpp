@@ -8,11 +8,11 @@
 #include <span>
 #include <vector>
 
+#include "clip/clip.hpp"
+#include "facet/detail/raster.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/render_state.hpp"
 #include "facet/shader.hpp"
-#include "clip/clip.hpp"
-#include "facet/detail/raster.hpp"
 
 namespace facet::reference {
 
@@ -129,9 +129,9 @@ void draw(Framebuffer& target, const S& shader, std::span<const typename S::Vert
             lambda[k] = double(e[k]) / double(area);
             perspective += lambda[k] * v[k].inv_w;
           }
-          const glm::dvec3 weights =
-              (lambda[0] * v[0].inv_w * v[0].weights + lambda[1] * v[1].inv_w * v[1].weights +
-               lambda[2] * v[2].inv_w * v[2].weights) / perspective;
+          const glm::dvec3 weights = (lambda[0] * v[0].inv_w * v[0].weights + lambda[1] * v[1].inv_w * v[1].weights +
+                                      lambda[2] * v[2].inv_w * v[2].weights) /
+                                     perspective;
           const float z = std::clamp(
               static_cast<float>(lambda[0] * v[0].z + lambda[1] * v[1].z + lambda[2] * v[2].z) + state.depth_offset,
               0.0f, 1.0f);

@@ -62,8 +62,8 @@ inline ClipMesh closed_sphere(int stacks, int slices, const glm::mat4& clip_from
   for (int j = 0; j < slices; ++j) m.indices.insert(m.indices.end(), {0, ring(1, j + 1), ring(1, j)});
   for (int i = 1; i + 1 < stacks; ++i)
     for (int j = 0; j < slices; ++j)
-      m.indices.insert(m.indices.end(), {ring(i, j), ring(i, j + 1), ring(i + 1, j), ring(i, j + 1),
-                                         ring(i + 1, j + 1), ring(i + 1, j)});
+      m.indices.insert(m.indices.end(), {ring(i, j), ring(i, j + 1), ring(i + 1, j), ring(i, j + 1), ring(i + 1, j + 1),
+                                         ring(i + 1, j)});
   for (int j = 0; j < slices; ++j)
     m.indices.insert(m.indices.end(), {ring(stacks - 1, j), ring(stacks - 1, j + 1), bottom});
   return m;

@@ -12,8 +12,8 @@ namespace facet::test {
 // a failing test's files are there to inspect afterwards.
 inline std::filesystem::path scratch_dir(const std::string& area) {
   const auto* info = ::testing::UnitTest::GetInstance()->current_test_info();
-  const std::filesystem::path dir = std::filesystem::path(FACET_TEST_OUTPUT_DIR) / area /
-                                    (std::string(info->test_suite_name()) + "." + info->name());
+  const std::filesystem::path dir =
+      std::filesystem::path(FACET_TEST_OUTPUT_DIR) / area / (std::string(info->test_suite_name()) + "." + info->name());
   std::filesystem::remove_all(dir);
   std::filesystem::create_directories(dir);
   return dir;

@@ -66,7 +66,8 @@ struct CheckerShader {
   }
   glm::vec4 fragment(const Fragment<Varyings>& f) const {
     const int parity = (static_cast<int>(std::floor(f.varyings.uv.x * cells)) +
-                        static_cast<int>(std::floor(f.varyings.uv.y * cells))) & 1;
+                        static_cast<int>(std::floor(f.varyings.uv.y * cells))) &
+                       1;
     return parity ? glm::vec4(1.0f) : glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
   }
 };

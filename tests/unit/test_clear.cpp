@@ -17,7 +17,8 @@ namespace {
 void add_triangle_in_tile(ClipMesh& m, int tile_x, int tile_y, int width, int height, float offset = 10.0f,
                           float size = 20.0f) {
   const auto clip = [&](float px, float py) {
-    return glm::vec4(2.0f * px / static_cast<float>(width) - 1.0f, 1.0f - 2.0f * py / static_cast<float>(height), 0.0f, 1.0f);
+    return glm::vec4(2.0f * px / static_cast<float>(width) - 1.0f, 1.0f - 2.0f * py / static_cast<float>(height), 0.0f,
+                     1.0f);
   };
   const float x = static_cast<float>(tile_x * kTileSize) + offset, y = static_cast<float>(tile_y * kTileSize) + offset;
   const auto first = static_cast<std::uint32_t>(m.clip.size());
@@ -33,7 +34,7 @@ TEST(Clear, EveryPixelReceivesTheNewClear) {
   ClipMesh m;
   add_triangle_in_tile(m, 1, 1, width, height);  // row 1: runs [0], [2], [4]
   add_triangle_in_tile(m, 3, 1, width, height);
-  add_triangle_in_tile(m, 0, 2, width, height);  // row 2: one run [1, 4]
+  add_triangle_in_tile(m, 0, 2, width, height);              // row 2: one run [1, 4]
   add_triangle_in_tile(m, 4, 3, width, height, 1.0f, 6.0f);  // row 3 (8 pixels tall): one run [0, 3]
   const std::vector<ColorShader::Vertex> vertices = color_vertices(m);
   for (const bool deferred : {true, false}) {
@@ -69,7 +70,8 @@ TEST(Clear, RepeatedClearsMatchAFreshTarget) {
   ClipMesh first, second;
   add_triangle_in_tile(first, 1, 1, width, height);
   add_triangle_in_tile(second, 3, 2, width, height);
-  const std::vector<ColorShader::Vertex> first_vertices = color_vertices(first), second_vertices = color_vertices(second);
+  const std::vector<ColorShader::Vertex> first_vertices = color_vertices(first),
+                                         second_vertices = color_vertices(second);
   const glm::vec4 blue(0.0f, 0.0f, 1.0f, 1.0f);
   for (const bool deferred : {true, false}) {
     RenderState state = no_depth_no_cull();

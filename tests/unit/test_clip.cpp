@@ -8,7 +8,8 @@
 namespace facet::detail {
 namespace {
 
-// A triangle straddling frustum plane p (0..5, w +- x, y or z >= 0) with `inside` of its vertices inside; the vertices are placed at distance +1 (inside) or -1 (outside) along that plane's axis.
+// A triangle straddling frustum plane p (0..5, w +- x, y or z >= 0) with `inside` of its vertices inside; the vertices
+// are placed at distance +1 (inside) or -1 (outside) along that plane's axis.
 glm::vec4 place(int plane, bool in, glm::vec2 spread) {
   glm::vec4 v(spread.x * 0.2f, spread.y * 0.2f, 0.0f, 2.0f);
   const float d = in ? 1.0f : -1.0f;
@@ -38,8 +39,7 @@ TEST_P(ClipPlaneTest, VerticesInsideDecideThePolygon) {
   }
 }
 
-INSTANTIATE_TEST_SUITE_P(AllPlanes, ClipPlaneTest,
-                         ::testing::Combine(::testing::Range(0, 6), ::testing::Range(0, 4)));
+INSTANTIATE_TEST_SUITE_P(AllPlanes, ClipPlaneTest, ::testing::Combine(::testing::Range(0, 6), ::testing::Range(0, 4)));
 
 TEST(Clip, TriangleBehindTheEyeIsRejected) {
   const glm::vec4 tri[3] = {{0, 0, 1, -1}, {1, 0, 1, -1}, {0, 1, 1, -2}};

@@ -53,7 +53,7 @@ TEST(ImageIoPng, RgbaRoundTrip) {
   const std::string file = read_bytes(path);
   ASSERT_GT(file.size(), 26u);
   EXPECT_EQ(file.substr(0, 8), std::string("\x89PNG\r\n\x1a\n"));
-  EXPECT_EQ(file[25], 6);  // IHDR colour type 6: RGBA
+  EXPECT_EQ(file[25], 6);                                                               // IHDR colour type 6: RGBA
   EXPECT_EQ(names_in(path.parent_path()), std::vector<std::string>{"round_trip.png"});  // no temporary left
 }
 
@@ -81,7 +81,7 @@ TEST(ImageIoPng, FramebufferTopRowFirstAndOverwrite) {
   EXPECT_EQ(w, 4);
   EXPECT_EQ(h, 3);
   EXPECT_EQ(back, fb.rgba8());
-  EXPECT_EQ(back[1], 0);                   // row 0 of the framebuffer (green 0) is the file's first row
+  EXPECT_EQ(back[1], 0);                  // row 0 of the framebuffer (green 0) is the file's first row
   EXPECT_EQ(back[(2 * 4) * 4 + 1], 255);  // the last row has green 255
 }
 

@@ -38,7 +38,9 @@ class ObjLoader : public ::testing::Test {
     std::error_code ec;
     fs::remove_all(dir_, ec);
   }
-  fs::path write(const std::string& name, const std::string& bytes) const { return test::write_file(dir_, name, bytes); }
+  fs::path write(const std::string& name, const std::string& bytes) const {
+    return test::write_file(dir_, name, bytes);
+  }
   static std::string problem(const fs::path& p) { return test::load_problem(p); }
   fs::path dir_;
 };

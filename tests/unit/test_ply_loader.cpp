@@ -136,7 +136,9 @@ std::string pyramid(const std::string& encoding, bool faces_first = false) {
 class PlyLoader : public ::testing::Test {
  protected:
   void SetUp() override { dir_ = test::scratch_dir("models"); }
-  fs::path write(const std::string& name, const std::string& bytes) const { return test::write_file(dir_, name, bytes); }
+  fs::path write(const std::string& name, const std::string& bytes) const {
+    return test::write_file(dir_, name, bytes);
+  }
   static std::string problem(const fs::path& p) { return test::load_problem(p); }
   fs::path dir_;
 };

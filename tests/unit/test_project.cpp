@@ -8,8 +8,8 @@
 #include <random>
 #include <vector>
 
-#include "facet/framebuffer.hpp"
 #include "facet/detail/triangle_setup.hpp"
+#include "facet/framebuffer.hpp"
 #include "setup/project.hpp"
 
 namespace facet::detail {
@@ -36,7 +36,8 @@ void check_blocks(const std::vector<glm::vec4>& clip, std::size_t block, int wid
     const ProjectedVertex sentinel{-7, -7, -7.0f, -7.0f, 0xdeadu};
     std::fill(std::begin(out), std::end(out), sentinel);
     project_vertices(positions, count, out, width, height);
-    for (std::size_t k = 0; k < count; ++k) expect_same(out[k], project_vertex(clip[first + k], width, height), clip[first + k]);
+    for (std::size_t k = 0; k < count; ++k)
+      expect_same(out[k], project_vertex(clip[first + k], width, height), clip[first + k]);
     EXPECT_EQ(out[count].outcode, sentinel.outcode) << "wrote past the block's count " << count;
   }
 }
@@ -57,7 +58,8 @@ TEST(ProjectVertices, HalfwayBetweenSubpixelsRoundsToEven) {
   // Width 2: x = 2^-9 lands at 256.5 sub-pixels, x = 3 * 2^-9 at 257.5; lrint rounds both to the even neighbour.
   ClipBlock positions;
   const float xs[2] = {0.001953125f, 0.005859375f};
-  for (int k = 0; k < 2; ++k) positions.x[k] = xs[k], positions.y[k] = 0.0f, positions.z[k] = 0.0f, positions.w[k] = 1.0f;
+  for (int k = 0; k < 2; ++k)
+    positions.x[k] = xs[k], positions.y[k] = 0.0f, positions.z[k] = 0.0f, positions.w[k] = 1.0f;
   ProjectedVertex out[2];
   project_vertices(positions, 2, out, 2, 2);
   EXPECT_EQ(out[0].x, 256);
@@ -66,8 +68,8 @@ TEST(ProjectVertices, HalfwayBetweenSubpixelsRoundsToEven) {
 
 TEST(ProjectVertices, OutsideOrNonFiniteKeepsOnlyTheOutcode) {
   const float inf = std::numeric_limits<float>::infinity(), nan = std::numeric_limits<float>::quiet_NaN();
-  const std::vector<glm::vec4> clip = {{0, 0, 0, -1},   {2, 0, 0, 1},  {0, 0, -3, 1},   {nan, 0, 0, 1},
-                                       {0, inf, 0, 1},  {0, 0, 0, 0},  {0, 0, 0, 1e-6f}, {0, 0, 0, nan}};
+  const std::vector<glm::vec4> clip = {{0, 0, 0, -1},  {2, 0, 0, 1}, {0, 0, -3, 1},    {nan, 0, 0, 1},
+                                       {0, inf, 0, 1}, {0, 0, 0, 0}, {0, 0, 0, 1e-6f}, {0, 0, 0, nan}};
   ClipBlock positions;
   for (std::size_t k = 0; k < clip.size(); ++k)
     positions.x[k] = clip[k].x, positions.y[k] = clip[k].y, positions.z[k] = clip[k].z, positions.w[k] = clip[k].w;
@@ -88,8 +90,16 @@ TEST(ProjectVertices, OutsideOrNonFiniteKeepsOnlyTheOutcode) {
 TEST(ProjectVertices, AgreesWithProjectVertexEverywhere) {
   std::mt19937 rng(20261123);
   std::uniform_real_distribution<float> unit(-1.3f, 1.3f), w_range(-0.5f, 40.0f), wide(-1e6f, 1e6f);
-  const float specials[] = {0.0f, -0.0f, 1.0f, -1.0f, 1e-5f, 1e30f, -1e30f, std::numeric_limits<float>::infinity(),
-                            std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::denorm_min()};
+  const float specials[] = {0.0f,
+                            -0.0f,
+                            1.0f,
+                            -1.0f,
+                            1e-5f,
+                            1e30f,
+                            -1e30f,
+                            std::numeric_limits<float>::infinity(),
+                            std::numeric_limits<float>::quiet_NaN(),
+                            std::numeric_limits<float>::denorm_min()};
   std::vector<glm::vec4> clip;
   for (int i = 0; i < 4000; ++i) {
     const float w = w_range(rng);

@@ -50,8 +50,8 @@ glm::vec3 ndc(const glm::mat4& clip_from_eye, glm::vec3 eye_point) {
 TEST(ProjectionTest, BarebonesWebglFrustumStylePerspective) {
   for (float aspect : {200.0f / 200.0f, 640.0f / 480.0f, 300.0f / 700.0f}) {
     const float f = 100, n = 0.1f, t = n * std::tan(kPi / 8), b = -t, r = t * aspect, l = -r;
-    const glm::mat4 expected = from_columns({2 * n / (r - l), 0, 0, 0,                              //
-                                             0, 2 * n / (t - b), 0, 0,                              //
+    const glm::mat4 expected = from_columns({2 * n / (r - l), 0, 0, 0,                                      //
+                                             0, 2 * n / (t - b), 0, 0,                                      //
                                              (r + l) / (r - l), (t + b) / (t - b), -(f + n) / (f - n), -1,  //
                                              0, 0, -2 * f * n / (f - n), 0});
     expect_mat_near(frustum(l, r, b, t, n, f), expected);
@@ -146,8 +146,8 @@ TEST(ProjectionTest, LectureFrustumIsNormalisationTimesScaleTimesShear) {
   glm::mat4 h(1.0f);
   h[2][0] = (l + r) / (2 * n);
   h[2][1] = (b + t) / (2 * n);
-  const glm::mat4 expected = from_rows({2 * n / (r - l), 0, (r + l) / (r - l), 0,  //
-                                        0, 2 * n / (t - b), (t + b) / (t - b), 0,  //
+  const glm::mat4 expected = from_rows({2 * n / (r - l), 0, (r + l) / (r - l), 0,        //
+                                        0, 2 * n / (t - b), (t + b) / (t - b), 0,        //
                                         0, 0, -(f + n) / (f - n), -2 * f * n / (f - n),  //
                                         0, 0, -1, 0});
   expect_mat_near(frustum(l, r, b, t, n, f), expected);
@@ -354,7 +354,7 @@ TEST(ProjectionTest, RejectsBadParameters) {
   expect_invalid([] { ortho(-1, 1, -1, 1, 3, 3); }, "ortho: far");
   expect_invalid([] { ortho(-1, 1, -1, 1, 3, 2); }, "ortho: far");
   expect_invalid([] { ortho(-1, 1, -1, 1, kNaN, 2); }, "ortho: near");
-  EXPECT_NO_THROW(ortho(-1, 1, -1, 1, -5, 5));  // glOrtho allows planes behind the eye
+  EXPECT_NO_THROW(ortho(-1, 1, -1, 1, -5, 5));   // glOrtho allows planes behind the eye
   EXPECT_NO_THROW(frustum(1, -1, -1, 1, 1, 5));  // and mirrored windows
 
   expect_invalid([] { oblique(kNaN, 1, -1, 1, -1, 1, 1, 10); }, "oblique: angle");

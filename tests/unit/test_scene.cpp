@@ -7,8 +7,8 @@
 #include <string>
 #include <vector>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "facet/scene.hpp"
 
@@ -20,8 +20,8 @@ const glm::vec4 kClear(0.0f, 0.0f, 0.0f, 1.0f);
 const glm::vec4 kRed(1, 0, 0, 1), kBlue(0, 0, 1, 1);
 
 View make_view(glm::vec3 eye, float near = 0.1f, float far = 100.0f) {
-  return {glm::lookAt(eye, glm::vec3(0.0f), glm::vec3(0, 1, 0)),
-          glm::perspective(glm::radians(45.0f), 1.0f, near, far), near, far};
+  return {glm::lookAt(eye, glm::vec3(0.0f), glm::vec3(0, 1, 0)), glm::perspective(glm::radians(45.0f), 1.0f, near, far),
+          near, far};
 }
 
 // A w x h rectangle in the plane z, facing +z, centred at (cx, cy).
@@ -82,14 +82,14 @@ TEST(SceneFrustum, SphereInFrustumPerspective) {
   const View view = make_view({0, 0, 3});
   const glm::mat4 m = view.clip_from_view * view.view_from_world;
   EXPECT_TRUE(sphere_in_frustum(m, {0, 0, 0}, 0.5f));
-  EXPECT_FALSE(sphere_in_frustum(m, {0, 0, 5}, 0.5f));  // behind the camera
+  EXPECT_FALSE(sphere_in_frustum(m, {0, 0, 5}, 0.5f));     // behind the camera
   EXPECT_FALSE(sphere_in_frustum(m, {0, 0, 3.2f}, 0.1f));  // just behind the eye
-  EXPECT_TRUE(sphere_in_frustum(m, {0, 0, 3}, 10.0f));  // contains the camera
+  EXPECT_TRUE(sphere_in_frustum(m, {0, 0, 3}, 10.0f));     // contains the camera
   // The left plane passes x = -3 tan(22.5 deg) = -1.2426 at z = 0; the centre (-1.5, 0, 0) is 0.2378 outside it.
   EXPECT_TRUE(sphere_in_frustum(m, {-1.5f, 0, 0}, 0.3f));   // straddles the plane
   EXPECT_FALSE(sphere_in_frustum(m, {-1.5f, 0, 0}, 0.2f));  // just outside
   EXPECT_FALSE(sphere_in_frustum(m, {0, 1.5f, 0}, 0.2f));
-  EXPECT_FALSE(sphere_in_frustum(m, {0, 0, -200}, 1.0f));  // beyond the far plane (z = -97)
+  EXPECT_FALSE(sphere_in_frustum(m, {0, 0, -200}, 1.0f));   // beyond the far plane (z = -97)
   EXPECT_TRUE(sphere_in_frustum(m, {0, 0, -97.5f}, 1.0f));  // straddles it
 }
 
@@ -175,8 +175,8 @@ TEST(SceneModes, EdgesShowVisibleEdgesAndHideBackEdges) {
     return red;
   };
   // Visible edges: those meeting at the front corner (+, +, +), and a silhouette edge.
-  for (const glm::vec3 mid : {glm::vec3(0, 0.5f, 0.5f), glm::vec3(0.5f, 0, 0.5f), glm::vec3(0.5f, 0.5f, 0),
-                              glm::vec3(0.5f, -0.5f, 0)})
+  for (const glm::vec3 mid :
+       {glm::vec3(0, 0.5f, 0.5f), glm::vec3(0.5f, 0, 0.5f), glm::vec3(0.5f, 0.5f, 0), glm::vec3(0.5f, -0.5f, 0)})
     EXPECT_GE(count_red(project(view, mid)), 1) << mid.x << " " << mid.y << " " << mid.z;
   // Along the visible edges the line must win the depth test everywhere, not just somewhere: sample each edge of
   // the visible triangles and require red at the sample's pixel or a 4-neighbour.
@@ -361,7 +361,7 @@ TEST(SceneShading, DepthShadingUsesTheViewRange) {
   SceneOptions options;
   options.shading = Shading::depth;
   const Frame f = render(scene, make_view({0, 0, 3}, 1.0f, 5.0f), options);
-  EXPECT_EQ(f.fb.pixel(32, 32), pack_rgba8({0.5f, 0.5f, 0.5f, 1}));   // distance 3
+  EXPECT_EQ(f.fb.pixel(32, 32), pack_rgba8({0.5f, 0.5f, 0.5f, 1}));    // distance 3
   EXPECT_EQ(f.fb.pixel(2, 32), pack_rgba8({0.25f, 0.25f, 0.25f, 1}));  // distance 4
 }
 

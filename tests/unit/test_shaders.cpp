@@ -4,8 +4,8 @@
 #include <span>
 #include <vector>
 
-#include <glm/gtc/matrix_transform.hpp>
 #include <gtest/gtest.h>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "facet/renderer.hpp"
 #include "facet/scene.hpp"
@@ -113,8 +113,8 @@ TEST(StockShader, PhongAndBlinnPhongSpecularFollowTheirFormulas) {
     for (const auto& [x, y] : {std::pair{32, 32}, {20, 40}, {45, 25}}) {
       const glm::vec3 v = glm::normalize(kEye - world_on_plane(x, y));
       const glm::vec3 n(0, 0, 1);
-      const float s = model == SpecularModel::phong ? glm::dot(glm::reflect(-l, n), v)
-                                                    : glm::dot(n, glm::normalize(l + v));
+      const float s =
+          model == SpecularModel::phong ? glm::dot(glm::reflect(-l, n), v) : glm::dot(n, glm::normalize(l + v));
       expect_pixel(fb, x, y, glm::vec3(std::pow(std::max(s, 0.0f), 8.0f)));
     }
     // Seen head-on with the light at 45 degrees: cos^8 of 45 degrees for Phong, of 22.5 degrees for Blinn-Phong.

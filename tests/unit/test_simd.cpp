@@ -23,8 +23,8 @@ std::uint32_t bits(float v) { return std::isnan(v) ? 0x7fc00000u : std::bit_cast
 // Lane values that exercise the sign of zero, NaN, infinities and ordinary numbers.
 simd::Vec3 awkward_lanes() {
   const float nan = std::numeric_limits<float>::quiet_NaN(), inf = std::numeric_limits<float>::infinity();
-  const float values[simd::kLanes] = {0.0f, -0.0f, 1.5f, -2.25f, nan, inf, -inf, 1e-30f,
-                                      3.0f, -7.0f, 0.1f, 1e30f, -0.0f, 2.0f, 0.5f, -1e-30f};
+  const float values[simd::kLanes] = {0.0f, -0.0f, 1.5f, -2.25f, nan,   inf,  -inf, 1e-30f,
+                                      3.0f, -7.0f, 0.1f, 1e30f,  -0.0f, 2.0f, 0.5f, -1e-30f};
   simd::Vec3 v;
   for (int k = 0; k < simd::kLanes; ++k) {
     v.x[k] = values[k];

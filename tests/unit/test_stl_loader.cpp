@@ -75,7 +75,9 @@ std::string ascii_stl(const std::vector<Triangle>& triangles, const std::string&
 
 class StlLoader : public ::testing::Test {
  protected:
-  fs::path write(const std::string& name, const std::string& bytes) const { return test::write_file(dir_, name, bytes); }
+  fs::path write(const std::string& name, const std::string& bytes) const {
+    return test::write_file(dir_, name, bytes);
+  }
   static std::string problem(const fs::path& p) { return test::load_problem(p); }
   void SetUp() override { dir_ = test::scratch_dir("models"); }
   fs::path dir_;
@@ -154,10 +156,8 @@ TEST_F(StlLoader, ManyVerticesGrowTheWeldingTable) {
   std::vector<Triangle> strip;
   for (int i = 0; i < 20000; ++i) {
     const float x = static_cast<float>(i / 2);
-    if (i % 2 == 0)
-      strip.push_back({glm::vec3(x, 0, 0), glm::vec3(x + 1, 0, 0), glm::vec3(x, 1, 0)});
-    else
-      strip.push_back({glm::vec3(x + 1, 0, 0), glm::vec3(x + 1, 1, 0), glm::vec3(x, 1, 0)});
+    if (i % 2 == 0) strip.push_back({glm::vec3(x, 0, 0), glm::vec3(x + 1, 0, 0), glm::vec3(x, 1, 0)});
+    else strip.push_back({glm::vec3(x + 1, 0, 0), glm::vec3(x + 1, 1, 0), glm::vec3(x, 1, 0)});
   }
   const Mesh m = load_model(write("strip.stl", binary_stl(strip)));
   EXPECT_EQ(m.vertex_count(), 20002u);

@@ -10,9 +10,9 @@
 
 #include <gtest/gtest.h>
 
+#include "facet/detail/dispatch.hpp"
 #include "facet/error.hpp"
 #include "facet/image_io.hpp"
-#include "facet/detail/dispatch.hpp"
 #include "facet/simd.hpp"
 #include "facet/texture.hpp"
 #include "support/scratch_dir.hpp"
@@ -39,9 +39,7 @@ void write_bytes(const std::filesystem::path& path, const std::string& bytes) {
 }
 
 // 2x2: T(0,0) red-ish, T(1,0) green-ish, T(0,1) blue-ish, T(1,1) grey with alpha 0.
-Texture two_by_two() {
-  return Texture(2, 2, {rgba(200, 0, 0), rgba(0, 100, 0), rgba(0, 0, 40), rgba(80, 80, 80, 0)});
-}
+Texture two_by_two() { return Texture(2, 2, {rgba(200, 0, 0), rgba(0, 100, 0), rgba(0, 0, 40), rgba(80, 80, 80, 0)}); }
 
 TEST(TextureSampling, NearestPicksTheTexelUnderTheUv) {
   const Texture t = two_by_two();
@@ -107,19 +105,31 @@ TEST(TextureSampling, WrapModesOutsideTheUnitSquare) {
   };
   const Case cases[] = {
       // nearest: index floor(4u)
-      {Filter::nearest, Wrap::repeat, 1.125f, 0},    {Filter::nearest, Wrap::clamp, 1.125f, 180},
-      {Filter::nearest, Wrap::mirror, 1.125f, 180},  {Filter::nearest, Wrap::repeat, -0.125f, 180},
-      {Filter::nearest, Wrap::clamp, -0.125f, 0},    {Filter::nearest, Wrap::mirror, -0.125f, 0},
-      {Filter::nearest, Wrap::repeat, 1.875f, 180},  {Filter::nearest, Wrap::mirror, 1.875f, 0},
-      {Filter::nearest, Wrap::mirror, 1.375f, 120},  {Filter::nearest, Wrap::mirror, 2.125f, 0},
-      {Filter::nearest, Wrap::repeat, -1.125f, 180}, {Filter::nearest, Wrap::mirror, -1.125f, 180},
-      {Filter::nearest, Wrap::clamp, -7.0f, 0},      {Filter::nearest, Wrap::clamp, 9.0f, 180},
+      {Filter::nearest, Wrap::repeat, 1.125f, 0},
+      {Filter::nearest, Wrap::clamp, 1.125f, 180},
+      {Filter::nearest, Wrap::mirror, 1.125f, 180},
+      {Filter::nearest, Wrap::repeat, -0.125f, 180},
+      {Filter::nearest, Wrap::clamp, -0.125f, 0},
+      {Filter::nearest, Wrap::mirror, -0.125f, 0},
+      {Filter::nearest, Wrap::repeat, 1.875f, 180},
+      {Filter::nearest, Wrap::mirror, 1.875f, 0},
+      {Filter::nearest, Wrap::mirror, 1.375f, 120},
+      {Filter::nearest, Wrap::mirror, 2.125f, 0},
+      {Filter::nearest, Wrap::repeat, -1.125f, 180},
+      {Filter::nearest, Wrap::mirror, -1.125f, 180},
+      {Filter::nearest, Wrap::clamp, -7.0f, 0},
+      {Filter::nearest, Wrap::clamp, 9.0f, 180},
       // bilinear: s = 4u - 0.5
-      {Filter::bilinear, Wrap::repeat, 1.0f, 90},    {Filter::bilinear, Wrap::clamp, 1.0f, 180},
-      {Filter::bilinear, Wrap::mirror, 1.0f, 180},   {Filter::bilinear, Wrap::repeat, 0.0f, 90},
-      {Filter::bilinear, Wrap::clamp, 0.0f, 0},      {Filter::bilinear, Wrap::mirror, 0.0f, 0},
-      {Filter::bilinear, Wrap::repeat, -0.25f, 150}, {Filter::bilinear, Wrap::mirror, -0.25f, 30},
-      {Filter::bilinear, Wrap::clamp, 3.0f, 180},    {Filter::bilinear, Wrap::mirror, 1.25f, 150},
+      {Filter::bilinear, Wrap::repeat, 1.0f, 90},
+      {Filter::bilinear, Wrap::clamp, 1.0f, 180},
+      {Filter::bilinear, Wrap::mirror, 1.0f, 180},
+      {Filter::bilinear, Wrap::repeat, 0.0f, 90},
+      {Filter::bilinear, Wrap::clamp, 0.0f, 0},
+      {Filter::bilinear, Wrap::mirror, 0.0f, 0},
+      {Filter::bilinear, Wrap::repeat, -0.25f, 150},
+      {Filter::bilinear, Wrap::mirror, -0.25f, 30},
+      {Filter::bilinear, Wrap::clamp, 3.0f, 180},
+      {Filter::bilinear, Wrap::mirror, 1.25f, 150},
   };
   for (const Case& c : cases) {
     SCOPED_TRACE("filter " + std::to_string(static_cast<int>(c.filter)) + " wrap " +
@@ -161,8 +171,9 @@ TEST(TextureSampling, LanesMatchTheScalarSampleBitForBit) {
   std::mt19937 rng(11);
   std::uniform_int_distribution<std::uint32_t> byte(0, 255);
   std::uniform_real_distribution<float> coord(-3.0f, 11.0f);
-  const float special[] = {-0.0f, 0.0f, 1.0f / 16.0f, -1.0f / 16.0f, 0.5f, -0.5f, 1e30f, -1e30f, INFINITY,
-                           -INFINITY, NAN, 3.0e9f, -3.0e9f, 1.0f / 8.0f, -1.0f / 8.0f, 7.9999995f};
+  const float special[] = {-0.0f,   0.0f,        1.0f / 16.0f, -1.0f / 16.0f, 0.5f, -0.5f,
+                           1e30f,   -1e30f,      INFINITY,     -INFINITY,     NAN,  3.0e9f,
+                           -3.0e9f, 1.0f / 8.0f, -1.0f / 8.0f, 7.9999995f};
   for (const glm::ivec2 size : {glm::ivec2(8, 4), glm::ivec2(5, 3)}) {
     std::vector<std::uint32_t> texels(static_cast<std::size_t>(size.x * size.y));
     for (auto& p : texels) p = rgba(byte(rng), byte(rng), byte(rng), byte(rng));
@@ -195,10 +206,12 @@ TEST(TextureSampling, Sse2AndPortableHelpersAgreeBitForBit) {
   std::mt19937 rng(7);
   std::uniform_real_distribution<float> coordinate(-3000.0f, 3000.0f);
   std::uniform_real_distribution<float> weight(0.0f, 1.0f);
-  std::vector<float> values = {0.0f, -0.0f, 0.5f, -0.5f, 1.0f, -1.0f, 1e-30f, -1e-30f, 8388607.5f, -8388607.5f,
-                               2e9f, -2e9f, 1e38f, -1e38f, INFINITY, -INFINITY, NAN};
+  std::vector<float> values = {0.0f,        -0.0f, 0.5f,  -0.5f, 1.0f,   -1.0f,    1e-30f,    -1e-30f, 8388607.5f,
+                               -8388607.5f, 2e9f,  -2e9f, 1e38f, -1e38f, INFINITY, -INFINITY, NAN};
   for (int k = 0; k < 20000; ++k) values.push_back(coordinate(rng));
-  const auto same_bits = [](float a, float b) { return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b); };
+  const auto same_bits = [](float a, float b) {
+    return std::bit_cast<std::uint32_t>(a) == std::bit_cast<std::uint32_t>(b);
+  };
   for (std::size_t k = 0; k < values.size(); ++k) {
     const float s = values[k], t = values[(k * 7 + 3) % values.size()];
     const detail::Split fast = detail::split_floor_sse2(s, t), portable = detail::split_floor_portable(s, t);
@@ -223,8 +236,7 @@ TEST(TextureSampling, Sse2AndPortableHelpersAgreeBitForBit) {
 TEST(TextureSampling, ConstructorRejectsBadSizes) {
   EXPECT_THROW(Texture(0, 1, {}), std::invalid_argument);
   EXPECT_THROW(Texture(2, 2, std::vector<std::uint32_t>(3)), std::invalid_argument);
-  EXPECT_THROW(Texture(kMaxTextureSize + 1, 1, std::vector<std::uint32_t>(kMaxTextureSize + 1)),
-               std::invalid_argument);
+  EXPECT_THROW(Texture(kMaxTextureSize + 1, 1, std::vector<std::uint32_t>(kMaxTextureSize + 1)), std::invalid_argument);
 }
 
 std::vector<glm::ivec2> chain(int w, int h) {
@@ -242,8 +254,8 @@ TEST(TextureMipmaps, ChainSizes) {
   std::vector<glm::ivec2> expected;
   for (int s = 1024; s >= 1; s /= 2) expected.emplace_back(s, s);
   EXPECT_EQ(chain(1024, 1024), expected);
-  EXPECT_EQ(chain(300, 17), (std::vector<glm::ivec2>{{300, 17}, {150, 8}, {75, 4}, {37, 2}, {18, 1}, {9, 1},
-                                                     {4, 1}, {2, 1}, {1, 1}}));
+  EXPECT_EQ(chain(300, 17),
+            (std::vector<glm::ivec2>{{300, 17}, {150, 8}, {75, 4}, {37, 2}, {18, 1}, {9, 1}, {4, 1}, {2, 1}, {1, 1}}));
   EXPECT_EQ(chain(1, 1), (std::vector<glm::ivec2>{{1, 1}}));
   EXPECT_EQ(chain(1, 4), (std::vector<glm::ivec2>{{1, 4}, {1, 2}, {1, 1}}));
 }
@@ -302,11 +314,11 @@ TEST(TextureSampling, TrilinearLevelFromDerivatives) {
   EXPECT_NEAR(red(4, 0, tri), 0.0f, 1e-4f);  // no mipmaps yet: level 0 whatever the derivatives
   t.generate_mipmaps();
   ASSERT_EQ(t.levels(), 4);
-  EXPECT_NEAR(red(0.5f, 0.25f, tri), 0.0f, 1e-4f);  // magnification
-  EXPECT_NEAR(red(1, 1, tri), 0.0f, 1e-4f);         // 1 texel per pixel: level 0
-  EXPECT_NEAR(red(2, 0, tri), 15.0f, 1e-4f);        // level 1
-  EXPECT_NEAR(red(4, 1, tri), 45.0f, 1e-4f);        // 4 texels: level 2
-  EXPECT_NEAR(red(0, 4, tri), 45.0f, 1e-4f);        // the longer derivative decides
+  EXPECT_NEAR(red(0.5f, 0.25f, tri), 0.0f, 1e-4f);                 // magnification
+  EXPECT_NEAR(red(1, 1, tri), 0.0f, 1e-4f);                        // 1 texel per pixel: level 0
+  EXPECT_NEAR(red(2, 0, tri), 15.0f, 1e-4f);                       // level 1
+  EXPECT_NEAR(red(4, 1, tri), 45.0f, 1e-4f);                       // 4 texels: level 2
+  EXPECT_NEAR(red(0, 4, tri), 45.0f, 1e-4f);                       // the longer derivative decides
   EXPECT_NEAR(red(std::sqrt(2.0f), 0, tri), 7.5f, 1e-3f);          // lod 0.5: halfway between levels 0 and 1
   EXPECT_NEAR(red(2.0f * std::sqrt(2.0f), 0, tri), 30.0f, 1e-3f);  // lod 1.5: between 15 and 45
   EXPECT_NEAR(red(std::pow(2.0f, 2.25f), 0, tri), 60.0f, 1e-3f);   // lod 2.25: 45 + (105 - 45) / 4
@@ -361,8 +373,8 @@ TEST(TextureLoad, JpegFromAssimpTestModels) {
 TEST(TextureLoad, PngIsFlippedSoRowZeroIsTheBottom) {
   const std::filesystem::path png = scratch_dir() / "three_by_two.png";
   // Top row first in the file: red, green, blue / then the bottom row: white, black, half-transparent grey.
-  const std::vector<std::uint8_t> pixels = {255, 0, 0, 255, 0, 255, 0, 255, 0,   0,   255, 255,
-                                            255, 255, 255, 255, 0, 0, 0, 255, 128, 128, 128, 64};
+  const std::vector<std::uint8_t> pixels = {255, 0,   0,   255, 0, 255, 0, 255, 0,   0,   255, 255,
+                                            255, 255, 255, 255, 0, 0,   0, 255, 128, 128, 128, 64};
   write_png(png, 3, 2, pixels);
   const Texture t = load_texture(png);
   ASSERT_EQ(t.width(), 3);

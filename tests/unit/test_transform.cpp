@@ -75,8 +75,8 @@ TEST(TransformTest, ArbitraryAxisRotationMatchesAxisRotationsAndRodrigues) {
 TEST(TransformTest, RotatingCubeModelMatrixIsTranslateRotateXRotateYScale) {
   for (float t : {0.0f, 700.0f, 1234.5f, 3999.0f}) {
     const float a = t * kPi / 4000.0f, c = std::cos(a), s = std::sin(a), x = 2.0f, tz = -9.0f;
-    const float expected[16] = {c * x, s * s * x, -c * s * x, 0, 0, c * x, s * x, 0,
-                                s * x, -c * s * x, c * c * x, 0, 0, 0, tz, 1};
+    const float expected[16] = {c * x, s * s * x,  -c * s * x, 0, 0, c * x, s * x, 0,
+                                s * x, -c * s * x, c * c * x,  0, 0, 0,     tz,    1};
     expect_columns(translate({0, 0, tz}) * rotate_x(a) * rotate_y(a) * scale(x), expected);
   }
 }
@@ -101,9 +101,9 @@ TEST(TransformTest, LookAtIsTheInverseOfTheCameraFrame) {
   struct Case {
     glm::vec3 eye, target, up;
   };
-  const Case cases[] = {{{0, 0, 5}, {0, 0, 0}, {0, 1, 0}},       {{1, 1, 1}, {0, 0, 0}, {0, 1, 0}},
-                        {{3, -2, 7}, {-1, 4, 0.5f}, {0, 0, 1}},  {{-5, 2, -3}, {1, 1, 1}, {0.3f, 1, -0.2f}},
-                        {{10, 0, 0}, {0, 0, 0}, {0, 1, 0}},      {{0.1f, 8, 0}, {0, 0, 0}, {0, 0, -1}}};
+  const Case cases[] = {{{0, 0, 5}, {0, 0, 0}, {0, 1, 0}},      {{1, 1, 1}, {0, 0, 0}, {0, 1, 0}},
+                        {{3, -2, 7}, {-1, 4, 0.5f}, {0, 0, 1}}, {{-5, 2, -3}, {1, 1, 1}, {0.3f, 1, -0.2f}},
+                        {{10, 0, 0}, {0, 0, 0}, {0, 1, 0}},     {{0.1f, 8, 0}, {0, 0, 0}, {0, 0, -1}}};
   for (const Case& k : cases) {
     const glm::mat4 view = look_at(k.eye, k.target, k.up);
     expect_mat_near(view, glm::inverse(camera_frame(k.eye, k.target, k.up)), 1e-4f);
@@ -121,9 +121,9 @@ TEST(TransformTest, LookAtIsTheInverseOfTheCameraFrame) {
 
 TEST(TransformTest, LookAtRejectsDegenerateInput) {
   EXPECT_THROW(look_at({1, 2, 3}, {1, 2, 3}, {0, 1, 0}), std::invalid_argument);
-  EXPECT_THROW(look_at({0, 0, 0}, {0, 5, 0}, {0, 1, 0}), std::invalid_argument);   // up along the view
-  EXPECT_THROW(look_at({0, 5, 0}, {0, 0, 0}, {0, 2, 0}), std::invalid_argument);   // up opposite the view
-  EXPECT_THROW(look_at({0, 0, 5}, {0, 0, 0}, {0, 0, 0}), std::invalid_argument);   // no up at all
+  EXPECT_THROW(look_at({0, 0, 0}, {0, 5, 0}, {0, 1, 0}), std::invalid_argument);  // up along the view
+  EXPECT_THROW(look_at({0, 5, 0}, {0, 0, 0}, {0, 2, 0}), std::invalid_argument);  // up opposite the view
+  EXPECT_THROW(look_at({0, 0, 5}, {0, 0, 0}, {0, 0, 0}), std::invalid_argument);  // no up at all
   EXPECT_THROW(look_at({kNaN, 0, 5}, {0, 0, 0}, {0, 1, 0}), std::invalid_argument);
   EXPECT_THROW(look_at({0, 0, 5}, {0, kInf, 0}, {0, 1, 0}), std::invalid_argument);
   EXPECT_THROW(look_at({0, 0, 5}, {0, 0, 0}, {0, kNaN, 0}), std::invalid_argument);

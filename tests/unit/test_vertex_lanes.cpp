@@ -1,4 +1,5 @@
-// test_vertex_lanes.cpp - the vertex stage's 16-lane path gives exactly what vertex() and project_vertex give; lane structs are aligned.
+// test_vertex_lanes.cpp - the vertex stage's 16-lane path gives exactly what vertex() and project_vertex give; lane
+// structs are aligned.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -33,13 +34,15 @@ std::vector<BenchVertex> random_vertices(std::size_t count) {
   std::mt19937 rng(77);
   std::uniform_real_distribution<float> any(-4.0f, 4.0f);
   std::vector<BenchVertex> vertices(count);
-  for (BenchVertex& v : vertices) v = {{any(rng), any(rng), any(rng)}, {any(rng), any(rng), any(rng)}, {any(rng), any(rng)}};
+  for (BenchVertex& v : vertices)
+    v = {{any(rng), any(rng), any(rng)}, {any(rng), any(rng), any(rng)}, {any(rng), any(rng)}};
   return vertices;
 }
 
 // Shades vertices [begin, end) with the vertex stage (the lane path for whole groups of 16, vertex() for the
 // rest) and checks each against vertex() and project_vertex.
-void check_range(const BenchShader& shader, const std::vector<BenchVertex>& vertices, std::size_t begin, std::size_t end) {
+void check_range(const BenchShader& shader, const std::vector<BenchVertex>& vertices, std::size_t begin,
+                 std::size_t end) {
   constexpr std::size_t kFloats = float_count_v<BenchShader::Varyings>;
   const std::size_t n = end - begin;
   std::vector<glm::vec4> clip(n);
@@ -52,7 +55,8 @@ void check_range(const BenchShader& shader, const std::vector<BenchVertex>& vert
     const VertexOut<BenchShader::Varyings> expected = shader.vertex(vertices[i]);
     const FloatArray<BenchShader::Varyings> floats = to_floats(expected.varyings);
     const std::size_t slot = i - begin;
-    for (int c = 0; c < 4; ++c) ASSERT_EQ(bits(clip[slot][c]), bits(expected.clip[c])) << "vertex " << i << " clip " << c;
+    for (int c = 0; c < 4; ++c)
+      ASSERT_EQ(bits(clip[slot][c]), bits(expected.clip[c])) << "vertex " << i << " clip " << c;
     for (std::size_t f = 0; f < kFloats; ++f)
       ASSERT_EQ(bits(varyings[slot * kFloats + f]), bits(floats[f])) << "vertex " << i << " varying " << f;
     const ProjectedVertex p = project_vertex(expected.clip, 640, 480);

@@ -10,15 +10,15 @@
 #include <utility>
 #include <vector>
 
-#include "facet/framebuffer.hpp"
 #include "facet/detail/triangle_setup.hpp"
+#include "facet/framebuffer.hpp"
 
 namespace facet::detail {
 
 // Setup runs over chunks of primitives, cut the same whatever the thread count, and each chunk bins into its own
 // lists. A tile then walks the chunks in order, so it sees its triangles in draw order with no locks and the image
 // is identical at any thread count.
-inline constexpr std::size_t kSetupChunk = 4096;     // primitives per setup task
+inline constexpr std::size_t kSetupChunk = 4096;  // primitives per setup task
 // Setup memory is bounded by one batch at a time. 16 chunks (65,536 primitives) keep a dense mesh's set-up
 // triangles and varyings of a batch near the cache while its tiles read them back: on sphere:1414, 64 chunks were
 // 14% slower at 2 threads, 8 chunks 2-5% slower (more tile visits and barriers per frame).
@@ -59,7 +59,7 @@ struct DefaultInitAllocator : std::allocator<T> {
 struct alignas(64) SetupChunk {
   std::vector<TriangleSetup, DefaultInitAllocator<TriangleSetup>> triangles;
   std::vector<std::uint32_t> pair_tile, pair_triangle;  // (tile, triangle) pairs in the order setup emits them
-  std::vector<std::uint32_t> first;                      // per tile, plus one end marker
+  std::vector<std::uint32_t> first;                     // per tile, plus one end marker
   std::vector<std::uint32_t> binned;
   std::size_t culled = 0, clipped = 0, invalid = 0;
 
@@ -124,10 +124,10 @@ struct TileWork {
   float* depth_bounds;  // the tile's, see Framebuffer::tile_depth_bounds
   const SetupChunk* chunks;
   std::size_t chunk_count;
-  const float* varyings;  // post-transform varyings, indexed by TriangleSetup::vertex
-  TileScratch* scratch;  // the running thread's, for deferred shading
+  const float* varyings;       // post-transform varyings, indexed by TriangleSetup::vertex
+  TileScratch* scratch;        // the running thread's, for deferred shading
   detail::PendingClear clear;  // deferred shading: the clear the tile applies itself as it writes its pixels
-  bool last_batch;  // no later batch of the draw visits the tile: deferred shading may stream its depth out
+  bool last_batch;             // no later batch of the draw visits the tile: deferred shading may stream its depth out
 };
 
 }  // namespace facet::detail

@@ -5,12 +5,12 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "facet/framebuffer.hpp"
-#include "facet/render_state.hpp"
-#include "facet/shader.hpp"
 #include "facet/detail/binning.hpp"
 #include "facet/detail/dispatch.hpp"
 #include "facet/detail/triangle_setup.hpp"
+#include "facet/framebuffer.hpp"
+#include "facet/render_state.hpp"
+#include "facet/shader.hpp"
 
 namespace facet::detail {
 
@@ -40,8 +40,8 @@ inline bool depth_passes(DepthFunc func, float fragment, float stored) {
 // loop over the rows: a triangle's rectangles have 1 to 8 rows at random, and that loop's exit mispredicts.
 inline std::uint64_t block_rect_mask(int i0, int i1, int j0, int j1) {
   const std::uint64_t row = ((std::uint64_t{2} << i1) - 1) & ~((std::uint64_t{1} << i0) - 1);
-  const std::uint64_t rows = (~std::uint64_t{0} >> (63 - (kBlockSize * j1 + kBlockSize - 1))) &
-                             (~std::uint64_t{0} << (kBlockSize * j0));
+  const std::uint64_t rows =
+      (~std::uint64_t{0} >> (63 - (kBlockSize * j1 + kBlockSize - 1))) & (~std::uint64_t{0} << (kBlockSize * j0));
   return row * 0x0101010101010101u & rows;  // row < 256: the product copies it into every byte, without carries
 }
 
@@ -78,8 +78,8 @@ inline std::uint64_t raster_block_coverage(const TriangleSetup& tri, int bx, int
 
 // Always inlined, like raster_triangle: both must be compiled inside each target clone of raster_tile.
 template <Shader S>
-[[gnu::always_inline]] inline void shade_quad(const ShadeContext<S>& ctx, const TriangleSetup& tri, const TileWork& work, int px, int py,
-                unsigned covered) {
+[[gnu::always_inline]] inline void shade_quad(const ShadeContext<S>& ctx, const TriangleSetup& tri,
+                                              const TileWork& work, int px, int py, unsigned covered) {
   using Varyings = typename S::Varyings;
   constexpr std::size_t kFloats = float_count_v<Varyings>;
   constexpr bool kDerivatives = needs_derivatives<S>();
@@ -136,8 +136,8 @@ template <Shader S>
   for (int k = 0; k < 4; ++k) {
     if (!(covered & (1u << k))) continue;
     fragment.varyings = from_floats<Varyings>(value[k]);
-    fragment.screen = glm::vec3(static_cast<float>(px + (k & 1)) + 0.5f, static_cast<float>(py + (k >> 1)) + 0.5f,
-                                z[k]);
+    fragment.screen =
+        glm::vec3(static_cast<float>(px + (k & 1)) + 0.5f, static_cast<float>(py + (k >> 1)) + 0.5f, z[k]);
     glm::vec4 color;
     if constexpr (S::may_discard) {
       const auto result = ctx.shader->fragment(fragment);
@@ -207,7 +207,8 @@ template <class Cover>
     for (int bx = x0 & ~(kBlockSize - 1); bx <= x1; bx += kBlockSize) {
       const int i0 = std::max(x0 - bx, 0), i1 = std::min(x1 - bx, kBlockSize - 1);
       const int j0 = std::max(y0 - by, 0), j1 = std::min(y1 - by, kBlockSize - 1);
-      float& bound = work.depth_bounds[(by - work.y0) / kBlockSize * (kTileSize / kBlockSize) + (bx - work.x0) / kBlockSize];
+      float& bound =
+          work.depth_bounds[(by - work.y0) / kBlockSize * (kTileSize / kBlockSize) + (bx - work.x0) / kBlockSize];
       const auto range = [&]() __attribute__((always_inline)) {
         return raster_block_depth_range(tri, state.depth_offset, bx + i0, by + j0, bx + i1, by + j1);
       };
@@ -237,8 +238,8 @@ template <Shader S>
     const std::uint64_t rows = mask >> (qy * kBlockSize);
     if (!(rows & 0xffff)) continue;
     for (int qx = 0; qx < kBlockSize; qx += 2) {
-      const unsigned quad = static_cast<unsigned>((rows >> qx) & 3) |
-                            static_cast<unsigned>((rows >> (kBlockSize + qx)) & 3) << 2;
+      const unsigned quad =
+          static_cast<unsigned>((rows >> qx) & 3) | static_cast<unsigned>((rows >> (kBlockSize + qx)) & 3) << 2;
       if (quad) shade_quad(ctx, tri, work, bx + qx, by + qy, quad);
     }
   }
@@ -249,13 +250,14 @@ template <Shader S>
 [[gnu::always_inline]] inline void raster_triangle(const ShadeContext<S>& ctx, const TriangleSetup& tri,
                                                    const TileWork& work) {
   const RenderState& state = *ctx.state;
-  raster_blocks(tri, work, state.depth_test, state,
-                [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
-                  const std::uint64_t mask = raster_block_coverage(tri, bx, by, i0, i1, j0, j1);
-                  if (mask) shade_block_quads(ctx, tri, work, bx, by, mask);
-                  // A discarding shader may leave covered pixels unwritten: its blocks never count as full.
-                  return BlockCoverage{mask != 0, mask == ~std::uint64_t{0} && !S::may_discard};
-                });
+  raster_blocks(
+      tri, work, state.depth_test,
+      state, [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
+        const std::uint64_t mask = raster_block_coverage(tri, bx, by, i0, i1, j0, j1);
+        if (mask) shade_block_quads(ctx, tri, work, bx, by, mask);
+        // A discarding shader may leave covered pixels unwritten: its blocks never count as full.
+        return BlockCoverage{mask != 0, mask == ~std::uint64_t{0} && !S::may_discard};
+      });
 }
 
 }  // namespace facet::detail

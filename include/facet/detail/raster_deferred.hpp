@@ -11,10 +11,10 @@
 #include <xmmintrin.h>
 #endif
 
-#include "facet/fragment_lanes.hpp"
-#include "facet/simd.hpp"
 #include "facet/detail/raster.hpp"
 #include "facet/detail/raster_visibility.hpp"
+#include "facet/fragment_lanes.hpp"
+#include "facet/simd.hpp"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -101,8 +101,8 @@ inline const TriangleSetup& triangle_at(const TileWork& work, std::uint32_t ref)
 // `depth`, when not null, is the strip's depth as the visibility pass wrote it: each lane's is then already its
 // triangle's window depth, computed by the same operations, and is not interpolated again.
 template <LaneShader S>
-[[gnu::always_inline]] inline void prepare_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px,
-                                                       int py, const std::uint32_t* refs, const float* depth,
+[[gnu::always_inline]] inline void prepare_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px, int py,
+                                                       const std::uint32_t* refs, const float* depth,
                                                        FragmentLanes<typename S::Varyings>& fragment) {
   using namespace simd;
   using Varyings = typename S::Varyings;
@@ -129,7 +129,9 @@ template <LaneShader S>
       }
     };
     const Float dx = fragment.screen_x - tri.origin_x, dy = fragment.screen_y - tri.origin_y;
-    const auto at = [&](const Plane& p) __attribute__((always_inline)) { return p.at_origin + p.ddx * dx + p.ddy * dy; };
+    const auto at = [&](const Plane& p) __attribute__((always_inline)) {
+      return p.at_origin + p.ddx * dx + p.ddy * dy;
+    };
     if (!depth) put(fragment.depth, clamp(at(tri.depth) + offset, 0.0f, 1.0f));
     if constexpr (lanes_read_primitive<S>()) {
       put(fragment.primitive, UInt{} | tri.primitive);
@@ -229,16 +231,18 @@ template <Shader S>
 
   // The tile's depth comes in from the framebuffer unless it is being cleared.
   if (state.depth_test || work.clear.depth)
-    for_each_depth_row(work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
-      if (work.clear.depth) std::fill_n(local, static_cast<int>(n), work.clear.depth_value);
-      else std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
-    });
+    for_each_depth_row(
+        work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
+          if (work.clear.depth) std::fill_n(local, static_cast<int>(n), work.clear.depth_value);
+          else std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
+        });
   std::fill_n(scratch.triangle, kTileSize * kTileSize, kNoTriangle);
 
-  with_depth_func(state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
-    if (state.depth_test) raster_tile_visibility<kFunc, true>(state, work);
-    else raster_tile_visibility<kFunc, false>(state, work);
-  });
+  with_depth_func(
+      state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
+        if (state.depth_test) raster_tile_visibility<kFunc, true>(state, work);
+        else raster_tile_visibility<kFunc, false>(state, work);
+      });
 
   // With the depth test and depth writes on, the tile's depth holds each pixel's visible triangle's depth.
   const bool depth_resolved = state.depth_test && state.depth_write;
@@ -262,7 +266,8 @@ template <Shader S>
         if constexpr (PrefetchingLaneShader<S>) {
           // Shade the strip prepared kPrefetchDistance strips ago, then prepare this one in its slot.
           PreparedStrip<S>& slot = ahead[prepared % kPrefetchDistance];
-          if (prepared >= kPrefetchDistance) finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
+          if (prepared >= kPrefetchDistance)
+            finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
           prepare_strip_lanes(shade, work, px, py, refs, depth, slot.fragment);
           slot.px = px, slot.py = py, slot.covered = covered, slot.fill = fill;
           ctx.shader->prefetch_lanes(slot.fragment);
@@ -288,10 +293,11 @@ template <Shader S>
     }
 
   if (work.clear.depth || (state.depth_test && state.depth_write)) {
-    for_each_depth_row(work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
-      if (!(work.last_batch && stream_depth_row(global, local, n)))
-        std::memcpy(global, local, static_cast<std::size_t>(n) * sizeof(float));
-    });
+    for_each_depth_row(
+        work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
+          if (!(work.last_batch && stream_depth_row(global, local, n)))
+            std::memcpy(global, local, static_cast<std::size_t>(n) * sizeof(float));
+        });
 #if defined(__x86_64__)
     // Streaming stores are weakly ordered: fence them before the pool's barrier hands the frame to other threads.
     if (work.last_batch) _mm_sfence();

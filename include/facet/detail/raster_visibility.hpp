@@ -1,11 +1,12 @@
-// raster_visibility.hpp - deferred shading's visibility pass: coverage and depth of a tile's triangles, 16 pixels a step.
+// raster_visibility.hpp - deferred shading's visibility pass: coverage and depth of a tile's triangles, 16 pixels a
+// step.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 
-#include "facet/simd.hpp"
 #include "facet/detail/raster.hpp"
+#include "facet/simd.hpp"
 
 namespace facet::detail {
 
@@ -122,51 +123,55 @@ template <DepthFunc kFunc, bool kDepthTest>
     std::int32_t at_min[3], step_x[3], step_y[3];
     for (int e = 0; e < 3; ++e) {
       const Edge& edge = tri.edge[e];
-      at_min[e] = static_cast<std::int32_t>(std::int64_t{edge.a} * tri.min_x + std::int64_t{edge.b} * tri.min_y + edge.q);
+      at_min[e] =
+          static_cast<std::int32_t>(std::int64_t{edge.a} * tri.min_x + std::int64_t{edge.b} * tri.min_y + edge.q);
       step_x[e] = edge.a;
       step_y[e] = edge.b;
     }
-    raster_blocks(tri, work, kDepthTest, state,
-                  [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
-      std::int32_t base[3];
-      for (int e = 0; e < 3; ++e) base[e] = at_min[e] + step_x[e] * (bx - tri.min_x) + step_y[e] * (by - tri.min_y);
-      const std::uint64_t rect = block_rect_mask(i0, i1, j0, j1);
-      // Whether every pixel of the block is inside: only then can the block's depth bound tighten.
-      bool full = rect == ~std::uint64_t{0};
-      if (full)
-        for (int e = 0; e < 3; ++e)
-          full &= base[e] + std::min(0, step_x[e] * (kBlockSize - 1)) + std::min(0, step_y[e] * (kBlockSize - 1)) >= 0;
-      return BlockCoverage{strips(bx, by, j0, j1, rect, base, step_x, step_y) != 0, full};
-    });
+    raster_blocks(
+        tri, work, kDepthTest,
+        state, [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
+          std::int32_t base[3];
+          for (int e = 0; e < 3; ++e) base[e] = at_min[e] + step_x[e] * (bx - tri.min_x) + step_y[e] * (by - tri.min_y);
+          const std::uint64_t rect = block_rect_mask(i0, i1, j0, j1);
+          // Whether every pixel of the block is inside: only then can the block's depth bound tighten.
+          bool full = rect == ~std::uint64_t{0};
+          if (full)
+            for (int e = 0; e < 3; ++e)
+              full &=
+                  base[e] + std::min(0, step_x[e] * (kBlockSize - 1)) + std::min(0, step_y[e] * (kBlockSize - 1)) >= 0;
+          return BlockCoverage{strips(bx, by, j0, j1, rect, base, step_x, step_y) != 0, full};
+        });
     return;
   }
 
-  raster_blocks(tri, work, kDepthTest, state,
-                [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
-    // Each edge on the block's rectangle [i0, i1] x [j0, j1]: its extremes are at corners (exact in 64 bits). An
-    // edge the whole rectangle is inside of becomes the constant kEdgeInside (steps 0), with selects rather than
-    // branches: which edges those are is a coin toss per block.
-    std::int32_t base[3], step_x[3], step_y[3];
-    bool outside = false, all_inside = true;
-    for (int e = 0; e < 3; ++e) {
-      const Edge& edge = tri.edge[e];
-      const std::int64_t at_block = std::int64_t{edge.a} * bx + std::int64_t{edge.b} * by + edge.q;
-      const std::int64_t at_corner = at_block + std::int64_t{edge.a} * i0 + std::int64_t{edge.b} * j0;
-      const std::int64_t step_a = std::int64_t{edge.a} * (i1 - i0), step_b = std::int64_t{edge.b} * (j1 - j0);
-      const std::int64_t lowest = at_corner + std::min<std::int64_t>(0, step_a) + std::min<std::int64_t>(0, step_b);
-      const std::int64_t highest = at_corner + std::max<std::int64_t>(0, step_a) + std::max<std::int64_t>(0, step_b);
-      outside |= highest < 0;
-      all_inside &= lowest >= 0;
-      const bool inside = lowest >= 0;
-      base[e] = inside ? kEdgeInside : static_cast<std::int32_t>(at_block);
-      step_x[e] = inside ? 0 : edge.a;
-      step_y[e] = inside ? 0 : edge.b;
-    }
-    if (outside) return BlockCoverage{false, false};
-    const std::uint64_t rect = block_rect_mask(i0, i1, j0, j1);
-    const bool any = strips(bx, by, j0, j1, rect, base, step_x, step_y) != 0;
-    return BlockCoverage{any, all_inside && rect == ~std::uint64_t{0}};
-  });
+  raster_blocks(
+      tri, work, kDepthTest, state, [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
+        // Each edge on the block's rectangle [i0, i1] x [j0, j1]: its extremes are at corners (exact in 64 bits). An
+        // edge the whole rectangle is inside of becomes the constant kEdgeInside (steps 0), with selects rather than
+        // branches: which edges those are is a coin toss per block.
+        std::int32_t base[3], step_x[3], step_y[3];
+        bool outside = false, all_inside = true;
+        for (int e = 0; e < 3; ++e) {
+          const Edge& edge = tri.edge[e];
+          const std::int64_t at_block = std::int64_t{edge.a} * bx + std::int64_t{edge.b} * by + edge.q;
+          const std::int64_t at_corner = at_block + std::int64_t{edge.a} * i0 + std::int64_t{edge.b} * j0;
+          const std::int64_t step_a = std::int64_t{edge.a} * (i1 - i0), step_b = std::int64_t{edge.b} * (j1 - j0);
+          const std::int64_t lowest = at_corner + std::min<std::int64_t>(0, step_a) + std::min<std::int64_t>(0, step_b);
+          const std::int64_t highest =
+              at_corner + std::max<std::int64_t>(0, step_a) + std::max<std::int64_t>(0, step_b);
+          outside |= highest < 0;
+          all_inside &= lowest >= 0;
+          const bool inside = lowest >= 0;
+          base[e] = inside ? kEdgeInside : static_cast<std::int32_t>(at_block);
+          step_x[e] = inside ? 0 : edge.a;
+          step_y[e] = inside ? 0 : edge.b;
+        }
+        if (outside) return BlockCoverage{false, false};
+        const std::uint64_t rect = block_rect_mask(i0, i1, j0, j1);
+        const bool any = strips(bx, by, j0, j1, rect, base, step_x, step_y) != 0;
+        return BlockCoverage{any, all_inside && rect == ~std::uint64_t{0}};
+      });
 }
 
 // Visibility pass of one tile: coverage and depth of all its triangles, in draw order, keeping per pixel the

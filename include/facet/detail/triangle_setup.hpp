@@ -29,10 +29,10 @@ struct TriangleSetup {
   Edge edge[3];
   std::int16_t min_x, min_y, max_x, max_y;  // inclusive pixel bounds, clipped to the target
   float origin_x, origin_y;
-  Plane depth;       // window z, linear in screen space
-  Plane inv_w;       // 1/w
-  Plane b1_over_w;   // barycentric weight of source vertex 1, over w
-  Plane b2_over_w;   // ... and of source vertex 2; weight 0 is 1 - b1 - b2 after the perspective divide
+  Plane depth;              // window z, linear in screen space
+  Plane inv_w;              // 1/w
+  Plane b1_over_w;          // barycentric weight of source vertex 1, over w
+  Plane b2_over_w;          // ... and of source vertex 2; weight 0 is 1 - b1 - b2 after the perspective divide
   std::uint32_t vertex[3];  // source vertices whose varyings are blended, relative to the range the batch shaded
   std::uint32_t primitive;
   bool front_facing;

@@ -8,13 +8,13 @@
 
 #include <glm/glm.hpp>
 
+#include "facet/detail/binning.hpp"
+#include "facet/detail/dispatch.hpp"
+#include "facet/detail/triangle_setup.hpp"
 #include "facet/render_state.hpp"
 #include "facet/shader.hpp"
 #include "facet/simd.hpp"
 #include "facet/vertex_lanes.hpp"
-#include "facet/detail/binning.hpp"
-#include "facet/detail/dispatch.hpp"
-#include "facet/detail/triangle_setup.hpp"
 
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -81,7 +81,8 @@ struct VertexSource {
         std::copy(f.begin(), f.end(), out.varyings + (first + k - out.first) * kFloats);
       }
       if (out.clip)
-        for (std::size_t j = 0; j < count; ++j) out.clip[first + j - out.first] = {block.x[j], block.y[j], block.z[j], block.w[j]};
+        for (std::size_t j = 0; j < count; ++j)
+          out.clip[first + j - out.first] = {block.x[j], block.y[j], block.z[j], block.w[j]};
       if (out.projected) project_vertices(block, count, out.projected + (first - out.first), out.width, out.height);
     }
   }
