@@ -13,6 +13,8 @@
 
 #include <glm/glm.hpp>
 
+#include "facet/sampler.hpp"
+
 namespace facet {
 
 class Texture;
@@ -25,6 +27,8 @@ struct Material {
   std::string diffuse_texture;    // absolute or relative-to-the-model path, empty if none
   // A texture the loader decoded itself (glTF's embedded images); used instead of diffuse_texture when set.
   std::shared_ptr<const Texture> diffuse_map{};
+  // The file's filtering and wrapping for the texture (glTF samplers); unset: the scene's (SceneOptions::sampler).
+  std::optional<Sampler> sampler{};
 };
 
 struct Mesh {

@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "facet/sampler.hpp"
 #include "facet/simd.hpp"
 
 // x86-64 samples with SSE2 (every x86-64 CPU has it); elsewhere, the portable functions below, which it must match.
@@ -23,17 +24,6 @@ namespace facet {
 
 inline constexpr int kMaxTextureSize = 16384;  // texels per side; 2^14, so at most 15 mip levels
 inline constexpr int kMaxTextureLevels = 15;
-
-// Filter::nearest = GL_NEAREST, bilinear = GL_LINEAR (neither uses mipmaps), trilinear = GL_LINEAR_MIPMAP_LINEAR
-// for minification and GL_LINEAR for magnification.
-enum class Filter { nearest, bilinear, trilinear };
-// repeat = GL_REPEAT, clamp = GL_CLAMP_TO_EDGE, mirror = GL_MIRRORED_REPEAT.
-enum class Wrap { repeat, clamp, mirror };
-
-struct Sampler {
-  Filter filter = Filter::trilinear;
-  Wrap wrap_u = Wrap::repeat, wrap_v = Wrap::repeat;
-};
 
 namespace detail {
 

@@ -7,6 +7,7 @@
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -18,9 +19,9 @@
 namespace facet {
 namespace {
 
-// Extensions whose absence changes nothing facet draws: the reader handles any component type, so quantized
-// attributes (KHR_mesh_quantization) read like floats.
-const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization"};
+// Required extensions facet implements: the reader handles any component type, so quantized attributes
+// (KHR_mesh_quantization) read like floats; texture transforms are applied to TEXCOORD_0 (KHR_texture_transform).
+const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization", "KHR_texture_transform"};
 
 // Instancing can multiply a small file's triangles: a node graph that would expand past this is refused.
 constexpr std::size_t kMaxVertices = std::size_t{1} << 27;
@@ -214,6 +215,57 @@ std::shared_ptr<const Texture> decode_texture(const tinygltf::Model& model, int 
   }
 }
 
+// The texture's filtering and wrapping from its glTF sampler (OpenGL enums); unset when it has none, which glTF
+// defines as repeat with filtering left to the renderer. One Filter stands for both of glTF's: mipmapped
+// minification means trilinear, NEAREST for both means nearest, anything else bilinear.
+std::optional<Sampler> sampler_of(const tinygltf::Model& model, int texture_index) {
+  if (texture_index < 0 || static_cast<std::size_t>(texture_index) >= model.textures.size()) return std::nullopt;
+  const int index = model.textures[static_cast<std::size_t>(texture_index)].sampler;
+  if (index < 0 || static_cast<std::size_t>(index) >= model.samplers.size()) return std::nullopt;
+  const tinygltf::Sampler& gl = model.samplers[static_cast<std::size_t>(index)];
+  const auto wrap = [](int mode) {
+    switch (mode) {
+      case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::clamp;
+      case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::mirror;
+      default: return Wrap::repeat;
+    }
+  };
+  Sampler out;
+  out.wrap_u = wrap(gl.wrapS);
+  out.wrap_v = wrap(gl.wrapT);
+  const bool mipmapped = gl.minFilter >= TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST &&
+                         gl.minFilter <= TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+  if (mipmapped || (gl.minFilter < 0 && gl.magFilter < 0)) out.filter = Filter::trilinear;
+  else if (gl.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST && gl.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR)
+    out.filter = Filter::nearest;
+  else out.filter = Filter::bilinear;
+  return out;
+}
+
+// KHR_texture_transform of a texture reference as one matrix on (u, v, 1): translation * rotation * scale, in the
+// extension's order and with its rotation sense. Identity without the extension.
+glm::mat3 uv_transform_of(const tinygltf::TextureInfo& info, const std::string& source) {
+  const auto found = info.extensions.find("KHR_texture_transform");
+  if (found == info.extensions.end() || !found->second.IsObject()) return glm::mat3(1.0f);
+  const tinygltf::Value& t = found->second;
+  const auto number = [](const tinygltf::Value& v, double fallback) {
+    const double x = v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+    return std::isfinite(x) ? static_cast<float>(x) : static_cast<float>(fallback);
+  };
+  const auto pair = [&](const char* key, float fallback) {
+    if (!t.Has(key) || !t.Get(key).IsArray() || t.Get(key).ArrayLen() != 2) return glm::vec2(fallback);
+    return glm::vec2(number(t.Get(key).Get(0), fallback), number(t.Get(key).Get(1), fallback));
+  };
+  if (t.Has("texCoord") && number(t.Get("texCoord"), 0.0) != 0.0f)
+    warn(source, "KHR_texture_transform selects another texture coordinate set; facet reads TEXCOORD_0 only");
+  const glm::vec2 offset = pair("offset", 0.0f), scale = pair("scale", 1.0f);
+  const float rotation = t.Has("rotation") ? number(t.Get("rotation"), 0.0) : 0.0f;
+  const float c = std::cos(rotation), s = std::sin(rotation);
+  // Columns: glm is column-major. [1 0 ox; 0 1 oy] * [c s; -s c] * [sx 0; 0 sy].
+  return glm::mat3(glm::vec3(c * scale.x, -s * scale.x, 0.0f), glm::vec3(s * scale.y, c * scale.y, 0.0f),
+                   glm::vec3(offset, 1.0f));
+}
+
 Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& source) {
   Material out;
   out.name = m.name;
@@ -226,12 +278,16 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
   out.specular = glm::vec3(0.5f * (1.0f - roughness));
   out.shininess = 2.0f + 126.0f * (1.0f - roughness) * (1.0f - roughness);
   out.diffuse_map = decode_texture(model, m.pbrMetallicRoughness.baseColorTexture.index, source);
+  out.sampler = sampler_of(model, m.pbrMetallicRoughness.baseColorTexture.index);
   return out;
 }
 
 class Flattener {
  public:
-  Flattener(const tinygltf::Model& model, const std::string& source) : model_(model), reader_{model, source} {}
+  Flattener(const tinygltf::Model& model, const std::string& source) : model_(model), reader_{model, source} {
+    for (const tinygltf::Material& m : model.materials)
+      uv_transforms_.push_back(uv_transform_of(m.pbrMetallicRoughness.baseColorTexture, source));
+  }
 
   void node(int index, const glm::mat4& parent, int depth) {
     if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size())
@@ -300,13 +356,14 @@ class Flattener {
       out_.positions.push_back(
           glm::vec3(world * glm::vec4(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1)));
     append_normals(attribute("NORMAL"), count, normal_from_object);
-    append_uvs(attribute("TEXCOORD_0"), count);
+    const int material =
+        p.material >= 0 && static_cast<std::size_t>(p.material) < model_.materials.size() ? p.material : -1;
+    append_uvs(attribute("TEXCOORD_0"), count,
+               material >= 0 ? uv_transforms_[static_cast<std::size_t>(material)] : glm::mat3(1.0f));
     append_colors(attribute("COLOR_0"), count);
 
     // A mirroring transform turns counter-clockwise triangles clockwise; swapping two corners restores the front.
     const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
-    const int material =
-        p.material >= 0 && static_cast<std::size_t>(p.material) < model_.materials.size() ? p.material : -1;
     for (std::size_t t = 0; t < corners.size(); t += 3) {
       const auto a = static_cast<std::uint32_t>(base) + corners[t];
       const auto b = static_cast<std::uint32_t>(base) + corners[t + (mirrored ? 2 : 1)];
@@ -330,14 +387,16 @@ class Flattener {
     }
   }
 
-  void append_uvs(int accessor, std::size_t count) {
+  // The material's texture transform is applied here: each primitive's vertices are its own in the flat mesh.
+  void append_uvs(int accessor, std::size_t count, const glm::mat3& uv_transform) {
     if (accessor < 0) {
       out_.uvs.resize(out_.positions.size(), glm::vec2(0.0f));
       return;
     }
     any_uvs_ = true;
     const std::vector<float> uv = reader_.floats(accessor, 2, "TEXCOORD_0");
-    for (std::size_t i = 0; i < count; ++i) out_.uvs.emplace_back(uv[2 * i], uv[2 * i + 1]);
+    for (std::size_t i = 0; i < count; ++i)
+      out_.uvs.emplace_back(glm::vec2(uv_transform * glm::vec3(uv[2 * i], uv[2 * i + 1], 1.0f)));
   }
 
   void append_colors(int accessor, std::size_t count) {
@@ -358,6 +417,7 @@ class Flattener {
   Reader reader_;
   Mesh out_;
   std::set<int> on_path_;
+  std::vector<glm::mat3> uv_transforms_;  // per material: its base colour texture's KHR_texture_transform
   bool all_normals_ = true, any_uvs_ = false, any_colors_ = false, warned_points_ = false;
 };
 

@@ -58,7 +58,8 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
   const Material& material = group.material >= 0 ? instance.mesh->materials[index] : default_material();
   const SurfaceColor surface{options.color.value_or(material.diffuse),
                              group.face_colors.empty() ? nullptr : group.face_colors.data(),
-                             group.material >= 0 ? prepared.textures[index] : nullptr, options.sampler};
+                             group.material >= 0 ? prepared.textures[index] : nullptr,
+                             material.sampler.value_or(options.sampler)};
   switch (options.shading) {
     case Shading::automatic:
     case Shading::blinn_phong:

@@ -23,11 +23,14 @@ cases=(
   "wireframe|render $models/WusonOBJ.obj --wireframe ${size[*]}"
   "edges|render $models/box.obj --edges ${size[*]}"
 )
-# glTF's three forms of one textured box draw one image; then a vertex-coloured PLY and a binary STL.
+# glTF's three forms of the textured box (the separate one's sampler mirrors its texture in u and clamps it in v,
+# the others repeat it); the texture transform test shows its "correct" marks (its
+# squares' textures moved, turned and scaled, clamped at the edges); then a vertex-coloured PLY and a binary STL.
 gltf=/usr/share/assimp/models/glTF2
 cases+=("gltf_box_textured_binary|render $gltf/BoxTextured-glTF-Binary/BoxTextured.glb ${size[*]}")
 cases+=("gltf_box_textured_embedded|render $gltf/BoxTextured-glTF-Embedded/BoxTextured.gltf ${size[*]}")
 cases+=("gltf_box_textured_separate|render $gltf/BoxTextured-glTF/BoxTextured.gltf ${size[*]}")
+cases+=("gltf_texture_transform|render $gltf/textureTransform/TextureTransformTest.gltf --resolution 320,240")
 cases+=("ply_vertex_colors|render /usr/share/assimp/models/PLY/float-color.ply ${size[*]}")
 cases+=("stl_binary|render /usr/share/assimp/models/STL/Spider_binary.stl ${size[*]}")
 for p in perspective orthographic frustum oblique isometric dimetric trimetric front top side; do

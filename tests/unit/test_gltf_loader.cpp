@@ -2,7 +2,9 @@
 #include <gtest/gtest.h>
 
 #include <filesystem>
+#include <cmath>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "facet/error.hpp"
@@ -66,6 +68,62 @@ TEST(GltfLoader, MalformedFilesAreRefusedWithTheirProblem) {
   expect_input_error(dir / "broken.gltf", "");
   std::ofstream(dir / "cut.glb", std::ios::binary) << std::string("glTF\x02\0\0\0\xff\xff\0\0", 12);
   expect_input_error(dir / "cut.glb", "");
+}
+
+// KHR_texture_transform moves TEXCOORD_0 by offset, rotation and scale (T * R * S, the extension's definition);
+// glTF samplers become the materials' filtering and wrapping. The same file without the extension is the baseline.
+TEST(GltfLoader, TextureTransformsAndSamplersFollowTheFile) {
+  const fs::path source = kGltf / "textureTransform";
+  const fs::path dir = test::scratch_dir("gltf_transform");
+  for (const char* name : {"TextureTransformTest.bin", "Arrow.png", "Correct.png", "Error.png", "NotSupported.png",
+                           "UV.png"})
+    fs::copy_file(source / name, dir / name, fs::copy_options::overwrite_existing);
+  std::ifstream in(source / "TextureTransformTest.gltf");
+  std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // Without the extension: each texture reference's "extensions" object names only KHR_texture_transform.
+  std::string plain = json;
+  for (std::size_t at; (at = plain.find("\"KHR_texture_transform\" :")) != std::string::npos ||
+                       (at = plain.find("\"KHR_texture_transform\":")) != std::string::npos;)
+    plain.replace(at, 2, "\"x");  // renames the key: an unknown extension is ignored
+  std::ofstream(dir / "plain.gltf") << plain;
+  const Mesh transformed = load_model(source / "TextureTransformTest.gltf");
+  const Mesh baseline = load_model(dir / "plain.gltf");
+  ASSERT_EQ(transformed.uvs.size(), baseline.uvs.size());
+  ASSERT_EQ(transformed.face_materials, baseline.face_materials);
+  ASSERT_GE(transformed.materials.size(), 6u);
+
+  struct Expected {
+    glm::vec2 offset{0.0f};
+    float rotation = 0.0f;
+    glm::vec2 scale{1.0f};
+  };
+  const Expected expected[6] = {{{0.5f, 0.0f}}, {{0.0f, 0.5f}}, {{0.5f, 0.5f}}, {{}, 0.39269908169872414f},
+                                {{}, 0.0f, {1.5f, 1.5f}}, {{-0.2f, -0.1f}, 0.3f, {1.5f, 1.5f}}};
+  std::size_t checked = 0;
+  for (std::size_t t = 0; t < transformed.face_materials.size(); ++t) {
+    const std::int32_t m = transformed.face_materials[t];
+    if (m < 0 || m >= 6) continue;
+    const Expected& e = expected[m];
+    for (int k = 0; k < 3; ++k) {
+      const std::uint32_t v = transformed.indices[3 * t + k];
+      const glm::vec2 uv = baseline.uvs[v] * e.scale;
+      const float c = std::cos(e.rotation), s = std::sin(e.rotation);
+      const glm::vec2 want = glm::vec2(c * uv.x + s * uv.y, -s * uv.x + c * uv.y) + e.offset;
+      EXPECT_NEAR(transformed.uvs[v].x, want.x, 1e-5f) << "material " << m;
+      EXPECT_NEAR(transformed.uvs[v].y, want.y, 1e-5f) << "material " << m;
+      ++checked;
+    }
+  }
+  EXPECT_GE(checked, 6u * 6u);  // two triangles per transformed square at least
+
+  // Textures 0 and 1 use sampler 0 (CLAMP_TO_EDGE, LINEAR); the marker textures have no sampler.
+  for (std::size_t m = 0; m < 6; ++m) {
+    ASSERT_TRUE(transformed.materials[m].sampler) << m;
+    EXPECT_EQ(transformed.materials[m].sampler->wrap_u, Wrap::clamp);
+    EXPECT_EQ(transformed.materials[m].sampler->wrap_v, Wrap::clamp);
+    EXPECT_EQ(transformed.materials[m].sampler->filter, Filter::bilinear);
+  }
+  for (std::size_t m = 6; m < transformed.materials.size(); ++m) EXPECT_FALSE(transformed.materials[m].sampler);
 }
 
 // Every glTF file Debian ships either loads (at least one triangle, validated) or is refused with InputError.
