@@ -152,8 +152,21 @@ void BM_BlockCoverage(benchmark::State& state) {
   detail::SetupChunk chunk;
   chunk.reset();
   const std::vector<detail::ProjectedVertex> projected = project(mesh);
-  detail::setup_triangles({mesh.clip.data(), projected.data(), 0, nullptr, nullptr, mesh.clip.size(), mesh.indices,
-                           nullptr, 0, mesh.indices.size() / 3, kWidth, kHeight, fb.tiles_x(), CullMode::back, 1.0f},
+  detail::setup_triangles({.clip = mesh.clip.data(),
+                           .projected = projected.data(),
+                           .vertex_first = 0,
+                           .clip_position = nullptr,
+                           .clip_source = nullptr,
+                           .vertex_count = mesh.clip.size(),
+                           .indices = mesh.indices,
+                           .order = nullptr,
+                           .first = 0,
+                           .count = mesh.indices.size() / 3,
+                           .width = kWidth,
+                           .height = kHeight,
+                           .tiles_x = fb.tiles_x(),
+                           .cull = CullMode::back,
+                           .line_width = 1.0f},
                           chunk);
   std::size_t blocks = 0;
   for (auto _ : state)

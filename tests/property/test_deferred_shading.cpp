@@ -7,11 +7,11 @@
 #include <bit>
 #include <random>
 
-#include "bench/bench_shader.hpp"
 #include "facet/detail/raster_deferred.hpp"
 #include "facet/draw.hpp"
 #include "facet/fragment_lanes.hpp"
 #include "support/draw_helpers.hpp"
+#include "support/image_asserts.hpp"
 
 namespace facet::test {
 namespace {
@@ -105,6 +105,9 @@ TEST(StripTriangleStarts, EveryTriangleOfTheStripHasALane) {
 
 static_assert(LaneShader<ProbeShader<true, false>> && LaneShader<ProbeShader<true, true>>);
 static_assert(!LaneShader<ProbeShader<false, false>>);
+// A lane shader that says nothing about lanes_read_primitive gets primitive and front_facing per lane, as this one
+// needs (test_deferred_bench_shader.cpp checks the benchmark shader, which opts out).
+static_assert(lanes_read_primitive<ProbeShader<true, false>>());
 
 struct Draw {
   ClipMesh mesh;
@@ -126,23 +129,6 @@ Framebuffer render(const std::vector<Draw>& draws, int width, int height, bool d
   }
   renderer.finish(fb);
   return fb;
-}
-
-void expect_same(const Framebuffer& expected, const Framebuffer& actual, const char* what) {
-  ASSERT_EQ(expected.color().size(), actual.color().size());
-  std::size_t colour_diffs = 0, depth_diffs = 0, first = expected.color().size();
-  for (std::size_t i = 0; i < expected.color().size(); ++i) {
-    const bool colour = expected.color()[i] != actual.color()[i];
-    const bool depth =
-        std::bit_cast<std::uint32_t>(expected.depth()[i]) != std::bit_cast<std::uint32_t>(actual.depth()[i]);
-    colour_diffs += colour;
-    depth_diffs += depth;
-    if ((colour || depth) && i < first) first = i;
-  }
-  EXPECT_EQ(colour_diffs, 0u) << what << ": first differing pixel " << first % expected.width() << ","
-                              << first / expected.width();
-  EXPECT_EQ(depth_diffs, 0u) << what << ": first differing pixel " << first % expected.width() << ","
-                             << first / expected.width();
 }
 
 // Immediate shading with the scalar fragment is the definition; deferred shading must match it bit for bit with
@@ -220,76 +206,6 @@ TEST(DeferredShading, WithoutDepthTestTheLastDrawnTriangleWins) {
   RenderState painter = no_depth_no_cull();
   const std::vector<Draw> draws{{triangle_soup(80, 11), painter}, {jittered_grid(5, 4, 9, false), painter}};
   expect_deferred_matches<true>(draws, 160, 120);
-}
-
-// The benchmark shader without its lane function: the scalar definition of the same picture.
-struct ScalarBenchShader {
-  using Vertex = bench::BenchShader::Vertex;
-  using Varyings = bench::BenchShader::Varyings;
-  static constexpr bool may_discard = false;
-  bench::BenchShader inner;
-  VertexOut<Varyings> vertex(const Vertex& v) const { return inner.vertex(v); }
-  glm::vec4 fragment(const Fragment<Varyings>& f) const { return inner.fragment(f); }
-};
-
-// The benchmark shader with prefetch_lanes: strips are prepared kPrefetchDistance strips before they are shaded.
-struct PrefetchingBenchShader : bench::BenchShader {
-  FACET_LANES_INLINE void prefetch_lanes(const FragmentLanes<Varyings>& f) const {
-    texture->prefetch_lanes(f.get(&Varyings::uv), sampler);
-  }
-};
-static_assert(PrefetchingLaneShader<PrefetchingBenchShader>);
-
-// The benchmark shader opts out of per-lane primitive and front_facing (its lanes match without them, below);
-// a lane shader that says nothing gets them, as the shader at the top of this file needs.
-static_assert(!lanes_read_primitive<bench::BenchShader>());
-static_assert(lanes_read_primitive<ProbeShader<true, false>>());
-
-TEST(DeferredShading, BenchShaderLanesMatchItsScalarFragment) {
-  std::vector<bench::BenchVertex> vertices;
-  std::vector<std::uint32_t> indices;
-  const int n = 48;
-  for (int i = 0; i <= n; ++i)
-    for (int j = 0; j <= n; ++j) {
-      const float theta = 3.14159265f * i / n, phi = 6.2831853f * j / n;
-      const glm::vec3 p(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-      vertices.push_back({p, p, {2.0f * j / n, 1.0f - static_cast<float>(i) / n}});  // u wraps once: repeat
-    }
-  for (int i = 0; i < n; ++i)
-    for (int j = 0; j < n; ++j) {
-      const auto at = [&](int a, int b) { return static_cast<std::uint32_t>(a * (n + 1) + b); };
-      indices.insert(indices.end(),
-                     {at(i, j), at(i, j + 1), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)});
-    }
-  std::mt19937 rng(5);
-  std::vector<std::uint32_t> texels(64 * 64);
-  for (std::uint32_t& t : texels) t = static_cast<std::uint32_t>(rng());
-  const Texture texture(64, 64, std::move(texels));
-
-  bench::BenchShader lanes;
-  lanes.texture = &texture;
-  lanes.set_model(glm::rotate(glm::mat4(1), 0.7f, glm::vec3(0.3f, 1.0f, 0.1f)));
-  lanes.clip_from_world = glm::perspective(glm::radians(45.0f), 1.5f, 0.1f, 10.0f) *
-                          glm::lookAt(lanes.eye, glm::vec3(0.0f), glm::vec3(0, 1, 0));
-  const ScalarBenchShader scalar{lanes};
-  const PrefetchingBenchShader prefetching{lanes};
-  const auto draw = [&](const auto& shader, bool deferred) {
-    Framebuffer fb(241, 160);
-    Renderer renderer(2);
-    renderer.clear(fb);
-    RenderState state;
-    state.defer_shading = deferred;
-    renderer.draw(fb, shader, std::span<const bench::BenchVertex>(vertices), indices, state);
-    renderer.finish(fb);
-    return fb;
-  };
-  const Framebuffer expected = draw(scalar, false);
-  const auto drawn = std::count_if(expected.depth().begin(), expected.depth().end(), [](float z) { return z < 1.0f; });
-  ASSERT_GT(drawn, 241 * 160 / 4);  // the sphere fills a good part of the frame
-  expect_same(expected, draw(scalar, true), "deferred, scalar fragment");
-  expect_same(expected, draw(lanes, true), "deferred, lane fragment");
-  expect_same(expected, draw(prefetching, true), "deferred, lane fragment prepared ahead");
-  expect_same(expected, draw(lanes, false), "immediate, lane shader's scalar fragment");
 }
 
 }  // namespace
