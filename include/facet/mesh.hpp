@@ -29,6 +29,8 @@ struct Material {
   std::shared_ptr<const Texture> diffuse_map{};
   // The file's filtering and wrapping for the texture (glTF samplers); unset: the scene's (SceneOptions::sampler).
   std::optional<Sampler> sampler{};
+  // Drawn with its colour alone, no lighting, when the shading is Shading::automatic (glTF KHR_materials_unlit).
+  bool unlit = false;
 };
 
 struct Mesh {

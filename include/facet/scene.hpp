@@ -19,7 +19,8 @@
 namespace facet {
 
 enum class Shading {
-  automatic,    // the model's own look: Blinn-Phong lit with its materials, textures and vertex colours
+  automatic,    // the model's own look: Blinn-Phong lit with its materials, textures and vertex colours (unlit
+                // materials as `unlit`)
   unlit,        // material colour x (vertex colour, else face colour) x texture; no lighting
   flat,         // one lit colour per face (face normal)
   gouraud,      // lit per vertex, colour interpolated

@@ -20,8 +20,10 @@ namespace facet {
 namespace {
 
 // Required extensions facet implements: the reader handles any component type, so quantized attributes
-// (KHR_mesh_quantization) read like floats; texture transforms are applied to TEXCOORD_0 (KHR_texture_transform).
-const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization", "KHR_texture_transform"};
+// (KHR_mesh_quantization) read like floats; texture transforms are applied to TEXCOORD_0 (KHR_texture_transform);
+// unlit materials draw with their colour alone (KHR_materials_unlit).
+const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization", "KHR_texture_transform",
+                                                  "KHR_materials_unlit"};
 
 // Instancing can multiply a small file's triangles: a node graph that would expand past this is refused.
 constexpr std::size_t kMaxVertices = std::size_t{1} << 27;
@@ -279,6 +281,7 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
   out.shininess = 2.0f + 126.0f * (1.0f - roughness) * (1.0f - roughness);
   out.diffuse_map = decode_texture(model, m.pbrMetallicRoughness.baseColorTexture.index, source);
   out.sampler = sampler_of(model, m.pbrMetallicRoughness.baseColorTexture.index);
+  out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
   return out;
 }
 

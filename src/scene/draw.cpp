@@ -60,7 +60,8 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
                              group.face_colors.empty() ? nullptr : group.face_colors.data(),
                              group.material >= 0 ? prepared.textures[index] : nullptr,
                              material.sampler.value_or(options.sampler)};
-  switch (options.shading) {
+  const Shading shading = options.shading == Shading::automatic && material.unlit ? Shading::unlit : options.shading;
+  switch (shading) {
     case Shading::automatic:
     case Shading::blinn_phong:
       draw(lit_shader<SurfaceShader>(frame, transforms, surface, material, SpecularModel::blinn_phong));

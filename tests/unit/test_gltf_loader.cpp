@@ -126,6 +126,18 @@ TEST(GltfLoader, TextureTransformsAndSamplersFollowTheFile) {
   for (std::size_t m = 6; m < transformed.materials.size(); ++m) EXPECT_FALSE(transformed.materials[m].sampler);
 }
 
+// KHR_materials_unlit marks its material unlit (the scene then draws it with its colour alone), and is accepted
+// in extensionsRequired; the file's other material stays lit.
+TEST(GltfLoader, UnlitMaterialsAreMarked) {
+  const fs::path dir = test::scratch_dir("gltf_unlit");
+  std::ofstream(dir / "unlit.gltf") << R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_materials_unlit"],"extensionsRequired":["KHR_materials_unlit"],"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],"materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.2,0.6,0.4,1]},"extensions":{"KHR_materials_unlit":{}}},{}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0},{"attributes":{"POSITION":0},"material":1}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
+  const Mesh mesh = load_model(dir / "unlit.gltf");
+  ASSERT_EQ(mesh.materials.size(), 2u);
+  EXPECT_TRUE(mesh.materials[0].unlit);
+  EXPECT_FALSE(mesh.materials[1].unlit);
+  EXPECT_EQ(mesh.materials[0].diffuse, glm::vec4(0.2f, 0.6f, 0.4f, 1.0f));
+}
+
 // Every glTF file Debian ships either loads (at least one triangle, validated) or is refused with InputError.
 TEST(GltfLoader, EveryAssimpModelLoadsOrThrowsInputError) {
   int loaded = 0, refused = 0;

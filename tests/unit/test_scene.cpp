@@ -289,6 +289,25 @@ TEST(SceneMaterials, MissingTextureWarnsOnceAndDrawsWithout) {
   EXPECT_EQ(render(scene, make_view({0, 0, 3}), unlit()).fb.pixel(32, 32), pack_rgba8(glm::vec4(0, 1, 0, 1)));
 }
 
+// An unlit material (glTF's KHR_materials_unlit) draws with its colour alone under the automatic shading, where a
+// lit one facing the same way is shaded.
+TEST(SceneMaterials, UnlitMaterialIgnoresTheLights) {
+  const glm::vec4 colour(0.2f, 0.6f, 0.4f, 1.0f);
+  const auto centre_pixel = [&](bool unlit) {
+    Mesh m;
+    add_quad(m, 0.0f);
+    Material material{"m", colour, {}, 32, {}};
+    material.unlit = unlit;
+    m.materials = {material};
+    m.face_materials = {0, 0};
+    Scene scene;
+    scene.add(instance(m));
+    return render(scene, make_view({0.5f, 0.8f, 3.0f}), SceneOptions{}).fb.pixel(32, 32);
+  };
+  EXPECT_EQ(centre_pixel(true), pack_rgba8(colour));
+  EXPECT_NE(centre_pixel(false), pack_rgba8(colour));
+}
+
 TEST(SceneShading, MissingNormalsAreComputedAndDefaultMaterialIsLit) {
   Mesh m;
   add_quad(m, 0.0f);
