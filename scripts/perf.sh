@@ -34,3 +34,6 @@ echo "## peak memory, --sphere 1414, 2 threads"
 
 echo "## micro-benchmarks"
 build/bench/facet_microbench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+
+echo "## loading, facet against Assimp"
+build/bench/facet_loader_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
