@@ -199,13 +199,16 @@ std::shared_ptr<const Texture> decode_texture(const tinygltf::Model& model, int 
                      ") could not be decoded; drawing its material untextured");
     return nullptr;
   }
+  // Rows flipped, as load_texture flips image files: texture row 0 is v = 0, the image's bottom row (OpenGL's
+  // convention, which append_uvs turns glTF's top-left texture coordinates into).
   std::vector<std::uint32_t> rgba(texels);
   const int n = image.component;
+  const auto width = static_cast<std::size_t>(image.width), height = static_cast<std::size_t>(image.height);
   for (std::size_t i = 0; i < texels; ++i) {
     const unsigned char* p = image.image.data() + i * static_cast<std::size_t>(n);
     const std::uint32_t r = p[0], g = n >= 3 ? p[1] : p[0], b = n >= 3 ? p[2] : p[0];
     const std::uint32_t a = n == 4 ? p[3] : n == 2 ? p[1] : 255;
-    rgba[i] = r | g << 8 | b << 16 | a << 24;
+    rgba[(height - 1 - i / width) * width + i % width] = r | g << 8 | b << 16 | a << 24;
   }
   try {
     auto texture = std::make_shared<Texture>(image.width, image.height, std::move(rgba));
@@ -390,7 +393,9 @@ class Flattener {
     }
   }
 
-  // The material's texture transform is applied here: each primitive's vertices are its own in the flat mesh.
+  // The material's texture transform is applied here, in glTF's texture space (origin at the image's top-left):
+  // each primitive's vertices are its own in the flat mesh. Then v becomes 1 - v, facet's (and OpenGL's) bottom-left
+  // origin, as OBJ, PLY and Assimp's readers give it, so a mesh's uvs mean the same whatever file it came from.
   void append_uvs(int accessor, std::size_t count, const glm::mat3& uv_transform) {
     if (accessor < 0) {
       out_.uvs.resize(out_.positions.size(), glm::vec2(0.0f));
@@ -398,8 +403,10 @@ class Flattener {
     }
     any_uvs_ = true;
     const std::vector<float> uv = reader_.floats(accessor, 2, "TEXCOORD_0");
-    for (std::size_t i = 0; i < count; ++i)
-      out_.uvs.emplace_back(glm::vec2(uv_transform * glm::vec3(uv[2 * i], uv[2 * i + 1], 1.0f)));
+    for (std::size_t i = 0; i < count; ++i) {
+      const glm::vec3 moved = uv_transform * glm::vec3(uv[2 * i], uv[2 * i + 1], 1.0f);
+      out_.uvs.emplace_back(moved.x, 1.0f - moved.y);
+    }
   }
 
   void append_colors(int accessor, std::size_t count) {

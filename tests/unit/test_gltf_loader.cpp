@@ -106,9 +106,11 @@ TEST(GltfLoader, TextureTransformsAndSamplersFollowTheFile) {
     const Expected& e = expected[m];
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t v = transformed.indices[3 * t + k];
-      const glm::vec2 uv = baseline.uvs[v] * e.scale;
+      // Both meshes hold v flipped to a bottom-left origin; the transform applies to glTF's (u, 1 - v).
+      const glm::vec2 uv = glm::vec2(baseline.uvs[v].x, 1.0f - baseline.uvs[v].y) * e.scale;
       const float c = std::cos(e.rotation), s = std::sin(e.rotation);
-      const glm::vec2 want = glm::vec2(c * uv.x + s * uv.y, -s * uv.x + c * uv.y) + e.offset;
+      const glm::vec2 moved = glm::vec2(c * uv.x + s * uv.y, -s * uv.x + c * uv.y) + e.offset;
+      const glm::vec2 want(moved.x, 1.0f - moved.y);
       EXPECT_NEAR(transformed.uvs[v].x, want.x, 1e-5f) << "material " << m;
       EXPECT_NEAR(transformed.uvs[v].y, want.y, 1e-5f) << "material " << m;
       ++checked;
