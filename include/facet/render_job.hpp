@@ -20,7 +20,7 @@ struct LookSpec {
   bool edges = false;              // draw the edges over the surfaces
   bool depth_test = true;          // off: draw in submission order
   bool painter = false;            // sort triangles back to front instead of depth-testing them
-  CullMode cull = CullMode::back;
+  CullMode cull = CullMode::none;  // a model viewer's default: open and single-sided meshes show from both sides
   std::optional<glm::vec3> background;       // RGB in 0..1; default: the caller's
   bool transparent_background = false;       // alpha 0 where nothing is drawn (RGBA PNG)
   std::optional<glm::vec3> color;            // replaces every material, vertex and face colour

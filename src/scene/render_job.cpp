@@ -9,6 +9,7 @@
 #include <system_error>
 #include <vector>
 
+#include "facet/error.hpp"
 #include "facet/image_io.hpp"
 #include "facet/model_io.hpp"
 
@@ -82,6 +83,20 @@ void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const
   }
 }
 
+namespace {
+
+// Whether any triangle spans an area (a model of collinear or coincident corners draws no pixel).
+bool has_area(const Mesh& mesh) {
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]];
+    const glm::vec3 c = mesh.positions[mesh.indices[t + 2]];
+    if (glm::length(glm::cross(b - a, c - a)) > 0.0f) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
 void render(const RenderJob& job, Renderer& renderer) {
   const std::filesystem::path* paths[] = {&job.outputs.color, &job.outputs.depth, &job.outputs.mask,
                                           &job.outputs.camera};
@@ -93,6 +108,7 @@ void render(const RenderJob& job, Renderer& renderer) {
     throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
 
   auto mesh = std::make_shared<Mesh>(load_model(job.model));
+  if (!has_area(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
   apply_look_color(*mesh, job.look);
   const Framing framing = framing_of(*mesh, job.model.string());
   const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
