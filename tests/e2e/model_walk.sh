@@ -30,7 +30,7 @@ for f in "${files[@]}"; do
   elif [ $status -eq 1 ]; then
     refused=$((refused + 1))
     lines=$(wc -l <"$scratch/stderr.txt")
-    errors=$(grep -c "^facet: error: $f" "$scratch/stderr.txt")
+    errors=$(grep -cF "facet: error: $f" "$scratch/stderr.txt")
     # Warnings may come first; the error is one line, the last, and names the file.
     if [ "$errors" -ne 1 ] || ! tail -n 1 "$scratch/stderr.txt" | grep -q "^facet: error: "; then
       bad "$f" "refused without one error line naming it ($lines lines): $(tail -n 2 "$scratch/stderr.txt")"
