@@ -115,6 +115,26 @@ void BM_ClipCrossingTriangle(benchmark::State& state) {
 BENCHMARK(BM_ClipCrossingTriangle);
 
 // Setup and binning of one chunk of a 1M-triangle sphere at 1080p, single thread.
+// Setup's input for primitives [first, first + count) of a projected mesh: triangles, back faces culled.
+detail::SetupInput setup_input(const test::ClipMesh& mesh, const std::vector<detail::ProjectedVertex>& projected,
+                               std::size_t first, std::size_t count, const Framebuffer& fb) {
+  return {.clip = mesh.clip.data(),
+          .projected = projected.data(),
+          .vertex_first = 0,
+          .clip_position = nullptr,
+          .clip_source = nullptr,
+          .vertex_count = mesh.clip.size(),
+          .indices = mesh.indices,
+          .order = nullptr,
+          .first = first,
+          .count = count,
+          .width = kWidth,
+          .height = kHeight,
+          .tiles_x = fb.tiles_x(),
+          .cull = CullMode::back,
+          .line_width = 1.0f};
+}
+
 void BM_SetupChunk(benchmark::State& state) {
   const test::ClipMesh mesh = sphere(707);
   const std::vector<detail::ProjectedVertex> projected = project(mesh);
@@ -123,21 +143,7 @@ void BM_SetupChunk(benchmark::State& state) {
   const std::size_t tiles = static_cast<std::size_t>(fb.tiles_x()) * fb.tiles_y();
   for (auto _ : state) {
     chunk.reset();
-    const detail::SetupInput input{.clip = mesh.clip.data(),
-                                   .projected = projected.data(),
-                                   .vertex_first = 0,
-                                   .clip_position = nullptr,
-                                   .clip_source = nullptr,
-                                   .vertex_count = mesh.clip.size(),
-                                   .indices = mesh.indices,
-                                   .order = nullptr,
-                                   .first = 200000,
-                                   .count = detail::kSetupChunk,
-                                   .width = kWidth,
-                                   .height = kHeight,
-                                   .tiles_x = fb.tiles_x(),
-                                   .cull = CullMode::back,
-                                   .line_width = 1.0f};
+    const detail::SetupInput input = setup_input(mesh, projected, 200000, detail::kSetupChunk, fb);
     detail::setup_triangles(input, chunk);
     chunk.sort_by_tile(tiles);
     benchmark::DoNotOptimize(chunk.binned.data());
@@ -152,22 +158,7 @@ void BM_BlockCoverage(benchmark::State& state) {
   detail::SetupChunk chunk;
   chunk.reset();
   const std::vector<detail::ProjectedVertex> projected = project(mesh);
-  detail::setup_triangles({.clip = mesh.clip.data(),
-                           .projected = projected.data(),
-                           .vertex_first = 0,
-                           .clip_position = nullptr,
-                           .clip_source = nullptr,
-                           .vertex_count = mesh.clip.size(),
-                           .indices = mesh.indices,
-                           .order = nullptr,
-                           .first = 0,
-                           .count = mesh.indices.size() / 3,
-                           .width = kWidth,
-                           .height = kHeight,
-                           .tiles_x = fb.tiles_x(),
-                           .cull = CullMode::back,
-                           .line_width = 1.0f},
-                          chunk);
+  detail::setup_triangles(setup_input(mesh, projected, 0, mesh.indices.size() / 3, fb), chunk);
   std::size_t blocks = 0;
   for (auto _ : state)
     for (const detail::TriangleSetup& t : chunk.triangles)
