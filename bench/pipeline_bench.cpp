@@ -75,7 +75,7 @@ struct ShadeFixture {
   }
 };
 
-FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+FACET_DISPATCH_LEVELS
 std::uint32_t shade_strips_lanes(const ShadeFixture& fx) {
   simd::UInt sum{};
   for (const auto& strip : fx.strips) sum += simd::pack_rgba8(fx.shader.fragment_lanes(strip));

@@ -15,7 +15,7 @@ namespace facet::detail {
 // integer arithmetic, for triangles whose corners are all inside the frustum: those it accepts are set up from
 // its results without classify; everything else it keeps (a corner outside, an invalid index) goes through the
 // full per-triangle path, so it may keep what classify rejects but never rejects what classify keeps.
-FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+FACET_DISPATCH_LEVELS
 void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
   constexpr int N = kCullLanes;
   const std::uint32_t* index = in.indices.data() + 3 * first;

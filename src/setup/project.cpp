@@ -18,7 +18,7 @@ std::uint32_t non_finite(float v) { return (std::bit_cast<std::uint32_t>(v) & 0x
 // The same operations as project_vertex in the same order, with every branch turned into a select so that the
 // loop vectorises (outcode's isfinite as exponent bits, std::clamp as compares, lrint as rint under the same
 // rounding mode). A vertex outside any plane gets the same zeros as there.
-FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+FACET_DISPATCH_LEVELS
 void project_vertices(const ClipBlock& clip, std::size_t count, ProjectedVertex* __restrict out, int width,
                       int height) {
   const float w_scale = static_cast<float>(width), h_scale = static_cast<float>(height);

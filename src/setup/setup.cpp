@@ -237,7 +237,7 @@ class Binner {
 
 // A pass over the batch's indices ahead of setup, so it should run at memory speed: plain min/max loops that the
 // vectoriser turns into unsigned min/max instructions, which need SSE4.1 or later, hence the clones.
-FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+FACET_DISPATCH_LEVELS
 VertexRange setup_vertex_range(std::span<const std::uint32_t> indices, std::size_t per_primitive,
                                std::size_t vertex_count, std::size_t first, std::size_t count) {
   const std::uint32_t* index = indices.data() + first * per_primitive;

@@ -13,7 +13,7 @@ namespace facet::detail {
 // (both call make_edge and make_plane). Lanes the pass did not accept are computed too, branch-free, and ignored:
 // their corners are snapped values or zero (a corner outside the frustum), so no integer product overflows; a zero
 // area gives infinite planes.
-FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+FACET_DISPATCH_LEVELS
 void setup_accepted_lanes(const SetupInput& in, std::size_t first, const CullLanes& cull, SetupLanes& out) {
   constexpr int N = kCullLanes;
   const std::uint32_t* index = in.indices.data() + 3 * first;

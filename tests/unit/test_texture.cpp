@@ -159,7 +159,7 @@ TEST(TextureSampling, HugeAndNonFiniteCoordinatesAreSafe) {
 }
 
 // sample_lanes as the tile function runs it: compiled in each dispatch clone, the one for this CPU called.
-FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+FACET_DISPATCH_LEVELS
 void sample_lanes_dispatched(const Texture& t, const simd::Vec2& uv, const Sampler& s, simd::Color& out) {
   out = t.sample_lanes(uv, s);
 }

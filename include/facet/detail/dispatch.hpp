@@ -12,3 +12,12 @@
 #else
 #define FACET_CPU_DISPATCH(...) __attribute__((target_clones(__VA_ARGS__)))
 #endif
+
+// The levels of the pipeline's hot loops: x86-64-v4 (AVX-512), x86-64-v3 (AVX2, FMA) and the baseline.
+// FACET_DISPATCH_NO_V4 leaves out the AVX-512 clone, which costs a third of a shader's compile time: the test
+// command builds that way on CPUs without AVX-512, where the clone could never run.
+#if defined(FACET_DISPATCH_NO_V4)
+#define FACET_DISPATCH_LEVELS FACET_CPU_DISPATCH("arch=x86-64-v3", "default")
+#else
+#define FACET_DISPATCH_LEVELS FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+#endif

@@ -20,7 +20,7 @@ bool shades_deferred(const RenderState& state) {
 // for x86-64-v4 (AVX-512), x86-64-v3 (AVX2, FMA) and the baseline; the loader picks one per CPU at run time, so
 // one binary runs everywhere and the 16-lane shading path uses the widest vectors the CPU has.
 template <Shader S>
-FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+FACET_DISPATCH_LEVELS
 void raster_tile(const void* draw, const TileWork& work) {
   const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
   if (shades_deferred<S>(*ctx.state)) {

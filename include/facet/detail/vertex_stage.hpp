@@ -55,7 +55,7 @@ struct VertexSource {
 
   // The shader runs on 16 vertices per call if it has vertex_lanes, else on one; each block's clip positions are
   // then projected together (see ClipBlock). Compiled per CPU level like raster_tile, for the lane types.
-  FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+  FACET_DISPATCH_LEVELS
   static void shade(const void* source, std::size_t begin, std::size_t end, const VertexOutputs& out) {
     using Varyings = typename S::Varyings;
     constexpr std::size_t kFloats = float_count_v<Varyings>;
