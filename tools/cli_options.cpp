@@ -171,6 +171,10 @@ void add_camera_options(CLI::App& app, CameraArgs& args) {
   app.add_option("--up", args.up, "The model's up axis: +Y or +Z (also -Y, -Z, +X, -X)")
       ->check(parse_check([](const std::string& v) { parse_up(v); }, ""))
       ->type_name("AXIS");
+  app.add_option("--camera-index", args.camera_index,
+                 "View through the model file's camera N (glTF, in scene order; -1: frame the model)")
+      ->check(number_in(-1, 1e9))
+      ->type_name("N");
 }
 
 void add_look_options(CLI::App& app, LookArgs& args) {
@@ -218,7 +222,7 @@ void add_output_options(CLI::App& app, OutputArgs& args, const std::string& defa
   args.resolution = default_resolution;
   app.add_option("-o,--output", args.output, "Output PNG file")->required()->type_name("FILE");
   app.add_option("--output-depth", args.output_depth,
-                 "Also write linear eye-space depth as float32 H x W .npy (0 where empty)")
+                 "Also write linear eye-space depth: float32 H x W, .npy or .exr (0 where empty)")
       ->type_name("FILE.npy");
   app.add_option("--resolution", args.resolution, "Image size W,H (default " + default_resolution + ")")
       ->check(parse_check([](const std::string& v) { parse_resolution(v, "--resolution"); }, ""))
@@ -251,6 +255,7 @@ CameraSpec camera_spec(const CameraArgs& args) {
   spec.oblique_angle_degrees = args.oblique_angle;
   spec.oblique_scale = args.oblique_scale;
   spec.up = parse_up(args.up);
+  if (args.camera_index >= 0) spec.file_camera = args.camera_index;
   return spec;
 }
 

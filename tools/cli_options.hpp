@@ -69,6 +69,7 @@ struct CameraArgs {
   std::string frustum, ortho;  // L,R,B,T
   float oblique_angle = 45.0f, oblique_scale = 0.5f;
   std::string up = "+Y";
+  int camera_index = -1;  // the model file's camera N; -1: facet frames the model
 };
 void add_camera_options(CLI::App& app, CameraArgs& args);
 
@@ -88,7 +89,7 @@ LookSpec look_spec(const LookArgs& args);
 
 // The output flags: --output, --output-depth, --resolution (and, for render, --output-mask, --output-camera).
 struct OutputArgs {
-  std::string output, output_depth, output_mask, output_camera;
+  std::string output, output_depth, output_normal, output_ids, output_mask, output_camera;
   std::string resolution;
 };
 void add_output_options(CLI::App& app, OutputArgs& args, const std::string& default_resolution);

@@ -1,10 +1,12 @@
 // info_command.cpp - `facet info`: loads a model and prints what it holds.
 #include "info_command.hpp"
 
+#include <algorithm>
 #include <array>
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <set>
 
 #include "facet/mesh.hpp"
 #include "facet/model_io.hpp"
@@ -67,6 +69,9 @@ int run_info(const InfoArgs& args) {
   std::size_t textured = 0;
   for (const Material& m : mesh.materials) textured += m.diffuse_map || !m.diffuse_texture.empty();
   std::printf("textured materials: %zu\n", textured);
+  std::printf("cameras: %zu\n", mesh.cameras.size());
+  std::set<std::uint32_t> instances(mesh.instance_ids.begin(), mesh.instance_ids.end());
+  std::printf("instances: %zu\n", std::max<std::size_t>(instances.size(), 1));
   print_vec3("bounds min", box.min);
   print_vec3("bounds max", box.max);
   print_vec3("size", box.max - box.min);

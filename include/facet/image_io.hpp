@@ -1,4 +1,4 @@
-// image_io.hpp - writing rendered images (PNG) and depth buffers (NumPy .npy); reading PNGs back for tests.
+// image_io.hpp - writing rendered images (PNG) and float and id buffers (NumPy .npy, OpenEXR); reading PNGs back.
 #pragma once
 
 #include <cstdint>
@@ -31,5 +31,16 @@ std::vector<std::uint8_t> read_png(const std::filesystem::path& path, int& width
 // Writes values (width*height floats, top row first) as a NumPy .npy file: version 1.0, dtype '<f4', shape
 // (height, width), C order, data starting at byte 64 * k. Written atomically and with the errors of write_png.
 void write_npy(const std::filesystem::path& path, int width, int height, std::span<const float> values);
+// The same for uint32 values ('<u4'), pixel by pixel with `channels` values each: shape (height, width, channels),
+// or (height, width) for one channel.
+void write_npy(const std::filesystem::path& path, int width, int height, int channels,
+               std::span<const std::uint32_t> values);
+
+// Float values, pixel by pixel with `channels` values each, top row first: as .npy of shape (height, width) or
+// (height, width, channels), or, when the path ends in .exr (any case), as OpenEXR with 32-bit float channels and
+// ZIP compression (1 channel: Y; 3 channels: R G B; other counts are refused with std::invalid_argument). Written
+// like write_png.
+void write_float_image(const std::filesystem::path& path, int width, int height, int channels,
+                       std::span<const float> values);
 
 }  // namespace facet

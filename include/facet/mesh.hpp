@@ -33,6 +33,21 @@ struct Material {
   bool unlit = false;
 };
 
+// A camera the model file defines (glTF), placed in the world by its node. Checked when it is used (file_camera_view
+// in view_spec.hpp), so a file whose unused camera is malformed still loads.
+struct ModelCamera {
+  std::string name;
+  bool perspective = true;
+  float yfov_radians = 0.8f;          // perspective: the vertical field of view
+  glm::vec2 magnification{1.0f};      // orthographic: half the view's width and height (glTF xmag, ymag)
+  float znear = 0.1f;                 // near clipping distance
+  std::optional<float> zfar;          // far clipping distance; unset: infinite (perspective only)
+  glm::mat4 world_from_camera{1.0f};  // OpenGL camera axes: x right, y up, looking down -z; unit scale
+};
+
+// The id that marks "no surface" in id buffers; no face or instance may have it.
+inline constexpr std::uint32_t kNoSurface = 0xFFFFFFFFu;
+
 struct Mesh {
   std::vector<glm::vec3> positions;
   // Each optional per-vertex attribute is either empty or has exactly one entry per position.
@@ -43,14 +58,22 @@ struct Mesh {
   std::vector<glm::vec4> face_colors;        // empty or one per triangle
   std::vector<std::int32_t> face_materials;  // empty or one per triangle; -1 = no material, else into materials
   std::vector<Material> materials;
+  // Where each triangle came from, for --output-ids. Empty, or one per triangle:
+  std::vector<std::uint32_t> face_ids;      // the file's face number (a polygon's triangles share it); empty: t
+  std::vector<std::uint32_t> instance_ids;  // the file's node (instance) the triangle was placed by; empty: 0
+  std::vector<ModelCamera> cameras;         // in the order the scene's nodes place them
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return indices.size() / 3; }
+  std::uint32_t face_id(std::size_t triangle) const {
+    return face_ids.empty() ? static_cast<std::uint32_t>(triangle) : face_ids[triangle];
+  }
+  std::uint32_t instance_id(std::size_t triangle) const { return instance_ids.empty() ? 0 : instance_ids[triangle]; }
 };
 
 // Throws InputError(source, problem) for the first inconsistency found: an attribute or per-triangle array of the
 // wrong size, an index count that is not a multiple of 3, an index out of range (naming its position and value), a
-// face material out of range, or a non-finite position.
+// face material out of range, a face or instance id of kNoSurface, or a non-finite position.
 void validate(const Mesh& mesh, const std::string& source);
 
 // Axis-aligned box. A default-constructed Bounds is empty (min = +inf, max = -inf).

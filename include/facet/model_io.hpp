@@ -38,8 +38,14 @@ inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 //     inverse transpose, mirrored nodes re-wound); triangles, strips and fans of every primitive, indexed or not;
 //     NORMAL, TEXCOORD_0 and COLOR_0 of any component type, sparse accessors; one material per glTF material
 //     (baseColorFactor -> diffuse, baseColorTexture decoded into diffuse_map, roughness -> specular and
-//     shininess). Points and lines are skipped with a warning; Draco, and any other extension the file lists as
-//     required except KHR_mesh_quantization, is refused naming it.
+//     shininess); Draco-compressed primitives decoded; the cameras the scene's nodes place (Mesh::cameras). Points
+//     and lines are skipped with a warning; an extension the file lists as required that facet does not implement
+//     (it implements KHR_mesh_quantization, KHR_texture_transform, KHR_materials_unlit and
+//     KHR_draco_mesh_compression) is refused naming it.
+// Every reader records where each triangle came from: Mesh::face_ids numbers the file's faces (OBJ `f` lines of
+// 3+ corners; PLY faces; glTF triangles per mesh; Assimp triangles per mesh), a polygon's triangles
+// sharing one; Mesh::instance_ids names the glTF node, or the Assimp mesh, that placed it (empty for OBJ, PLY and
+// STL, and face_ids empty where every face is one triangle).
 // Throws InputError(path, problem) with a one-line problem, naming the line (text) or byte offset (binary) where
 // that helps, for: no such file, not a regular file, an empty or too large file, an unsupported format, a file
 // that does not parse or ends early, counts that do not fit in the file, references to vertices/uvs/normals that

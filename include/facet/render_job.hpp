@@ -15,22 +15,24 @@ namespace facet {
 
 // The look of a render. Unset fields take the defaults of `facet render`.
 struct LookSpec {
-  std::optional<Shading> shading;  // default: the caller's (the model's own look for `facet render`)
-  bool wireframe = false;          // draw only the edges
-  bool edges = false;              // draw the edges over the surfaces
-  bool depth_test = true;          // off: draw in submission order
-  bool painter = false;            // sort triangles back to front instead of depth-testing them
-  CullMode cull = CullMode::none;  // a model viewer's default: open and single-sided meshes show from both sides
-  std::optional<glm::vec3> background;       // RGB in 0..1; default: the caller's
-  bool transparent_background = false;       // alpha 0 where nothing is drawn (RGBA PNG)
-  std::optional<glm::vec3> color;            // replaces every material, vertex and face colour
+  std::optional<Shading> shading;       // default: the caller's (the model's own look for `facet render`)
+  bool wireframe = false;               // draw only the edges
+  bool edges = false;                   // draw the edges over the surfaces
+  bool depth_test = true;               // off: draw in submission order
+  bool painter = false;                 // sort triangles back to front instead of depth-testing them
+  CullMode cull = CullMode::none;       // a model viewer's default: open and single-sided meshes show from both sides
+  std::optional<glm::vec3> background;  // RGB in 0..1; default: the caller's
+  bool transparent_background = false;  // alpha 0 where nothing is drawn (RGBA PNG)
+  std::optional<glm::vec3> color;       // replaces every material, vertex and face colour
   std::optional<glm::vec3> light_direction;  // towards the light, world space; default: a headlight above left
 };
 
 // The files a render writes; empty paths are not written.
 struct OutputSpec {
   std::filesystem::path color{};   // PNG: RGB, or RGBA with a transparent background
-  std::filesystem::path depth{};   // linear eye-space depth, float32 H x W .npy, 0 where empty
+  std::filesystem::path depth{};   // linear eye-space depth, float32 H x W (.npy, or .exr), 0 where empty
+  std::filesystem::path normal{};  // camera-space unit shading normals, float32 H x W x 3 (.npy or .exr), 0 where empty
+  std::filesystem::path ids{};     // uint32 H x W x 2 .npy: instance (node) id, face id; kNoSurface where empty
   std::filesystem::path mask{};    // 8-bit greyscale PNG: 255 where a surface is drawn, 0 where empty
   std::filesystem::path camera{};  // JSON: size, near, far, intrinsics and poses (camera_json in view_spec.hpp)
 };
@@ -59,8 +61,10 @@ void apply_look_color(Mesh& mesh, const LookSpec& look);
 // The clear colour of a look: its background (or `fallback`), alpha 0 when transparent.
 glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback);
 
-// Clears, draws the scene, and writes the outputs. A failure writing any of them removes those already written,
-// so a failed render leaves no file behind.
+// Clears, draws the scene, and writes the outputs. Normals and ids take a second pass (Scene::render_ids) over a
+// framebuffer of target's size; ids name each triangle's Mesh::instance_id and Mesh::face_id. A failure writing
+// any output removes those already written, so a failed render leaves no file behind. Throws
+// std::invalid_argument when normals or ids are asked of a wireframe or edges look (their lines are no surface).
 void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
                     const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs);
 

@@ -73,6 +73,13 @@ struct View {
   float near = 0.1f, far = 100.0f;  // for the depth shading and the depth output
 };
 
+// Which surface each pixel shows (Scene::render_ids), top row first; kNoSurface in both where nothing is drawn.
+struct SurfaceIds {
+  int width = 0, height = 0;
+  std::vector<std::uint32_t> instance;  // index into Scene::instances()
+  std::vector<std::uint32_t> triangle;  // index of the triangle in that instance's mesh
+};
+
 // Holds the per-mesh data the stock shaders read (vertex arrays, face normals and colours, edge lists, textures
 // loaded from the materials) so repeated frames do not rebuild it.
 class Scene {
@@ -89,6 +96,17 @@ class Scene {
   // Draws every instance whose bounding sphere meets the view frustum; the others are rejected before any vertex
   // work. Returns how many instances were drawn. Does not clear or finish the framebuffer.
   std::size_t render(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options);
+
+  // Clears target and draws the surfaces as render() would (same instances, culling, depth test and order, no
+  // edges or wireframe), recording per pixel which instance and triangle is seen instead of a colour. Leaves
+  // target's colour meaningless and its depth that of the surfaces; finishes the frame.
+  SurfaceIds render_ids(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options);
+
+  // The camera-space (OpenGL axes: x right, y up, z towards the viewer) unit shading normal at each pixel of ids:
+  // the mesh's vertex normals (or the normals the scene derived for it) interpolated where the pixel centre's ray
+  // meets the triangle, unflipped on back faces; (0, 0, 0) where nothing is drawn. ids must come from this scene
+  // and view.
+  std::vector<glm::vec3> camera_normals(const SurfaceIds& ids, const View& view) const;
 
  private:
   struct Impl;

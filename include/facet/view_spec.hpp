@@ -51,6 +51,7 @@ struct CameraSpec {
   float oblique_angle_degrees = 45.0f;                 // receding direction, from +X
   float oblique_scale = 0.5f;                          // 1 cavalier, 0.5 cabinet
   UpAxis up = UpAxis::pos_y;
+  std::optional<int> file_camera;  // view through the model file's camera N instead (file_camera_view)
 };
 
 // The bounding sphere a model is framed by: the box centre, and the distance from it to the farthest position.
@@ -66,6 +67,13 @@ Framing framing_of(const Mesh& mesh, const std::string& source);
 // std::invalid_argument naming the field for a camera that cannot be built (the eye at the focal point, near not
 // positive for a perspective, far not beyond near, a degenerate window or view up).
 View make_view(const CameraSpec& camera, const Framing& framing, float aspect);
+
+// The view through camera `index` of mesh.cameras (a glTF file's cameras, in scene order), for a target of the
+// given aspect: its pose, its near and far planes (an infinite far plane ends behind the model's framing sphere),
+// and its vertical field of view, or its orthographic ymag, with the width following the image's aspect.
+// Throws std::invalid_argument for an index the mesh has no camera for, InputError(source, ...) for a camera
+// that cannot be used (znear not positive, zfar not beyond it, yfov outside (0, pi), ymag not positive).
+View file_camera_view(const Mesh& mesh, int index, const Framing& framing, float aspect, const std::string& source);
 
 // The camera of a View in the conventions of computer-vision tools, for turning depth back into world points.
 // OpenCV camera axes: x right, y down, z forward (into the scene); pixel (0, 0)'s centre is at u = v = 0.

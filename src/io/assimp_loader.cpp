@@ -143,6 +143,8 @@ Mesh load_with_assimp(const std::filesystem::path& path, std::string_view bytes,
         out.indices.push_back(static_cast<std::uint32_t>(base + face.mIndices[k]));
       }
       out.face_materials.push_back(material);
+      out.face_ids.push_back(f);
+      out.instance_ids.push_back(i);
     }
   }
   if (out.indices.empty()) throw InputError(source, "no triangles found");

@@ -14,6 +14,7 @@
 
 #include "facet/error.hpp"
 #include "facet/texture.hpp"
+#include "io/gltf_primitive.hpp"
 #include "io/loaders.hpp"
 
 namespace facet {
@@ -21,9 +22,10 @@ namespace {
 
 // Required extensions facet implements: the reader handles any component type, so quantized attributes
 // (KHR_mesh_quantization) read like floats; texture transforms are applied to TEXCOORD_0 (KHR_texture_transform);
-// unlit materials draw with their colour alone (KHR_materials_unlit).
+// unlit materials draw with their colour alone (KHR_materials_unlit); Draco-compressed primitives are decoded
+// (KHR_draco_mesh_compression).
 const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization", "KHR_texture_transform",
-                                                  "KHR_materials_unlit"};
+                                                  "KHR_materials_unlit", "KHR_draco_mesh_compression"};
 
 // Instancing can multiply a small file's triangles: a node graph that would expand past this is refused.
 constexpr std::size_t kMaxVertices = std::size_t{1} << 27;
@@ -301,7 +303,8 @@ class Flattener {
     if (depth > 64 || on_path_.count(index)) reader_.fail("node " + std::to_string(index) + " is its own ancestor");
     const tinygltf::Node& n = model_.nodes[static_cast<std::size_t>(index)];
     const glm::mat4 world = parent * local_transform(n);
-    if (n.mesh >= 0) mesh(n.mesh, world);
+    if (n.mesh >= 0) mesh(n.mesh, world, static_cast<std::uint32_t>(index));
+    if (n.camera >= 0) camera(n.camera, world);
     on_path_.insert(index);
     for (int child : n.children) node(child, world, depth + 1);
     on_path_.erase(index);
@@ -319,54 +322,110 @@ class Flattener {
   }
 
  private:
-  void mesh(int index, const glm::mat4& world) {
+  // Each node placing a mesh is an instance (its node index); the mesh's triangles are numbered across its
+  // primitives, in order, from 0 for every instance.
+  void mesh(int index, const glm::mat4& world, std::uint32_t node) {
     if (static_cast<std::size_t>(index) >= model_.meshes.size())
       reader_.fail("mesh " + std::to_string(index) + " does not exist");
-    for (const tinygltf::Primitive& p : model_.meshes[static_cast<std::size_t>(index)].primitives) primitive(p, world);
+    std::uint32_t face = 0;
+    for (const tinygltf::Primitive& p : model_.meshes[static_cast<std::size_t>(index)].primitives)
+      primitive(p, world, node, face);
   }
 
-  void primitive(const tinygltf::Primitive& p, const glm::mat4& world) {
-    if (!p.extensions.empty() && p.extensions.count("KHR_draco_mesh_compression"))
-      reader_.fail("Draco-compressed meshes (KHR_draco_mesh_compression) are not supported");
-    if (p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
-        p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-      if (!warned_points_) warn(reader_.source, "points and lines are not drawn; skipping those primitives");
-      warned_points_ = true;
-      return;
+  // A camera as its node places it. The spec allows no scale on camera nodes; any is removed, keeping the
+  // rotation and position, so the view matrix stays rigid.
+  void camera(int index, const glm::mat4& world) {
+    if (static_cast<std::size_t>(index) >= model_.cameras.size())
+      reader_.fail("camera " + std::to_string(index) + " does not exist");
+    const tinygltf::Camera& c = model_.cameras[static_cast<std::size_t>(index)];
+    ModelCamera out;
+    out.name = c.name;
+    out.perspective = c.type != "orthographic";
+    if (out.perspective) {
+      out.yfov_radians = static_cast<float>(c.perspective.yfov);
+      out.znear = static_cast<float>(c.perspective.znear);
+      if (c.perspective.zfar > 0.0) out.zfar = static_cast<float>(c.perspective.zfar);
+    } else {
+      out.magnification = glm::vec2(static_cast<float>(c.orthographic.xmag), static_cast<float>(c.orthographic.ymag));
+      out.znear = static_cast<float>(c.orthographic.znear);
+      out.zfar = static_cast<float>(c.orthographic.zfar);
     }
+    glm::mat4 pose = world;
+    for (int axis = 0; axis < 3; ++axis) {
+      const float length = glm::length(glm::vec3(pose[axis]));
+      pose[axis] = length > 0.0f ? pose[axis] / length : glm::vec4(0.0f);
+    }
+    out.world_from_camera = pose;
+    out_.cameras.push_back(std::move(out));
+  }
+
+  // The primitive's arrays from its accessors; each attribute must have one element per position.
+  PrimitiveArrays accessor_arrays(const tinygltf::Primitive& p) const {
     const auto attribute = [&](const char* name) {
       const auto it = p.attributes.find(name);
       return it == p.attributes.end() ? -1 : it->second;
     };
     if (attribute("POSITION") < 0) reader_.fail("a primitive has no POSITION attribute");
-    const std::vector<float> positions = reader_.floats(attribute("POSITION"), 3, "POSITION");
-    const std::size_t count = positions.size() / 3, base = out_.positions.size();
-    if (count > kMaxVertices - base) reader_.fail("the scene expands to more than 2^27 vertices");
-
-    std::vector<std::uint32_t> corners;
+    PrimitiveArrays out;
+    out.positions = reader_.floats(attribute("POSITION"), 3, "POSITION");
+    if (attribute("NORMAL") >= 0) out.normals = reader_.floats(attribute("NORMAL"), 3, "NORMAL");
+    if (attribute("TEXCOORD_0") >= 0) out.uvs = reader_.floats(attribute("TEXCOORD_0"), 2, "TEXCOORD_0");
+    if (const int colors = attribute("COLOR_0"); colors >= 0) {
+      const int type = reader_.model.accessors.at(static_cast<std::size_t>(colors)).type;
+      out.color_components = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
+      out.colors = reader_.floats(colors, out.color_components, "COLOR_0");
+    }
     if (p.indices >= 0) {
-      corners = reader_.indices(p.indices);
-    } else {
+      out.indexed = true;
+      out.corners = reader_.indices(p.indices);
+    }
+    return out;
+  }
+
+  void primitive(const tinygltf::Primitive& p, const glm::mat4& world, std::uint32_t node, std::uint32_t& face) {
+    const bool draco = p.extensions.count("KHR_draco_mesh_compression") > 0;
+    if (!draco && p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+        p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
+      if (!warned_points_) warn(reader_.source, "points and lines are not drawn; skipping those primitives");
+      warned_points_ = true;
+      return;
+    }
+    const std::size_t base = out_.positions.size();
+    // Draco decodes to a triangle list whatever the primitive's mode.
+    PrimitiveArrays data = draco ? decode_draco(model_, p, kMaxVertices - base, reader_.source) : accessor_arrays(p);
+    const std::size_t count = data.positions.size() / 3;
+    if (count > kMaxVertices - base) reader_.fail("the scene expands to more than 2^27 vertices");
+    const auto check_count = [&](const std::vector<float>& values, std::size_t components, const char* name) {
+      if (!values.empty() && values.size() != count * components)
+        reader_.fail(std::string(name) + " has " + std::to_string(values.size() / components) + " elements but " +
+                     "POSITION has " + std::to_string(count));
+    };
+    check_count(data.normals, 3, "NORMAL");
+    check_count(data.uvs, 2, "TEXCOORD_0");
+    check_count(data.colors, static_cast<std::size_t>(data.color_components), "COLOR_0");
+
+    std::vector<std::uint32_t>& corners = data.corners;
+    if (!data.indexed) {
       corners.resize(count);
       for (std::size_t i = 0; i < count; ++i) corners[i] = static_cast<std::uint32_t>(i);
     }
     for (std::uint32_t c : corners)
       if (c >= count)
         reader_.fail("index " + std::to_string(c) + " is out of range (" + std::to_string(count) + " vertices)");
-    if (p.mode == TINYGLTF_MODE_TRIANGLE_STRIP) corners = triangles_from_strip(corners);
-    if (p.mode == TINYGLTF_MODE_TRIANGLE_FAN) corners = triangles_from_fan(corners);
+    if (!draco && p.mode == TINYGLTF_MODE_TRIANGLE_STRIP) corners = triangles_from_strip(corners);
+    if (!draco && p.mode == TINYGLTF_MODE_TRIANGLE_FAN) corners = triangles_from_fan(corners);
     corners.resize(corners.size() / 3 * 3);
 
+    const std::vector<float>& positions = data.positions;
     const glm::mat3 normal_from_object = glm::transpose(glm::inverse(glm::mat3(world)));
     for (std::size_t i = 0; i < count; ++i)
       out_.positions.push_back(
           glm::vec3(world * glm::vec4(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1)));
-    append_normals(attribute("NORMAL"), count, normal_from_object);
+    append_normals(data.normals, count, normal_from_object);
     const int material =
         p.material >= 0 && static_cast<std::size_t>(p.material) < model_.materials.size() ? p.material : -1;
-    append_uvs(attribute("TEXCOORD_0"), count,
-               material >= 0 ? uv_transforms_[static_cast<std::size_t>(material)] : glm::mat3(1.0f));
-    append_colors(attribute("COLOR_0"), count);
+    append_uvs(data.uvs, count, material >= 0 ? uv_transforms_[static_cast<std::size_t>(material)] : glm::mat3(1.0f));
+    append_colors(data.colors, data.color_components, count);
 
     // A mirroring transform turns counter-clockwise triangles clockwise; swapping two corners restores the front.
     const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
@@ -376,16 +435,17 @@ class Flattener {
       const auto c = static_cast<std::uint32_t>(base) + corners[t + (mirrored ? 1 : 2)];
       out_.indices.insert(out_.indices.end(), {a, b, c});
       out_.face_materials.push_back(material);
+      out_.face_ids.push_back(face++);
+      out_.instance_ids.push_back(node);
     }
   }
 
-  void append_normals(int accessor, std::size_t count, const glm::mat3& normal_from_object) {
-    if (accessor < 0) {
+  void append_normals(const std::vector<float>& n, std::size_t count, const glm::mat3& normal_from_object) {
+    if (n.empty()) {
       all_normals_ = false;
       out_.normals.resize(out_.positions.size(), glm::vec3(0, 0, 1));
       return;
     }
-    const std::vector<float> n = reader_.floats(accessor, 3, "NORMAL");
     for (std::size_t i = 0; i < count; ++i) {
       const glm::vec3 v = normal_from_object * glm::vec3(n[3 * i], n[3 * i + 1], n[3 * i + 2]);
       const float length = glm::length(v);
@@ -396,31 +456,27 @@ class Flattener {
   // The material's texture transform is applied here, in glTF's texture space (origin at the image's top-left):
   // each primitive's vertices are its own in the flat mesh. Then v becomes 1 - v, facet's (and OpenGL's) bottom-left
   // origin, as OBJ, PLY and Assimp's readers give it, so a mesh's uvs mean the same whatever file it came from.
-  void append_uvs(int accessor, std::size_t count, const glm::mat3& uv_transform) {
-    if (accessor < 0) {
+  void append_uvs(const std::vector<float>& uv, std::size_t count, const glm::mat3& uv_transform) {
+    if (uv.empty()) {
       out_.uvs.resize(out_.positions.size(), glm::vec2(0.0f));
       return;
     }
     any_uvs_ = true;
-    const std::vector<float> uv = reader_.floats(accessor, 2, "TEXCOORD_0");
     for (std::size_t i = 0; i < count; ++i) {
       const glm::vec3 moved = uv_transform * glm::vec3(uv[2 * i], uv[2 * i + 1], 1.0f);
       out_.uvs.emplace_back(moved.x, 1.0f - moved.y);
     }
   }
 
-  void append_colors(int accessor, std::size_t count) {
-    if (accessor < 0) {
+  void append_colors(const std::vector<float>& c, int components, std::size_t count) {
+    if (c.empty()) {
       out_.colors.resize(out_.positions.size(), glm::vec4(1.0f));
       return;
     }
     any_colors_ = true;
-    const int type = reader_.model.accessors[static_cast<std::size_t>(accessor)].type;
-    const int components = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
-    const std::vector<float> c = reader_.floats(accessor, components, "COLOR_0");
+    const auto k = static_cast<std::size_t>(components);
     for (std::size_t i = 0; i < count; ++i)
-      out_.colors.emplace_back(c[components * i], c[components * i + 1], c[components * i + 2],
-                               components == 4 ? c[components * i + 3] : 1.0f);
+      out_.colors.emplace_back(c[k * i], c[k * i + 1], c[k * i + 2], components == 4 ? c[k * i + 3] : 1.0f);
   }
 
   const tinygltf::Model& model_;
@@ -440,6 +496,8 @@ Mesh load_gltf(const std::filesystem::path& path, std::string_view bytes, const 
   tinygltf::Model model;
   std::string error, warning;
   const std::string base = path.parent_path().string();
+  const std::optional<std::string> patched = without_draco_indices(bytes, is_gltf_binary(bytes));
+  if (patched) bytes = *patched;
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   const bool ok =
       is_gltf_binary(bytes)

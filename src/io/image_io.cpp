@@ -1,8 +1,9 @@
-// image_io.cpp - atomic PNG (stb_image_write) and .npy writers, and a PNG reader for tests.
+// image_io.cpp - atomic PNG (stb_image_write), .npy and OpenEXR writers, and a PNG reader for tests.
 #include "facet/image_io.hpp"
 
 #include <atomic>
 #include <bit>
+#include <cctype>
 #include <cerrno>
 #include <cstdio>
 #include <cstring>
@@ -15,6 +16,7 @@
 
 #include "facet/error.hpp"
 #include "facet/framebuffer.hpp"
+#include "io/exr.hpp"
 #include "io/file_util.hpp"
 
 // The one stb_image_write implementation in facet. stb_image's implementation lives in src/texture/texture.cpp;
@@ -134,26 +136,60 @@ std::vector<std::uint8_t> read_png(const std::filesystem::path& path, int& width
   return std::vector<std::uint8_t>(pixels.get(), pixels.get() + static_cast<std::size_t>(width) * height * 4);
 }
 
-void write_npy(const std::filesystem::path& path, int width, int height, std::span<const float> values) {
-  check_size(width, height, values.size(), 1, "npy array");
-  std::string header = "{'descr': '<f4', 'fortran_order': False, 'shape': (" + std::to_string(height) + ", " +
-                       std::to_string(width) + "), }";
+namespace {
+
+// NumPy .npy, version 1.0, C order, little-endian 4-byte elements; shape (height, width) or (height, width, channels).
+template <class T>
+void write_npy_words(const std::filesystem::path& path, const char* descr, int width, int height, int channels,
+                     std::span<const T> values) {
+  static_assert(sizeof(T) == 4);
+  if (channels < 1) throw std::invalid_argument("npy array: channel count " + std::to_string(channels));
+  check_size(width, height, values.size(), static_cast<std::size_t>(channels), "npy array");
+  std::string header = std::string("{'descr': '") + descr + "', 'fortran_order': False, 'shape': (" +
+                       std::to_string(height) + ", " + std::to_string(width);
+  if (channels > 1) header += ", " + std::to_string(channels);
+  header += "), }";
   // 10 bytes of magic, version and length precede the header; pad with spaces so the data starts at a multiple of
   // 64 bytes (what NumPy itself writes), ending the header with a newline.
   header.append(63 - (10 + header.size()) % 64, ' ');
   header += '\n';
-  std::vector<std::uint8_t> bytes;
-  bytes.reserve(10 + header.size() + values.size() * 4);
+  std::vector<std::uint8_t> bytes(10 + header.size() + values.size() * 4);
   const char magic[] = "\x93NUMPY\x01\x00";
-  bytes.insert(bytes.end(), magic, magic + 8);
-  bytes.push_back(static_cast<std::uint8_t>(header.size() & 0xff));
-  bytes.push_back(static_cast<std::uint8_t>(header.size() >> 8));
-  bytes.insert(bytes.end(), header.begin(), header.end());
-  for (const float v : values) {
+  std::memcpy(bytes.data(), magic, 8);
+  bytes[8] = static_cast<std::uint8_t>(header.size() & 0xff);
+  bytes[9] = static_cast<std::uint8_t>(header.size() >> 8);
+  std::memcpy(bytes.data() + 10, header.data(), header.size());
+  std::uint8_t* out = bytes.data() + 10 + header.size();
+  for (const T v : values) {
     const auto bits = std::bit_cast<std::uint32_t>(v);
-    for (int b = 0; b < 4; ++b) bytes.push_back(static_cast<std::uint8_t>(bits >> (8 * b)));  // little-endian
+    for (int b = 0; b < 4; ++b) *out++ = static_cast<std::uint8_t>(bits >> (8 * b));  // little-endian
   }
   write_file_atomically(path, bytes);
+}
+
+bool is_exr(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension == ".exr";
+}
+
+}  // namespace
+
+void write_npy(const std::filesystem::path& path, int width, int height, std::span<const float> values) {
+  write_npy_words(path, "<f4", width, height, 1, values);
+}
+
+void write_npy(const std::filesystem::path& path, int width, int height, int channels,
+               std::span<const std::uint32_t> values) {
+  write_npy_words(path, "<u4", width, height, channels, values);
+}
+
+void write_float_image(const std::filesystem::path& path, int width, int height, int channels,
+                       std::span<const float> values) {
+  if (!is_exr(path)) return write_npy_words(path, "<f4", width, height, channels, values);
+  if (channels < 1) throw std::invalid_argument("EXR image: channel count " + std::to_string(channels));
+  check_size(width, height, values.size(), static_cast<std::size_t>(channels), "EXR image");
+  write_file_atomically(path, encode_exr(width, height, channels, values));
 }
 
 }  // namespace facet

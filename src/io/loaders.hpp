@@ -31,6 +31,30 @@ bool is_gltf_binary(std::string_view bytes);
 // triangle, nothing after. Its header may begin with "solid" like an ASCII STL, so this is asked first.
 bool is_binary_stl(std::string_view bytes);
 
+// Numbers a mesh's triangles by the file's faces as they are appended, filling Mesh::face_ids only once some face
+// does not become exactly one triangle (a polygon, or a face dropped): until then the ids are the triangle indices.
+class FaceNumbering {
+ public:
+  // After appending the face's triangles; `triangles_before` is the triangle count before them.
+  void add_face(Mesh& mesh, std::size_t triangles_before) {
+    const std::size_t now = mesh.indices.size() / 3;
+    if (mesh.face_ids.empty()) {
+      if (face_ == triangles_before && now == triangles_before + 1) {
+        ++face_;
+        return;
+      }
+      mesh.face_ids.resize(triangles_before);
+      for (std::size_t t = 0; t < triangles_before; ++t) mesh.face_ids[t] = static_cast<std::uint32_t>(t);
+    }
+    mesh.face_ids.insert(mesh.face_ids.end(), now - triangles_before, face_++);
+  }
+  // A face that became no triangle still takes its number.
+  void drop_face() { ++face_; }
+
+ private:
+  std::uint32_t face_ = 0;
+};
+
 // Text from the file shortened to 200 characters, control characters replaced, fit for a one-line message.
 std::string printable(std::string_view s);
 

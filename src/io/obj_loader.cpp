@@ -141,9 +141,15 @@ class MeshBuilder {
       polygon.clear();
       for (std::size_t k = 0; k < corners; ++k) polygon.push_back(vertex_for(shape.indices[offset + k]));
       offset += corners;
-      if (corners < 3) continue;
+      // Faces are numbered as the file lists them, across groups and objects (tinyobj keeps no face of fewer than
+      // three corners, so those are not counted).
+      if (corners < 3) {
+        faces_.drop_face();
+        continue;
+      }
       const std::size_t before = mesh_.indices.size();
       triangulate_polygon(mesh_.positions, polygon, mesh_.indices);
+      faces_.add_face(mesh_, before / 3);
       const int id = f < shape.material_ids.size() ? shape.material_ids[f] : -1;
       const std::int32_t material = (id >= 0 && static_cast<std::size_t>(id) < material_count_) ? id : -1;
       face_materials_.insert(face_materials_.end(), (mesh_.indices.size() - before) / 3, material);
@@ -199,6 +205,7 @@ class MeshBuilder {
   bool all_normals_ = true, all_uvs_ = true;
   std::unordered_map<CornerKey, std::uint32_t, CornerKeyHash> index_;
   std::vector<std::int32_t> face_materials_;
+  FaceNumbering faces_;
   Mesh mesh_;
 };
 

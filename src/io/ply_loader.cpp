@@ -342,13 +342,18 @@ class BodyReader {
         polygon_.push_back(static_cast<std::uint32_t>(index));
       }
     }
+    const std::size_t before = mesh_.indices.size() / 3;
     if (polygon_.size() < 3) {
       ++dropped_;
-    } else if (polygon_.size() == 3) {
+      faces_.drop_face();
+      return;
+    }
+    if (polygon_.size() == 3) {
       mesh_.indices.insert(mesh_.indices.end(), polygon_.begin(), polygon_.end());
     } else {
       triangulate_polygon(mesh_.positions, polygon_, mesh_.indices);
     }
+    faces_.add_face(mesh_, before);
   }
 
   const ply::Header& header_;
@@ -357,6 +362,7 @@ class BodyReader {
   const std::string& source_;
   VertexPlan vertex_plan_;
   std::size_t face_list_;
+  FaceNumbering faces_;
   Mesh mesh_;
   std::vector<std::uint32_t> polygon_;  // reused for every face
   std::size_t dropped_ = 0;

@@ -42,6 +42,15 @@ void validate(const Mesh& mesh, const std::string& source) {
   const std::size_t triangles = mesh.triangle_count();
   check_per_triangle(mesh.face_colors, "face_colors", triangles, source);
   check_per_triangle(mesh.face_materials, "face_materials", triangles, source);
+  check_per_triangle(mesh.face_ids, "face_ids", triangles, source);
+  check_per_triangle(mesh.instance_ids, "instance_ids", triangles, source);
+  if (triangles >= kNoSurface)
+    throw InputError(source, std::to_string(triangles) + " triangles: more than 32-bit ids can number");
+  for (const auto* ids : {&mesh.face_ids, &mesh.instance_ids})
+    for (std::size_t t = 0; t < ids->size(); ++t)
+      if ((*ids)[t] == kNoSurface)
+        throw InputError(source,
+                         "triangle " + std::to_string(t) + " has the reserved id " + std::to_string(kNoSurface));
   for (std::size_t i = 0; i < mesh.indices.size(); ++i)
     if (mesh.indices[i] >= n)
       throw InputError(source, "index " + std::to_string(i) + " (triangle " + std::to_string(i / 3) + ") is " +

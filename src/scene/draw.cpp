@@ -14,16 +14,6 @@ const Material& default_material() {
   return material;
 }
 
-// Surfaces use "always" rather than no depth test when the depth test is off (painter's order or --no-depth): the
-// colours are the same, and the depth buffer still holds the visible surface for edges and depth output.
-RenderState surface_state(const SceneOptions& options) {
-  RenderState state;
-  state.cull = options.cull;
-  if (options.painter) state.order = DrawOrder::back_to_front;
-  if (options.painter || !options.depth_test) state.depth_func = DepthFunc::always;
-  return state;
-}
-
 struct GroupDraw {
   Renderer& renderer;
   Framebuffer& target;
@@ -56,10 +46,9 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
   const SceneOptions& options = *frame.options;
   const auto index = static_cast<std::size_t>(group.material);
   const Material& material = group.material >= 0 ? instance.mesh->materials[index] : default_material();
-  const SurfaceColor surface{options.color.value_or(material.diffuse),
-                             group.face_colors.empty() ? nullptr : group.face_colors.data(),
-                             group.material >= 0 ? prepared.textures[index] : nullptr,
-                             material.sampler.value_or(options.sampler)};
+  const SurfaceColor surface{
+      options.color.value_or(material.diffuse), group.face_colors.empty() ? nullptr : group.face_colors.data(),
+      group.material >= 0 ? prepared.textures[index] : nullptr, material.sampler.value_or(options.sampler)};
   const Shading shading = options.shading == Shading::automatic && material.unlit ? Shading::unlit : options.shading;
   switch (shading) {
     case Shading::automatic:
@@ -88,6 +77,14 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
 }
 
 }  // namespace
+
+RenderState surface_state(const SceneOptions& options) {
+  RenderState state;
+  state.cull = options.cull;
+  if (options.painter) state.order = DrawOrder::back_to_front;
+  if (options.painter || !options.depth_test) state.depth_func = DepthFunc::always;
+  return state;
+}
 
 float edge_depth_offset(const glm::mat4& clip_from_view, float distance, float near, float line_width,
                         int target_height, float radius) {

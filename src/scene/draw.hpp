@@ -21,6 +21,11 @@ inline float max_scale(const glm::mat4& m) {
   return std::max({glm::length(glm::vec3(m[0])), glm::length(glm::vec3(m[1])), glm::length(glm::vec3(m[2]))});
 }
 
+// The state surfaces draw with. With the depth test off (painter's order or --no-depth) they use "always" rather
+// than no depth test: the colours are the same, and the depth buffer still holds the visible surface for edges and
+// depth output.
+RenderState surface_state(const SceneOptions& options);
+
 void draw_instance(Renderer& renderer, Framebuffer& target, const FrameContext& frame, const Instance& instance,
                    const PreparedMesh& prepared);
 

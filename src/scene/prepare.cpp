@@ -77,10 +77,11 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
     std::int32_t material = has_face_materials ? mesh.face_materials[t] : -1;
     if (material < -1 || material >= static_cast<std::int32_t>(mesh.materials.size())) material = -1;
     auto [it, inserted] = group_of.try_emplace(material, out.groups.size());
-    if (inserted) out.groups.push_back({material, {}, {}, {}});
+    if (inserted) out.groups.push_back({material, {}, {}, {}, {}});
     TriangleGroup& g = out.groups[it->second];
     const std::uint32_t a = source.indices[3 * t], b = source.indices[3 * t + 1], c = source.indices[3 * t + 2];
     g.indices.insert(g.indices.end(), {a, b, c});
+    g.triangles.push_back(static_cast<std::uint32_t>(t));
     const bool in_range = a < n && b < n && c < n;
     g.face_normals.push_back(in_range ? face_normal(source.positions, a, b, c) : glm::vec3(0, 0, 1));
     if (has_face_colors) g.face_colors.push_back(mesh.face_colors[t]);

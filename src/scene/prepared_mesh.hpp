@@ -20,8 +20,9 @@ namespace facet::detail {
 struct TriangleGroup {
   std::int32_t material = -1;  // -1: the default material
   std::vector<std::uint32_t> indices;
-  std::vector<glm::vec3> face_normals;  // object space, unit length
-  std::vector<glm::vec4> face_colors;   // empty when the mesh has none (or has vertex colours, which win)
+  std::vector<std::uint32_t> triangles;  // the mesh's index of each triangle of the group
+  std::vector<glm::vec3> face_normals;   // object space, unit length
+  std::vector<glm::vec4> face_colors;    // empty when the mesh has none (or has vertex colours, which win)
 };
 
 struct PreparedMesh {

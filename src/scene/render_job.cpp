@@ -51,8 +51,27 @@ glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback) {
   return {look.background.value_or(fallback), look.transparent_background ? 0.0f : 1.0f};
 }
 
+namespace {
+
+// Per pixel: the file's instance (node) id and face id of the triangle seen, kNoSurface for both where empty.
+std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfaces) {
+  std::vector<std::uint32_t> out(2 * surfaces.instance.size(), kNoSurface);
+  for (std::size_t p = 0; p < surfaces.instance.size(); ++p) {
+    if (surfaces.instance[p] == kNoSurface) continue;
+    const Mesh& mesh = *scene.instances()[surfaces.instance[p]].mesh;
+    out[2 * p] = mesh.instance_id(surfaces.triangle[p]);
+    out[2 * p + 1] = mesh.face_id(surfaces.triangle[p]);
+  }
+  return out;
+}
+
+}  // namespace
+
 void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
                     const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs) {
+  const bool surface_pass = !outputs.normal.empty() || !outputs.ids.empty();
+  if (surface_pass && (options.wireframe || options.edges))
+    throw std::invalid_argument("normal and id outputs show surfaces: not with wireframe or edges");
   renderer.clear(target, clear, 1.0f);
   scene.render(renderer, target, view, options);
   renderer.finish(target);
@@ -66,8 +85,22 @@ void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const
     const bool needs_depth = !outputs.depth.empty() || !outputs.mask.empty();
     const std::vector<float> depth = needs_depth ? linear_depth(target, view.clip_from_view) : std::vector<float>{};
     if (!outputs.depth.empty()) {
-      write_npy(outputs.depth, target.width(), target.height(), depth);
+      write_float_image(outputs.depth, target.width(), target.height(), 1, depth);
       written.push_back(outputs.depth);
+    }
+    if (surface_pass) {
+      Framebuffer id_target(target.width(), target.height());
+      const SurfaceIds surfaces = scene.render_ids(renderer, id_target, view, options);
+      if (!outputs.normal.empty()) {
+        const std::vector<glm::vec3> normals = scene.camera_normals(surfaces, view);
+        write_float_image(outputs.normal, target.width(), target.height(), 3,
+                          std::span(&normals.data()->x, 3 * normals.size()));
+        written.push_back(outputs.normal);
+      }
+      if (!outputs.ids.empty()) {
+        write_npy(outputs.ids, target.width(), target.height(), 2, file_ids(scene, surfaces));
+        written.push_back(outputs.ids);
+      }
     }
     if (!outputs.mask.empty()) {
       std::vector<std::uint8_t> mask(depth.size());
@@ -98,8 +131,8 @@ bool has_area(const Mesh& mesh) {
 }  // namespace
 
 void render(const RenderJob& job, Renderer& renderer) {
-  const std::filesystem::path* paths[] = {&job.outputs.color, &job.outputs.depth, &job.outputs.mask,
-                                          &job.outputs.camera};
+  const std::filesystem::path* paths[] = {&job.outputs.color, &job.outputs.depth, &job.outputs.normal,
+                                          &job.outputs.ids,   &job.outputs.mask,  &job.outputs.camera};
   for (std::size_t i = 0; i < std::size(paths); ++i)
     for (std::size_t k = i + 1; k < std::size(paths); ++k)
       if (!paths[i]->empty() && paths[i]->lexically_normal() == paths[k]->lexically_normal())
@@ -112,7 +145,9 @@ void render(const RenderJob& job, Renderer& renderer) {
   apply_look_color(*mesh, job.look);
   const Framing framing = framing_of(*mesh, job.model.string());
   const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
-  const View view = make_view(job.camera, framing, aspect);
+  const View view = job.camera.file_camera
+                        ? file_camera_view(*mesh, *job.camera.file_camera, framing, aspect, job.model.string())
+                        : make_view(job.camera, framing, aspect);
   const glm::vec4 clear = clear_color(job.look, kDefaultBackground);
   const SceneOptions options = scene_options(job.look, view.view_from_world, Shading::automatic, glm::vec3(clear));
 

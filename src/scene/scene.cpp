@@ -3,19 +3,10 @@
 
 #include <algorithm>
 #include <stdexcept>
-#include <unordered_map>
 
-#include "scene/draw.hpp"
-#include "scene/prepared_mesh.hpp"
+#include "scene/scene_impl.hpp"
 
 namespace facet {
-
-struct Scene::Impl {
-  std::vector<Instance> instances;
-  // Keyed by address: the instances hold the meshes alive, so an address cannot be reused while it is a key.
-  std::unordered_map<const Mesh*, detail::PreparedMesh> prepared;
-  detail::TextureCache textures;
-};
 
 Scene::Scene() : impl_(std::make_unique<Impl>()) {}
 Scene::~Scene() = default;
@@ -49,36 +40,44 @@ LightBlock make_light_block(const SceneOptions& options) {
   return block;
 }
 
-std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options) {
-  detail::FrameContext frame{&view, &options, view.clip_from_view * view.view_from_world,
-                             glm::vec3(glm::inverse(view.view_from_world)[3]), make_light_block(options)};
+detail::FrameContext detail::frame_context(const View& view, const SceneOptions& options) {
+  return {&view, &options, view.clip_from_view * view.view_from_world, glm::vec3(glm::inverse(view.view_from_world)[3]),
+          make_light_block(options)};
+}
 
+std::vector<std::size_t> Scene::Impl::visible(const detail::FrameContext& frame) const {
   struct Visible {
     std::size_t instance;
     float view_z;  // of the bounding sphere's centre; more negative is farther
   };
-  std::vector<Visible> visible;
-  for (std::size_t i = 0; i < impl_->instances.size(); ++i) {
-    const Instance& instance = impl_->instances[i];
-    const detail::PreparedMesh& prepared = impl_->prepared.at(instance.mesh.get());
-    if (prepared.vertices.empty() || (prepared.groups.empty() && prepared.edge_indices.empty())) continue;
-    const glm::vec4 center = instance.world_from_object * glm::vec4(prepared.center, 1.0f);
-    const float radius = prepared.radius * detail::max_scale(instance.world_from_object);
+  std::vector<Visible> found;
+  for (std::size_t i = 0; i < instances.size(); ++i) {
+    const detail::PreparedMesh& mesh = prepared_of(instances[i]);
+    if (mesh.vertices.empty() || (mesh.groups.empty() && mesh.edge_indices.empty())) continue;
+    const glm::vec4 center = instances[i].world_from_object * glm::vec4(mesh.center, 1.0f);
+    const float radius = mesh.radius * detail::max_scale(instances[i].world_from_object);
     if (!sphere_in_frustum(frame.clip_from_world, glm::vec3(center), radius)) continue;
-    visible.push_back({i, (view.view_from_world * center).z});
+    found.push_back({i, (frame.view->view_from_world * center).z});
   }
   // The painter's algorithm sorts triangles within a draw; sorting the instances too extends it across draws.
   // Ties keep the order of addition; std::sort with that tie-break needs no temporary buffer, unlike stable_sort.
-  if (options.painter)
-    std::sort(visible.begin(), visible.end(), [](const Visible& a, const Visible& b) {
+  if (frame.options->painter)
+    std::sort(found.begin(), found.end(), [](const Visible& a, const Visible& b) {
       return a.view_z < b.view_z || (a.view_z == b.view_z && a.instance < b.instance);
     });
+  std::vector<std::size_t> order(found.size());
+  for (std::size_t k = 0; k < found.size(); ++k) order[k] = found[k].instance;
+  return order;
+}
 
-  for (const Visible& v : visible) {
-    const Instance& instance = impl_->instances[v.instance];
-    detail::draw_instance(renderer, target, frame, instance, impl_->prepared.at(instance.mesh.get()));
+std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options) {
+  const detail::FrameContext frame = detail::frame_context(view, options);
+  const std::vector<std::size_t> order = impl_->visible(frame);
+  for (const std::size_t i : order) {
+    const Instance& instance = impl_->instances[i];
+    detail::draw_instance(renderer, target, frame, instance, impl_->prepared_of(instance));
   }
-  return visible.size();
+  return order.size();
 }
 
 bool sphere_in_frustum(const glm::mat4& clip_from_world, glm::vec3 center, float radius) {

@@ -165,6 +165,41 @@ View make_view(const CameraSpec& spec, const Framing& framing, float aspect) {
   return view;
 }
 
+View file_camera_view(const Mesh& mesh, int index, const Framing& framing, float aspect, const std::string& source) {
+  if (index < 0 || static_cast<std::size_t>(index) >= mesh.cameras.size())
+    throw std::invalid_argument("camera index " + std::to_string(index) + ": the model has " +
+                                std::to_string(mesh.cameras.size()) + " camera(s)");
+  const ModelCamera& camera = mesh.cameras[static_cast<std::size_t>(index)];
+  const std::string which = "camera " + std::to_string(index);
+  const auto fail = [&](const std::string& problem) -> void { throw InputError(source, which + ": " + problem); };
+  if (!(camera.znear > 0.0f) || !std::isfinite(camera.znear)) fail("znear must be positive");
+  if (camera.zfar && !(*camera.zfar > camera.znear && std::isfinite(*camera.zfar)))
+    fail("zfar must be greater than znear");
+  View view;
+  view.view_from_world = glm::inverse(camera.world_from_camera);
+  const float det = glm::determinant(glm::mat3(camera.world_from_camera));
+  if (!(std::abs(det) > 0.5f) || !std::isfinite(glm::length(view.view_from_world[3])))
+    fail("its node's transform is singular or not finite");
+  view.near = camera.znear;
+  if (camera.zfar) {
+    view.far = *camera.zfar;
+  } else {
+    // An infinite far plane: the model's far side bounds what is drawn, so the depth range stops there.
+    const glm::vec3 center(view.view_from_world * glm::vec4(framing.center, 1.0f));
+    view.far = std::max(-center.z + 1.05f * framing.radius, 2.0f * view.near);
+  }
+  // The file's aspect ratio is the one it was framed for; the image's own keeps pixels square, as glTF viewers do.
+  if (camera.perspective) {
+    if (!(camera.yfov_radians > 0.0f && camera.yfov_radians < 3.14159f)) fail("yfov must lie between 0 and pi");
+    view.clip_from_view = perspective(camera.yfov_radians, aspect, view.near, view.far);
+  } else {
+    const float half_h = camera.magnification.y, half_w = half_h * aspect;
+    if (!(half_h > 0.0f) || !std::isfinite(half_w)) fail("ymag must be positive");
+    view.clip_from_view = ortho(-half_w, half_w, -half_h, half_h, view.near, view.far);
+  }
+  return view;
+}
+
 CameraModel camera_model(const View& view, int width, int height) {
   CameraModel model;
   const glm::mat4& p = view.clip_from_view;

@@ -110,6 +110,8 @@ expect resolution_too_big 2 render "$box" --resolution 100000,10
 expect resolution_negative 2 render "$box" --resolution=-5,10
 expect resolution_fraction 2 render "$box" --resolution 64.5,48
 expect position_two_numbers 2 render "$box" --camera-position 1,2
+expect camera_index_none 2 render "$box" --camera-index 0
+expect ids_of_wireframe 2 render "$box" --wireframe --output-ids "$scratch/ids_of_wireframe.npy"
 expect position_text 2 render "$box" --camera-position 1,2,x
 expect position_nan 2 render "$box" --camera-position 1,nan,3
 expect focal_point_empty 2 render "$box" --camera-focal-point ""

@@ -11,7 +11,7 @@ models=/usr/share/assimp/models/OBJ
 ply_models=/usr/share/assimp/models/PLY
 stl_models=/usr/share/assimp/models/STL
 mkdir -p "$scratch"
-rm -f "$scratch"/*.png "$scratch"/*.npy
+rm -f "$scratch"/*.png "$scratch"/*.npy "$scratch"/*.exr
 
 # PNG / .npy checks: the shared PNG reader (lib/png.py) followed by this script's commands.
 check=$scratch/check.py
@@ -181,6 +181,17 @@ else
   bad "mask and camera" "$(head -n 2 "$scratch/mc.log")"
 fi
 
+# --output-normal and --output-ids: .exr by extension, ids as uint32 (H, W, 2) .npy.
+if "$facet" render "$models/box.obj" --resolution 64,48 --output "$scratch/ni.png" --output-depth "$scratch/ni_d.exr" \
+  --output-normal "$scratch/ni_n.exr" --output-ids "$scratch/ni_i.npy" 2>"$scratch/ni.log" &&
+  [ "$(head -c 4 "$scratch/ni_n.exr" | od -An -tx1 | tr -d ' ')" = 762f3101 ] &&
+  [ "$(head -c 4 "$scratch/ni_d.exr" | od -An -tx1 | tr -d ' ')" = 762f3101 ] &&
+  head -c 128 "$scratch/ni_i.npy" | grep -aq "'descr': '<u4', 'fortran_order': False, 'shape': (48, 64, 2)"; then
+  ok "normal and ids"
+else
+  bad "normal and ids" "$(head -n 2 "$scratch/ni.log")"
+fi
+
 # facet info: counts and bounds, one item per line.
 if info=$("$facet" info "$models/box.obj" 2>"$scratch/info.log") &&
   grep -qx 'vertices: 8' <<<"$info" && grep -qx 'triangles: 12' <<<"$info" && grep -qx 'edges: 18' <<<"$info" &&
@@ -221,5 +232,9 @@ else
 fi
 run gltf_binary image 160 120 inside -- render "$gltf" --resolution 160,120
 run collada image 160 120 inside -- render /usr/share/assimp/models/Collada/duck.dae --resolution 160,120
+# Through the file's own perspective and orthographic cameras.
+cameras=/usr/share/assimp/models/glTF2/cameras/Cameras.gltf
+run camera_index_0 image 160 120 -- render "$cameras" --camera-index 0 --resolution 160,120
+run camera_index_1 image 160 120 -- render "$cameras" --camera-index 1 --resolution 160,120
 
 finish

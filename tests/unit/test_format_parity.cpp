@@ -12,6 +12,7 @@
 #include "facet/image_io.hpp"
 #include "facet/model_io.hpp"
 #include "facet/render_job.hpp"
+#include "support/base64.hpp"
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
@@ -23,19 +24,6 @@ namespace fs = std::filesystem;
 // A square pyramid with its vertices numbered in order of first use, so STL's welding numbers them alike.
 const std::vector<glm::vec3> kPositions = {{0, 1, 0}, {-1, 0, 1}, {1, 0, 1}, {1, 0, -1}, {-1, 0, -1}};
 const std::vector<std::uint32_t> kIndices = {0, 1, 2, 0, 2, 3, 0, 3, 4, 0, 4, 1, 1, 4, 3, 1, 3, 2};
-
-std::string base64(const std::string& bytes) {
-  constexpr char kDigits[] = "ABCDEFGHIJKLMNOPQRSTUVWXYZabcdefghijklmnopqrstuvwxyz0123456789+/";
-  std::string out;
-  for (std::size_t i = 0; i < bytes.size(); i += 3) {
-    const std::size_t count = std::min<std::size_t>(3, bytes.size() - i);
-    std::uint32_t chunk = 0;
-    for (std::size_t k = 0; k < 3; ++k)
-      chunk = chunk << 8 | (k < count ? static_cast<unsigned char>(bytes[i + k]) : 0u);
-    for (std::size_t k = 0; k < 4; ++k) out += k <= count ? kDigits[chunk >> (18 - 6 * k) & 63] : '=';
-  }
-  return out;
-}
 
 std::string obj() {
   std::string text;
@@ -85,7 +73,7 @@ std::string gltf() {
          positions + R"(},{"buffer":0,"byteOffset":)" + positions + R"(,"byteLength":)" + indices +
          R"(}],)"
          R"("buffers":[{"byteLength":)" +
-         std::to_string(buffer.size()) + R"(,"uri":"data:application/octet-stream;base64,)" + base64(buffer) +
+         std::to_string(buffer.size()) + R"(,"uri":"data:application/octet-stream;base64,)" + test::base64(buffer) +
          R"("}]})";
 }
 

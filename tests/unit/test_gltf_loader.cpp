@@ -1,13 +1,15 @@
 // test_gltf_loader.cpp - glTF 2.0 through load_model(): the three forms of one file, node transforms, real files.
 #include <gtest/gtest.h>
 
-#include <filesystem>
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <nlohmann/json.hpp>
 #include <string>
 
 #include "facet/error.hpp"
+#include "facet/mesh.hpp"
 #include "facet/model_io.hpp"
 #include "facet/texture.hpp"
 #include "support/load_problem.hpp"
@@ -70,13 +72,58 @@ TEST(GltfLoader, MalformedFilesAreRefusedWithTheirProblem) {
   expect_input_error(dir / "cut.glb", "");
 }
 
+// The triangles a glTF file's default scene declares: its nodes' meshes' index counts / 3, node by node.
+std::size_t declared_triangles(const nlohmann::json& gltf, int node) {
+  const nlohmann::json& n = gltf["nodes"][static_cast<std::size_t>(node)];
+  std::size_t triangles = 0;
+  if (n.contains("mesh"))
+    for (const nlohmann::json& p : gltf["meshes"][n["mesh"].get<std::size_t>()]["primitives"])
+      triangles += gltf["accessors"][p["indices"].get<std::size_t>()]["count"].get<std::size_t>() / 3;
+  if (n.contains("children"))
+    for (const nlohmann::json& child : n["children"]) triangles += declared_triangles(gltf, child.get<int>());
+  return triangles;
+}
+
+// KHR_draco_mesh_compression: the Draco copy of 2CylinderEngine decodes to the triangles its accessors declare
+// (its encoder dropped the plain file's degenerate ones), its positions within Draco's quantization of the plain
+// file's.
+TEST(GltfLoader, DracoMeshesDecodeToThePlainFilesGeometry) {
+  const fs::path file = kGltf / "draco/2CylinderEngine.gltf";
+  const Mesh draco = load_model(file);
+  const Mesh plain = load_model(kGltf / "2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
+  std::ifstream in(file);
+  const nlohmann::json gltf = nlohmann::json::parse(in);
+  std::size_t declared = 0;
+  for (const nlohmann::json& root : gltf["scenes"][gltf["scene"].get<std::size_t>()]["nodes"])
+    declared += declared_triangles(gltf, root.get<int>());
+  EXPECT_EQ(draco.triangle_count(), declared);
+  EXPECT_LT(draco.triangle_count(), plain.triangle_count());
+  EXPECT_EQ(draco.normals.size(), draco.positions.size());
+  const Bounds a = bounds(draco), b = bounds(plain);
+  const float tolerance = 1e-3f * glm::length(b.max - b.min);
+  for (int axis = 0; axis < 3; ++axis) {
+    EXPECT_NEAR(a.min[axis], b.min[axis], tolerance);
+    EXPECT_NEAR(a.max[axis], b.max[axis], tolerance);
+  }
+  // A compressed view that is not Draco data is refused, naming the extension's problem.
+  const fs::path dir = test::scratch_dir("gltf");
+  std::ofstream(dir / "not_draco.gltf")
+      << R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"extensions":{"KHR_draco_mesh_compression":)"
+         R"({"bufferView":0,"attributes":{"POSITION":0}}}}]}],)"
+         R"("accessors":[{"componentType":5126,"count":3,"type":"VEC3"}],)"
+         R"("bufferViews":[{"buffer":0,"byteLength":8}],)"
+         R"("buffers":[{"byteLength":8,"uri":"data:application/octet-stream;base64,AAAAAAAAAAA="}]})";
+  expect_input_error(dir / "not_draco.gltf", "Draco");
+}
+
 // KHR_texture_transform moves TEXCOORD_0 by offset, rotation and scale (T * R * S, the extension's definition);
 // glTF samplers become the materials' filtering and wrapping. The same file without the extension is the baseline.
 TEST(GltfLoader, TextureTransformsAndSamplersFollowTheFile) {
   const fs::path source = kGltf / "textureTransform";
   const fs::path dir = test::scratch_dir("gltf_transform");
-  for (const char* name : {"TextureTransformTest.bin", "Arrow.png", "Correct.png", "Error.png", "NotSupported.png",
-                           "UV.png"})
+  for (const char* name :
+       {"TextureTransformTest.bin", "Arrow.png", "Correct.png", "Error.png", "NotSupported.png", "UV.png"})
     fs::copy_file(source / name, dir / name, fs::copy_options::overwrite_existing);
   std::ifstream in(source / "TextureTransformTest.gltf");
   std::string json((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
@@ -97,7 +144,8 @@ TEST(GltfLoader, TextureTransformsAndSamplersFollowTheFile) {
     float rotation = 0.0f;
     glm::vec2 scale{1.0f};
   };
-  const Expected expected[6] = {{{0.5f, 0.0f}}, {{0.0f, 0.5f}}, {{0.5f, 0.5f}}, {{}, 0.39269908169872414f},
+  const Expected expected[6] = {{{0.5f, 0.0f}},           {{0.0f, 0.5f}},
+                                {{0.5f, 0.5f}},           {{}, 0.39269908169872414f},
                                 {{}, 0.0f, {1.5f, 1.5f}}, {{-0.2f, -0.1f}, 0.3f, {1.5f, 1.5f}}};
   std::size_t checked = 0;
   for (std::size_t t = 0; t < transformed.face_materials.size(); ++t) {
@@ -132,7 +180,8 @@ TEST(GltfLoader, TextureTransformsAndSamplersFollowTheFile) {
 // in extensionsRequired; the file's other material stays lit.
 TEST(GltfLoader, UnlitMaterialsAreMarked) {
   const fs::path dir = test::scratch_dir("gltf_unlit");
-  std::ofstream(dir / "unlit.gltf") << R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_materials_unlit"],"extensionsRequired":["KHR_materials_unlit"],"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],"materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.2,0.6,0.4,1]},"extensions":{"KHR_materials_unlit":{}}},{}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0},{"attributes":{"POSITION":0},"material":1}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
+  std::ofstream(dir / "unlit.gltf")
+      << R"({"asset":{"version":"2.0"},"extensionsUsed":["KHR_materials_unlit"],"extensionsRequired":["KHR_materials_unlit"],"buffers":[{"byteLength":36,"uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],"materials":[{"pbrMetallicRoughness":{"baseColorFactor":[0.2,0.6,0.4,1]},"extensions":{"KHR_materials_unlit":{}}},{}],"meshes":[{"primitives":[{"attributes":{"POSITION":0},"material":0},{"attributes":{"POSITION":0},"material":1}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0})";
   const Mesh mesh = load_model(dir / "unlit.gltf");
   ASSERT_EQ(mesh.materials.size(), 2u);
   EXPECT_TRUE(mesh.materials[0].unlit);

@@ -245,7 +245,7 @@ TEST(Render, MaskDepthCameraAndImageAgree) {
   job.width = 48;
   job.height = 40;
   job.look.background = glm::vec3(0.0f, 1.0f, 0.0f);
-  job.outputs = {dir / "c.png", dir / "d.npy", dir / "m.png", dir / "camera.json"};
+  job.outputs = {.color = dir / "c.png", .depth = dir / "d.npy", .mask = dir / "m.png", .camera = dir / "camera.json"};
   Renderer renderer(2);
   render(job, renderer);
   int w = 0, h = 0;

@@ -1,0 +1,150 @@
+// surface_ids.cpp - the id pass (which instance and triangle each pixel shows) and the normals read back from it.
+#include <algorithm>
+#include <cmath>
+#include <stdexcept>
+#include <utility>
+
+#include "facet/shaders/stock.hpp"
+#include "scene/scene_impl.hpp"
+
+namespace facet {
+namespace {
+
+// A 32-bit key as the RGBA8 colour that packs back to exactly it: each byte b becomes b / 255, which
+// pack_channel rounds back to b (interpolating the white vertex colour leaves the product within 1e-7 of it).
+glm::vec4 color_of_key(std::uint32_t key) {
+  return glm::vec4(static_cast<float>(key & 0xff), static_cast<float>((key >> 8) & 0xff),
+                   static_cast<float>((key >> 16) & 0xff), static_cast<float>(key >> 24)) /
+         255.0f;
+}
+
+}  // namespace
+
+SurfaceIds Scene::render_ids(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options) {
+  const detail::FrameContext frame = detail::frame_context(view, options);
+  const std::vector<std::size_t> order = impl_->visible(frame);
+
+  // Keys number the drawn triangles: instance k's start at first_key[k], in its groups' drawing order.
+  std::vector<std::uint32_t> first_key, key_instance, key_triangle;
+  std::size_t keys = 0;
+  for (const std::size_t i : order)
+    for (const detail::TriangleGroup& group : impl_->prepared_of(impl_->instances[i]).groups)
+      keys += group.triangles.size();
+  if (keys >= kNoSurface) throw std::length_error("render_ids: more triangles than 32-bit ids can number");
+  key_instance.reserve(keys);
+  key_triangle.reserve(keys);
+
+  renderer.clear(target, glm::vec4(1.0f), 1.0f);  // every byte 0xff: kNoSurface
+  const RenderState state = detail::surface_state(options);
+  std::vector<MeshVertex> white;
+  std::vector<glm::vec4> key_colors;
+  for (const std::size_t i : order) {
+    const Instance& instance = impl_->instances[i];
+    const detail::PreparedMesh& prepared = impl_->prepared_of(instance);
+    // Positions only: the vertex colour white and no texture leave the face colour, the key, as the albedo.
+    white.resize(prepared.vertices.size());
+    std::transform(prepared.vertices.begin(), prepared.vertices.end(), white.begin(),
+                   [](const MeshVertex& v) { return MeshVertex{v.position}; });
+    const glm::mat4 clip_from_object = frame.clip_from_world * instance.world_from_object;
+    for (const detail::TriangleGroup& group : prepared.groups) {
+      key_colors.clear();
+      for (const std::uint32_t t : group.triangles) {
+        key_colors.push_back(color_of_key(static_cast<std::uint32_t>(key_instance.size())));
+        key_instance.push_back(static_cast<std::uint32_t>(i));
+        key_triangle.push_back(t);
+      }
+      const UnlitShader shader{clip_from_object, SurfaceColor{glm::vec4(1.0f), key_colors.data(), nullptr, {}}};
+      renderer.draw(target, shader, std::span<const MeshVertex>(white), std::span<const std::uint32_t>(group.indices),
+                    state);
+    }
+  }
+  renderer.finish(target);
+
+  SurfaceIds ids{target.width(), target.height(), {}, {}};
+  const std::size_t pixels = static_cast<std::size_t>(ids.width) * ids.height;
+  ids.instance.assign(pixels, kNoSurface);
+  ids.triangle.assign(pixels, kNoSurface);
+  const std::span<const std::uint32_t> color = std::as_const(target).color();
+  for (std::size_t p = 0; p < pixels; ++p) {
+    const std::uint32_t key = color[p];
+    if (key >= key_instance.size()) continue;
+    ids.instance[p] = key_instance[key];
+    ids.triangle[p] = key_triangle[key];
+  }
+  return ids;
+}
+
+std::vector<glm::vec3> Scene::camera_normals(const SurfaceIds& ids, const View& view) const {
+  const std::size_t pixels = static_cast<std::size_t>(ids.width) * ids.height;
+  if (ids.instance.size() != pixels || ids.triangle.size() != pixels)
+    throw std::invalid_argument("camera_normals: ids do not match their size");
+  std::vector<glm::vec3> normals(pixels, glm::vec3(0.0f));
+
+  // Each mesh triangle's corners among the prepared vertices (whose normals are the ones shaded with).
+  std::unordered_map<const detail::PreparedMesh*, std::vector<const std::uint32_t*>> corners_of;
+  const auto corners = [&](const detail::PreparedMesh& prepared) -> const std::vector<const std::uint32_t*>& {
+    auto [it, added] = corners_of.try_emplace(&prepared);
+    if (added)
+      for (const detail::TriangleGroup& group : prepared.groups) {
+        for (std::size_t k = 0; k < group.triangles.size(); ++k) {
+          if (it->second.size() <= group.triangles[k]) it->second.resize(group.triangles[k] + 1, nullptr);
+          it->second[group.triangles[k]] = &group.indices[3 * k];
+        }
+      }
+    return it->second;
+  };
+
+  const glm::mat4 view_from_clip = glm::inverse(view.clip_from_view);
+  const auto view_point = [&](float ndc_x, float ndc_y, float ndc_z) {
+    const glm::vec4 p = view_from_clip * glm::vec4(ndc_x, ndc_y, ndc_z, 1.0f);
+    return glm::vec3(p) / p.w;
+  };
+  // The instance of the previous pixel, whose matrices and corner table are at hand.
+  std::uint32_t current = kNoSurface;
+  const detail::PreparedMesh* prepared = nullptr;
+  const std::vector<const std::uint32_t*>* table = nullptr;
+  glm::mat4 view_from_object{1.0f};
+  glm::mat3 normal_from_object{1.0f};
+  for (int y = 0; y < ids.height; ++y) {
+    const float ndc_y = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(ids.height);
+    for (int x = 0; x < ids.width; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y) * ids.width + x;
+      if (ids.instance[p] >= impl_->instances.size()) continue;
+      if (ids.instance[p] != current) {
+        current = ids.instance[p];
+        const Instance& instance = impl_->instances[current];
+        prepared = &impl_->prepared_of(instance);
+        table = &corners(*prepared);
+        view_from_object = view.view_from_world * instance.world_from_object;
+        normal_from_object = glm::transpose(glm::inverse(glm::mat3(view_from_object)));
+      }
+      if (ids.triangle[p] >= table->size() || !(*table)[ids.triangle[p]]) continue;
+      const std::uint32_t* corner = (*table)[ids.triangle[p]];
+      glm::vec3 q[3], n[3];
+      for (int k = 0; k < 3; ++k) {
+        const MeshVertex& v = prepared->vertices[corner[k]];
+        q[k] = glm::vec3(view_from_object * glm::vec4(v.position, 1.0f));
+        n[k] = v.normal;
+      }
+      // The pixel centre's ray (through the near and far planes, so oblique and orthographic views work too)
+      // meets the triangle's plane at barycentric (1 - u - v, u, v) (Moller-Trumbore, without the range test).
+      const float ndc_x = 2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(ids.width) - 1.0f;
+      const glm::vec3 origin = view_point(ndc_x, ndc_y, -1.0f), direction = view_point(ndc_x, ndc_y, 1.0f) - origin;
+      const glm::vec3 e1 = q[1] - q[0], e2 = q[2] - q[0], h = glm::cross(direction, e2);
+      const float det = glm::dot(e1, h);
+      float u = 1.0f / 3.0f, w = 1.0f / 3.0f;
+      if (std::abs(det) > 0.0f && std::isfinite(det)) {
+        const glm::vec3 s = origin - q[0];
+        u = std::clamp(glm::dot(s, h) / det, 0.0f, 1.0f);
+        w = std::clamp(glm::dot(direction, glm::cross(s, e1)) / det, 0.0f, 1.0f - u);
+      }
+      const glm::vec3 object_normal = (1.0f - u - w) * n[0] + u * n[1] + w * n[2];
+      const glm::vec3 normal = normal_from_object * object_normal;
+      const float length = glm::length(normal);
+      normals[p] = length > 0.0f && std::isfinite(length) ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
+    }
+  }
+  return normals;
+}
+
+}  // namespace facet
