@@ -16,7 +16,7 @@ python3 - "$commands" "$clang" > "$build/clang_check.commands" <<'PY'
 import json, shlex, sys
 entries, clang = json.load(open(sys.argv[1])), sys.argv[2]
 for e in entries:
-    if "/tests/" in e["file"] and not e["file"].endswith("test_shaders.cpp"):
+    if "/tests/" in e["file"] and not e["file"].endswith("support/test_shaders.cpp"):
         continue
     args = e.get("arguments") or shlex.split(e["command"])
     out, skip = [clang], False
