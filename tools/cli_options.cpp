@@ -192,7 +192,8 @@ void add_look_options(CLI::App& app, LookArgs& args) {
   app.add_flag("--edges", args.edges, "Draw the edges over the surfaces");
   add_enum_option<CullMode>(
       app, "--culling", {{"back", CullMode::back}, {"front", CullMode::front}, {"none", CullMode::none}},
-      [&args](CullMode c) { args.culling = c; }, "Face culling (default none)");
+      [&args](CullMode c) { args.culling = c; },
+      "Face culling (default: none, but glTF's single-sided materials cull back faces)");
   app.add_flag("--no-depth-test", args.no_depth_test, "Draw in submission order without the depth test");
   app.add_flag("--painter", args.painter, "Painter's algorithm: sort triangles back to front, no depth test");
   const auto color_check = [](const std::string& name) {
@@ -266,7 +267,7 @@ LookSpec look_spec(const LookArgs& args) {
   look.edges = args.edges;
   look.depth_test = !args.no_depth_test;
   look.painter = args.painter;
-  look.cull = args.culling.value_or(CullMode::none);
+  look.cull = args.culling;
   if (!args.background_color.empty()) look.background = parse_color(args.background_color, "--background-color");
   look.transparent_background = args.no_background;
   if (!args.color.empty()) look.color = parse_color(args.color, "--color");

@@ -19,6 +19,12 @@ namespace facet {
 
 class Texture;
 
+// How a material's alpha is used (glTF alphaMode; the other readers give opaque).
+enum class AlphaMode {
+  opaque,  // alpha ignored: the surface covers what is behind it
+  blend,   // alpha-blended over what is behind it, after the opaque surfaces, farthest first
+};
+
 struct Material {
   std::string name;
   glm::vec4 diffuse{1, 1, 1, 1};  // OBJ: Kd and, as alpha, the dissolve d
@@ -31,6 +37,10 @@ struct Material {
   std::optional<Sampler> sampler{};
   // Drawn with its colour alone, no lighting, when the shading is Shading::automatic (glTF KHR_materials_unlit).
   bool unlit = false;
+  AlphaMode alpha_mode = AlphaMode::opaque;
+  // Seen from both sides. false (glTF doubleSided false): back faces are culled when the look leaves culling to
+  // the model (SceneOptions::cull_single_sided).
+  bool double_sided = true;
 };
 
 // A camera the model file defines (glTF), placed in the world by its node. Checked when it is used (file_camera_view

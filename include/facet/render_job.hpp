@@ -15,15 +15,17 @@ namespace facet {
 
 // The look of a render. Unset fields take the defaults of `facet render`.
 struct LookSpec {
-  std::optional<Shading> shading;       // default: the caller's (the model's own look for `facet render`)
-  bool wireframe = false;               // draw only the edges
-  bool edges = false;                   // draw the edges over the surfaces
-  bool depth_test = true;               // off: draw in submission order
-  bool painter = false;                 // sort triangles back to front instead of depth-testing them
-  CullMode cull = CullMode::none;       // a model viewer's default: open and single-sided meshes show from both sides
-  std::optional<glm::vec3> background;  // RGB in 0..1; default: the caller's
-  bool transparent_background = false;  // alpha 0 where nothing is drawn (RGBA PNG)
-  std::optional<glm::vec3> color;       // replaces every material, vertex and face colour
+  std::optional<Shading> shading;  // default: the caller's (the model's own look for `facet render`)
+  bool wireframe = false;          // draw only the edges
+  bool edges = false;              // draw the edges over the surfaces
+  bool depth_test = true;          // off: draw in submission order
+  bool painter = false;            // sort triangles back to front instead of depth-testing them
+  // Unset: the model's own, as a model viewer does: none, so open meshes show from both sides, except for the back
+  // faces of materials marked single-sided (glTF doubleSided false).
+  std::optional<CullMode> cull;
+  std::optional<glm::vec3> background;       // RGB in 0..1; default: the caller's
+  bool transparent_background = false;       // alpha 0 where nothing is drawn (RGBA PNG)
+  std::optional<glm::vec3> color;            // replaces every material, vertex and face colour
   std::optional<glm::vec3> light_direction;  // towards the light, world space; default: a headlight above left
 };
 

@@ -7,7 +7,9 @@ enum class CullMode { none, back, front };  // front faces are counter-clockwise
 
 enum class DepthFunc { never, less, equal, lequal, greater, notequal, gequal, always };
 
-enum class BlendMode { none, alpha };  // alpha: src * a + dst * (1 - a)
+// alpha: rgb = src.rgb * a + dst.rgb * (1 - a), alpha = a + dst.a * (1 - a) with a = src.a (the "over" operator,
+// glBlendFuncSeparate(SRC_ALPHA, ONE_MINUS_SRC_ALPHA, ONE, ONE_MINUS_SRC_ALPHA)), so coverage accumulates.
+enum class BlendMode { none, alpha };
 
 enum class DrawOrder {
   as_given,       // index order, as OpenGL draws

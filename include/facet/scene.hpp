@@ -45,6 +45,9 @@ struct SceneOptions {
   glm::vec3 ambient{0.15f};
   std::optional<glm::vec4> color;  // overrides every material's diffuse colour (--color)
   CullMode cull = CullMode::back;
+  // With cull none: still cull the back faces of materials marked single-sided (glTF doubleSided false), as a
+  // glTF viewer does; `facet render` sets it when no --culling is given.
+  bool cull_single_sided = false;
   // With depth_test off or painter on, surfaces pass the depth test unconditionally (DepthFunc::always) but still
   // write depth, so edges and linear_depth() see the surface that ended up visible.
   bool depth_test = true;
@@ -104,8 +107,8 @@ class Scene {
 
   // The camera-space (OpenGL axes: x right, y up, z towards the viewer) unit shading normal at each pixel of ids:
   // the mesh's vertex normals (or the normals the scene derived for it) interpolated where the pixel centre's ray
-  // meets the triangle, unflipped on back faces; (0, 0, 0) where nothing is drawn. ids must come from this scene
-  // and view.
+  // meets the triangle, reversed on back faces as the stock shaders light them; (0, 0, 0) where nothing is drawn.
+  // ids must come from this scene and view.
   std::vector<glm::vec3> camera_normals(const SurfaceIds& ids, const View& view) const;
 
  private:

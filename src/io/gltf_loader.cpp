@@ -287,6 +287,9 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
   out.diffuse_map = decode_texture(model, m.pbrMetallicRoughness.baseColorTexture.index, source);
   out.sampler = sampler_of(model, m.pbrMetallicRoughness.baseColorTexture.index);
   out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
+  out.double_sided = m.doubleSided;
+  if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::blend;
+  if (m.alphaMode == "MASK") warn(source, "material " + printable(m.name) + ": alphaMode MASK is drawn opaque");
   return out;
 }
 

@@ -8,12 +8,6 @@
 namespace facet::detail {
 namespace {
 
-// Meshes without materials get the reference look of BENCHMARK.md section 7: white, specular 0.4, shininess 32.
-const Material& default_material() {
-  static const Material material{"default", glm::vec4(1.0f), glm::vec3(0.4f), 32.0f, {}};
-  return material;
-}
-
 struct GroupDraw {
   Renderer& renderer;
   Framebuffer& target;
@@ -45,10 +39,11 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
                 const ObjectTransforms& transforms, const PreparedMesh& prepared, const TriangleGroup& group) {
   const SceneOptions& options = *frame.options;
   const auto index = static_cast<std::size_t>(group.material);
-  const Material& material = group.material >= 0 ? instance.mesh->materials[index] : default_material();
-  const SurfaceColor surface{
-      options.color.value_or(material.diffuse), group.face_colors.empty() ? nullptr : group.face_colors.data(),
-      group.material >= 0 ? prepared.textures[index] : nullptr, material.sampler.value_or(options.sampler)};
+  const Material& material = material_of(*instance.mesh, group);
+  const SurfaceColor surface{options.color.value_or(material.diffuse),
+                             group.face_colors.empty() ? nullptr : group.face_colors.data(),
+                             group.material >= 0 ? prepared.textures[index] : nullptr,
+                             material.sampler.value_or(options.sampler), material.alpha_mode == AlphaMode::opaque};
   const Shading shading = options.shading == Shading::automatic && material.unlit ? Shading::unlit : options.shading;
   switch (shading) {
     case Shading::automatic:
@@ -78,12 +73,32 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
 
 }  // namespace
 
-RenderState surface_state(const SceneOptions& options) {
+const Material& material_of(const Mesh& mesh, const TriangleGroup& group) {
+  // Meshes without materials get the reference look of BENCHMARK.md section 7: white, specular 0.4, shininess 32.
+  static const Material fallback{"default", glm::vec4(1.0f), glm::vec3(0.4f), 32.0f, {}};
+  return group.material >= 0 ? mesh.materials[static_cast<std::size_t>(group.material)] : fallback;
+}
+
+RenderState surface_state(const SceneOptions& options, const Material& material, bool mirrored) {
   RenderState state;
-  state.cull = options.cull;
+  CullMode cull = options.cull;
+  if (cull == CullMode::none && options.cull_single_sided && !material.double_sided) cull = CullMode::back;
+  // A mirroring instance turns its front faces clockwise on screen; the side to cull turns with them.
+  if (mirrored && cull != CullMode::none) cull = cull == CullMode::back ? CullMode::front : CullMode::back;
+  state.cull = cull;
   if (options.painter) state.order = DrawOrder::back_to_front;
   if (options.painter || !options.depth_test) state.depth_func = DepthFunc::always;
+  // Blended surfaces still write depth (as three.js does by default), so the depth, normal and id buffers show the
+  // nearest surface whatever its material; their triangles are drawn farthest first.
+  if (material.alpha_mode == AlphaMode::blend) {
+    state.blend = BlendMode::alpha;
+    state.order = DrawOrder::back_to_front;
+  }
   return state;
+}
+
+bool is_blended(const Mesh& mesh, const TriangleGroup& group) {
+  return material_of(mesh, group).alpha_mode == AlphaMode::blend;
 }
 
 float edge_depth_offset(const glm::mat4& clip_from_view, float distance, float near, float line_width,
@@ -106,17 +121,19 @@ float edge_depth_offset(const glm::mat4& clip_from_view, float distance, float n
 }
 
 void draw_instance(Renderer& renderer, Framebuffer& target, const FrameContext& frame, const Instance& instance,
-                   const PreparedMesh& prepared) {
+                   const PreparedMesh& prepared, DrawPass pass) {
   const SceneOptions& options = *frame.options;
   const ObjectTransforms transforms = ObjectTransforms::make(frame.clip_from_world, instance.world_from_object);
   const std::span<const MeshVertex> vertices(prepared.vertices);
 
   if (!options.wireframe) {
-    const RenderState state = surface_state(options);
-    for (const TriangleGroup& group : prepared.groups)
+    for (const TriangleGroup& group : prepared.groups) {
+      if (is_blended(*instance.mesh, group) != (pass == DrawPass::blended)) continue;
+      const RenderState state = surface_state(options, material_of(*instance.mesh, group), transforms.mirrored);
       draw_group({renderer, target, vertices, group.indices, state}, frame, instance, transforms, prepared, group);
+    }
   }
-  if (!(options.wireframe || options.edges) || prepared.edge_indices.empty()) return;
+  if (pass == DrawPass::blended || !(options.wireframe || options.edges) || prepared.edge_indices.empty()) return;
 
   RenderState lines;
   lines.cull = CullMode::none;

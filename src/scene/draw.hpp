@@ -21,13 +21,22 @@ inline float max_scale(const glm::mat4& m) {
   return std::max({glm::length(glm::vec3(m[0])), glm::length(glm::vec3(m[1])), glm::length(glm::vec3(m[2]))});
 }
 
-// The state surfaces draw with. With the depth test off (painter's order or --no-depth) they use "always" rather
-// than no depth test: the colours are the same, and the depth buffer still holds the visible surface for edges and
-// depth output.
-RenderState surface_state(const SceneOptions& options);
+// The group's material, or the default one (white, Blinn-Phong) for triangles without.
+const Material& material_of(const Mesh& mesh, const TriangleGroup& group);
+bool is_blended(const Mesh& mesh, const TriangleGroup& group);
 
+// The state a material's surfaces draw with: the options' culling (back faces of single-sided materials culled
+// when the options leave it to the model, the culled side swapped for a mirroring instance), and blending for
+// AlphaMode::blend. With the depth test off (painter's order or --no-depth) they use "always" rather than no depth
+// test: the colours are the same, and the depth buffer still holds the visible surface for edges and depth output.
+RenderState surface_state(const SceneOptions& options, const Material& material, bool mirrored);
+
+// A frame draws the opaque surfaces of every instance, each followed by its edges, then the blended surfaces.
+enum class DrawPass { opaque, blended };
+
+// One instance's surfaces of that pass, and in the opaque pass its edges or wireframe.
 void draw_instance(Renderer& renderer, Framebuffer& target, const FrameContext& frame, const Instance& instance,
-                   const PreparedMesh& prepared);
+                   const PreparedMesh& prepared, DrawPass pass);
 
 // The window-depth offset that pulls edge lines in front of the surface they lie on: about two line widths of
 // pixel footprint in eye space at the instance's distance, converted through the projection. Negative.

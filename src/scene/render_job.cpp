@@ -30,7 +30,8 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
   }
   options.lights = {Light{Light::Kind::directional, light, glm::vec3(1.0f), 1.0f}};
   if (look.color) options.color = glm::vec4(*look.color, 1.0f);
-  options.cull = look.cull;
+  options.cull = look.cull.value_or(CullMode::none);
+  options.cull_single_sided = !look.cull;
   options.depth_test = look.depth_test;
   options.painter = look.painter;
   options.wireframe = look.wireframe;

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <stdexcept>
+#include <utility>
 
 #include "scene/scene_impl.hpp"
 
@@ -45,28 +46,53 @@ detail::FrameContext detail::frame_context(const View& view, const SceneOptions&
           make_light_block(options)};
 }
 
+float Scene::Impl::view_z(const detail::FrameContext& frame, std::size_t instance) const {
+  const glm::vec4 center =
+      instances[instance].world_from_object * glm::vec4(prepared_of(instances[instance]).center, 1);
+  return (frame.view->view_from_world * center).z;
+}
+
+namespace {
+
+// Farthest first; ties keep the order of addition. std::sort with that tie-break needs no temporary buffer, unlike
+// stable_sort.
+void sort_back_to_front(std::vector<std::pair<float, std::size_t>>& by_depth) {
+  std::sort(by_depth.begin(), by_depth.end(), [](const auto& a, const auto& b) {
+    return a.first < b.first || (a.first == b.first && a.second < b.second);
+  });
+}
+
+}  // namespace
+
 std::vector<std::size_t> Scene::Impl::visible(const detail::FrameContext& frame) const {
-  struct Visible {
-    std::size_t instance;
-    float view_z;  // of the bounding sphere's centre; more negative is farther
-  };
-  std::vector<Visible> found;
+  std::vector<std::pair<float, std::size_t>> found;
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const detail::PreparedMesh& mesh = prepared_of(instances[i]);
     if (mesh.vertices.empty() || (mesh.groups.empty() && mesh.edge_indices.empty())) continue;
     const glm::vec4 center = instances[i].world_from_object * glm::vec4(mesh.center, 1.0f);
     const float radius = mesh.radius * detail::max_scale(instances[i].world_from_object);
     if (!sphere_in_frustum(frame.clip_from_world, glm::vec3(center), radius)) continue;
-    found.push_back({i, (frame.view->view_from_world * center).z});
+    found.emplace_back(view_z(frame, i), i);
   }
   // The painter's algorithm sorts triangles within a draw; sorting the instances too extends it across draws.
-  // Ties keep the order of addition; std::sort with that tie-break needs no temporary buffer, unlike stable_sort.
-  if (frame.options->painter)
-    std::sort(found.begin(), found.end(), [](const Visible& a, const Visible& b) {
-      return a.view_z < b.view_z || (a.view_z == b.view_z && a.instance < b.instance);
-    });
+  if (frame.options->painter) sort_back_to_front(found);
   std::vector<std::size_t> order(found.size());
-  for (std::size_t k = 0; k < found.size(); ++k) order[k] = found[k].instance;
+  for (std::size_t k = 0; k < found.size(); ++k) order[k] = found[k].second;
+  return order;
+}
+
+std::vector<std::size_t> Scene::Impl::blended(const detail::FrameContext& frame,
+                                              const std::vector<std::size_t>& visible) const {
+  std::vector<std::pair<float, std::size_t>> found;
+  for (const std::size_t i : visible) {
+    const detail::PreparedMesh& mesh = prepared_of(instances[i]);
+    if (std::any_of(mesh.groups.begin(), mesh.groups.end(),
+                    [&](const detail::TriangleGroup& g) { return detail::is_blended(*instances[i].mesh, g); }))
+      found.emplace_back(view_z(frame, i), i);
+  }
+  sort_back_to_front(found);
+  std::vector<std::size_t> order(found.size());
+  for (std::size_t k = 0; k < found.size(); ++k) order[k] = found[k].second;
   return order;
 }
 
@@ -75,7 +101,11 @@ std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& v
   const std::vector<std::size_t> order = impl_->visible(frame);
   for (const std::size_t i : order) {
     const Instance& instance = impl_->instances[i];
-    detail::draw_instance(renderer, target, frame, instance, impl_->prepared_of(instance));
+    detail::draw_instance(renderer, target, frame, instance, impl_->prepared_of(instance), detail::DrawPass::opaque);
+  }
+  for (const std::size_t i : impl_->blended(frame, order)) {
+    const Instance& instance = impl_->instances[i];
+    detail::draw_instance(renderer, target, frame, instance, impl_->prepared_of(instance), detail::DrawPass::blended);
   }
   return order.size();
 }

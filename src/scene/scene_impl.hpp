@@ -21,6 +21,12 @@ struct Scene::Impl {
   // The indices of the instances a frame draws, in drawing order: those whose bounding sphere meets the frustum,
   // sorted back to front for the painter's algorithm, else in order of addition.
   std::vector<std::size_t> visible(const detail::FrameContext& frame) const;
+
+  // Of the visible instances, those with blended surfaces, farthest first (by their bounding sphere's centre).
+  std::vector<std::size_t> blended(const detail::FrameContext& frame, const std::vector<std::size_t>& visible) const;
+
+  // The view-space z of an instance's bounding sphere centre; more negative is farther.
+  float view_z(const detail::FrameContext& frame, std::size_t instance) const;
 };
 
 namespace detail {

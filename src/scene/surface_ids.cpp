@@ -24,8 +24,8 @@ SurfaceIds Scene::render_ids(Renderer& renderer, Framebuffer& target, const View
   const detail::FrameContext frame = detail::frame_context(view, options);
   const std::vector<std::size_t> order = impl_->visible(frame);
 
-  // Keys number the drawn triangles: instance k's start at first_key[k], in its groups' drawing order.
-  std::vector<std::uint32_t> first_key, key_instance, key_triangle;
+  // Keys number the drawn triangles in drawing order; key k is triangle key_triangle[k] of key_instance[k].
+  std::vector<std::uint32_t> key_instance, key_triangle;
   std::size_t keys = 0;
   for (const std::size_t i : order)
     for (const detail::TriangleGroup& group : impl_->prepared_of(impl_->instances[i]).groups)
@@ -35,29 +35,37 @@ SurfaceIds Scene::render_ids(Renderer& renderer, Framebuffer& target, const View
   key_triangle.reserve(keys);
 
   renderer.clear(target, glm::vec4(1.0f), 1.0f);  // every byte 0xff: kNoSurface
-  const RenderState state = detail::surface_state(options);
   std::vector<MeshVertex> white;
   std::vector<glm::vec4> key_colors;
-  for (const std::size_t i : order) {
+  // As render() draws: the opaque surfaces, then the blended ones farthest first, each with its material's state
+  // but no blending, so each pixel keeps the key of the nearest surface.
+  const auto draw = [&](std::size_t i, bool blended) {
     const Instance& instance = impl_->instances[i];
     const detail::PreparedMesh& prepared = impl_->prepared_of(instance);
     // Positions only: the vertex colour white and no texture leave the face colour, the key, as the albedo.
     white.resize(prepared.vertices.size());
     std::transform(prepared.vertices.begin(), prepared.vertices.end(), white.begin(),
                    [](const MeshVertex& v) { return MeshVertex{v.position}; });
-    const glm::mat4 clip_from_object = frame.clip_from_world * instance.world_from_object;
+    const ObjectTransforms transforms = ObjectTransforms::make(frame.clip_from_world, instance.world_from_object);
     for (const detail::TriangleGroup& group : prepared.groups) {
+      if (detail::is_blended(*instance.mesh, group) != blended) continue;
       key_colors.clear();
       for (const std::uint32_t t : group.triangles) {
         key_colors.push_back(color_of_key(static_cast<std::uint32_t>(key_instance.size())));
         key_instance.push_back(static_cast<std::uint32_t>(i));
         key_triangle.push_back(t);
       }
-      const UnlitShader shader{clip_from_object, SurfaceColor{glm::vec4(1.0f), key_colors.data(), nullptr, {}}};
+      RenderState state =
+          detail::surface_state(options, detail::material_of(*instance.mesh, group), transforms.mirrored);
+      state.blend = BlendMode::none;
+      const UnlitShader shader{transforms.clip_from_object,
+                               SurfaceColor{glm::vec4(1.0f), key_colors.data(), nullptr, {}}};
       renderer.draw(target, shader, std::span<const MeshVertex>(white), std::span<const std::uint32_t>(group.indices),
                     state);
     }
-  }
+  };
+  for (const std::size_t i : order) draw(i, false);
+  for (const std::size_t i : impl_->blended(frame, order)) draw(i, true);
   renderer.finish(target);
 
   SurfaceIds ids{target.width(), target.height(), {}, {}};
@@ -105,6 +113,7 @@ std::vector<glm::vec3> Scene::camera_normals(const SurfaceIds& ids, const View& 
   const std::vector<const std::uint32_t*>* table = nullptr;
   glm::mat4 view_from_object{1.0f};
   glm::mat3 normal_from_object{1.0f};
+  bool mirrored = false;
   for (int y = 0; y < ids.height; ++y) {
     const float ndc_y = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(ids.height);
     for (int x = 0; x < ids.width; ++x) {
@@ -117,6 +126,7 @@ std::vector<glm::vec3> Scene::camera_normals(const SurfaceIds& ids, const View& 
         table = &corners(*prepared);
         view_from_object = view.view_from_world * instance.world_from_object;
         normal_from_object = glm::transpose(glm::inverse(glm::mat3(view_from_object)));
+        mirrored = glm::determinant(glm::mat3(instance.world_from_object)) < 0.0f;
       }
       if (ids.triangle[p] >= table->size() || !(*table)[ids.triangle[p]]) continue;
       const std::uint32_t* corner = (*table)[ids.triangle[p]];
@@ -141,7 +151,11 @@ std::vector<glm::vec3> Scene::camera_normals(const SurfaceIds& ids, const View& 
       const glm::vec3 object_normal = (1.0f - u - w) * n[0] + u * n[1] + w * n[2];
       const glm::vec3 normal = normal_from_object * object_normal;
       const float length = glm::length(normal);
-      normals[p] = length > 0.0f && std::isfinite(length) ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
+      const glm::vec3 unit = length > 0.0f && std::isfinite(length) ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
+      // The stock shaders light a back face with the normal reversed; so does this buffer. The triangle faces the
+      // camera when its corners run counter-clockwise as the ray sees them; a mirroring instance swaps its sides.
+      const bool facing = glm::dot(glm::cross(e1, e2), direction) < 0.0f;
+      normals[p] = facing != mirrored ? unit : -unit;
     }
   }
   return normals;

@@ -161,7 +161,8 @@ void draw(Framebuffer& target, const S& shader, std::span<const typename S::Vert
           std::uint32_t& pixel = color_buffer[static_cast<std::size_t>(y) * width + x];
           if (state.blend == BlendMode::alpha) {
             const float a = std::clamp(color.a, 0.0f, 1.0f);
-            color = color * a + unpack_rgba8(pixel) * (1.0f - a);
+            const glm::vec4 under = unpack_rgba8(pixel);
+            color = glm::vec4(glm::vec3(color) * a + glm::vec3(under) * (1.0f - a), a + under.a * (1.0f - a));
           }
           pixel = pack_rgba8(color);
         }

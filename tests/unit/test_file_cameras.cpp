@@ -1,4 +1,4 @@
-// test_file_cameras.cpp - glTF cameras: read with their node's pose, and rendered through (--camera-index).
+// test_file_cameras.cpp - glTF scenes seen through their own cameras: the cameras, and materials' sides and alpha.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -39,8 +39,9 @@ TEST(FileCameras, ReadWithTheirNodesPose) {
   EXPECT_EQ(orthographic.magnification, glm::vec2(1.0f));
 }
 
-// A 2 x 2 square at z = 0 and cameras on nodes: at z = 5 looking down -z, and turned half round at z = -5.
-std::string square_with_cameras(const std::string& cameras) {
+// A 2 x 2 square at z = 0, facing +z, and cameras on nodes: at z = 5 looking down -z, and turned half round at
+// z = -5. `material`, if given, is the square's material.
+std::string square_with_cameras(const std::string& cameras, const std::string& material = "") {
   const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
   const std::uint32_t indices[] = {0, 1, 2, 0, 2, 3};
   std::string buffer(sizeof positions + sizeof indices, '\0');
@@ -50,8 +51,10 @@ std::string square_with_cameras(const std::string& cameras) {
          R"("nodes":[{"mesh":0},{"camera":0,"translation":[0,0,5]},)"
          R"({"camera":1,"translation":[0,0,-5],"rotation":[0,1,0,0]}],)"
          R"("cameras":)" +
-         cameras +
-         R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+         cameras + (material.empty() ? std::string() : R"(,"materials":[)" + material + "]") +
+         R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1)" +
+         (material.empty() ? std::string() : R"(,"material":0)") +
+         R"(}]}],)"
          R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]},)"
          R"({"bufferView":1,"componentType":5125,"count":6,"type":"SCALAR"}],)"
          R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":24}],)"
@@ -115,6 +118,71 @@ TEST(FileCameras, RefusesMissingAndBrokenCameras) {
   EXPECT_NO_THROW(render(job, renderer));
   const Mesh without = load_model("/usr/share/assimp/models/OBJ/box.obj");
   EXPECT_THROW(file_camera_view(without, 0, {}, 1.0f, "box.obj"), std::invalid_argument);
+}
+
+const std::string kTwoCameras = R"([{"type":"perspective","perspective":{"yfov":0.8,"znear":0.1}},)"
+                                R"({"type":"perspective","perspective":{"yfov":0.8,"znear":0.1}}])";
+
+// How many pixels the mask of a render through camera `index` covers, and the colour at the centre.
+struct Seen {
+  int pixels = 0;
+  glm::ivec4 center{0};
+};
+
+Seen render_through(const fs::path& model, int index, const LookSpec& look) {
+  RenderJob job;
+  job.model = model;
+  job.width = job.height = 32;
+  job.camera.file_camera = index;
+  job.look = look;
+  const fs::path dir = model.parent_path();
+  job.outputs = {.color = dir / "c.png", .mask = dir / "m.png"};
+  Renderer renderer(1);
+  render(job, renderer);
+  int w = 0, h = 0;
+  const std::vector<std::uint8_t> mask = read_png(dir / "m.png", w, h), color = read_png(dir / "c.png", w, h);
+  Seen seen;
+  for (int i = 0; i < w * h; ++i) seen.pixels += mask[4 * static_cast<std::size_t>(i)] != 0;
+  const std::size_t center = 4 * static_cast<std::size_t>(h / 2 * w + w / 2);
+  seen.center = glm::ivec4(color[center], color[center + 1], color[center + 2], color[center + 3]);
+  return seen;
+}
+
+// A single-sided material shows only its front unless the look asks for no culling; a double-sided one shows its
+// back lit as brightly as its front (the headlight is behind the camera either way).
+TEST(GltfMaterials, SidesFollowDoubleSided) {
+  const fs::path dir = test::scratch_dir("file_cameras");
+  const fs::path single = test::write_file(dir, "single.gltf", square_with_cameras(kTwoCameras, R"({})"));
+  LookSpec look;
+  EXPECT_GT(render_through(single, 0, look).pixels, 100);
+  EXPECT_EQ(render_through(single, 1, look).pixels, 0);
+  look.cull = CullMode::none;
+  EXPECT_GT(render_through(single, 1, look).pixels, 100);
+
+  const fs::path both = test::write_file(dir, "both.gltf", square_with_cameras(kTwoCameras, R"({"doubleSided":true})"));
+  look.cull.reset();
+  const Seen front = render_through(both, 0, look), back = render_through(both, 1, look);
+  EXPECT_EQ(back.pixels, front.pixels);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(back.center[c], front.center[c], 2) << "channel " << c;
+}
+
+// BLEND mixes the surface over the background by its alpha; OPAQUE ignores alpha. Both are surfaces in the mask.
+TEST(GltfMaterials, AlphaModes) {
+  const fs::path dir = test::scratch_dir("file_cameras");
+  const std::string red =
+      R"("pbrMetallicRoughness":{"baseColorFactor":[1,0,0,0.25]},"extensions":{"KHR_materials_unlit":{}})";
+  LookSpec look;
+  look.background = glm::vec3(0.0f, 0.0f, 1.0f);
+  look.transparent_background = true;
+  const Seen blended = render_through(
+      test::write_file(dir, "blend.gltf", square_with_cameras(kTwoCameras, "{" + red + R"(,"alphaMode":"BLEND"})")), 0,
+      look);
+  EXPECT_GT(blended.pixels, 100);
+  EXPECT_EQ(blended.center, glm::ivec4(64, 0, 191, 64));  // 0.25 red over alpha-0 blue: alpha 0.25
+  const Seen opaque =
+      render_through(test::write_file(dir, "opaque.gltf", square_with_cameras(kTwoCameras, "{" + red + "}")), 0, look);
+  EXPECT_EQ(opaque.pixels, blended.pixels);
+  EXPECT_EQ(opaque.center, glm::ivec4(255, 0, 0, 255));
 }
 
 }  // namespace

@@ -153,7 +153,8 @@ template <Shader S>
     if (!state.color_write) continue;
     if (state.blend == BlendMode::alpha) {
       const float a = std::clamp(color.a, 0.0f, 1.0f);
-      color = color * a + unpack_rgba8(work.color[index[k]]) * (1.0f - a);
+      const glm::vec4 under = unpack_rgba8(work.color[index[k]]);
+      color = glm::vec4(glm::vec3(color) * a + glm::vec3(under) * (1.0f - a), a + under.a * (1.0f - a));
     }
     work.color[index[k]] = pack_rgba8(color);
   }

@@ -19,9 +19,10 @@ struct FlatShader : LitUniforms {
     const glm::vec4 p(v.position, 1.0f);
     return {transforms.clip_from_object * p, {glm::vec3(transforms.world_from_object * p), v.color, v.uv}};
   }
+  // Back faces are lit with the normal reversed (two-sided lighting).
   glm::vec4 fragment(const Fragment<Varyings>& f) const {
     const glm::vec3 n = glm::normalize(transforms.normal_from_object * face_normals[f.primitive]);
-    return shade(albedo(f), n, f.varyings.world);
+    return shade(albedo(f), transforms.front_side(f.front_facing) ? n : -n, f.varyings.world);
   }
 };
 

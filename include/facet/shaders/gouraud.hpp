@@ -7,10 +7,11 @@ namespace facet {
 
 struct GouraudShader : LitUniforms {
   // The diffuse and specular light terms travel separately so textures and face colours still modulate only the
-  // diffuse part, as they would per pixel.
+  // diffuse part, as they would per pixel. Each vertex is lit from both sides; a back face takes the back side's
+  // terms (two-sided lighting).
   struct Varyings {
-    glm::vec3 diffuse;
-    glm::vec3 specular;
+    glm::vec3 diffuse, back_diffuse;
+    glm::vec3 specular, back_specular;
     glm::vec4 color;
     glm::vec2 uv;
   };
@@ -18,12 +19,17 @@ struct GouraudShader : LitUniforms {
   VertexOut<Varyings> vertex(const Vertex& v) const {
     const glm::vec4 p(v.position, 1.0f);
     const glm::vec3 world(transforms.world_from_object * p);
-    const LightTerms t = light_at(glm::normalize(transforms.normal_from_object * v.normal), world);
-    return {transforms.clip_from_object * p, {t.diffuse, t.specular * specular, v.color, v.uv}};
+    const glm::vec3 n = glm::normalize(transforms.normal_from_object * v.normal);
+    const LightTerms front = light_at(n, world), back = light_at(-n, world);
+    return {transforms.clip_from_object * p,
+            {front.diffuse, back.diffuse, front.specular * specular, back.specular * specular, v.color, v.uv}};
   }
   glm::vec4 fragment(const Fragment<Varyings>& f) const {
     const glm::vec4 base = albedo(f);
-    return glm::vec4(glm::vec3(base) * f.varyings.diffuse + f.varyings.specular, base.a);
+    const bool front = transforms.front_side(f.front_facing);
+    return glm::vec4(glm::vec3(base) * (front ? f.varyings.diffuse : f.varyings.back_diffuse) +
+                         (front ? f.varyings.specular : f.varyings.back_specular),
+                     base.a);
   }
 };
 

@@ -19,11 +19,17 @@ struct ObjectTransforms {
   glm::mat4 world_from_object{1.0f};
   glm::mat3 normal_from_object{1.0f};  // inverse transpose of world_from_object's 3x3: keeps normals
                                        // perpendicular to surfaces under non-uniform scale
+  // world_from_object mirrors (negative determinant): the object's counter-clockwise front faces reach the screen
+  // clockwise, so Fragment::front_facing is false on them.
+  bool mirrored = false;
 
   static ObjectTransforms make(const glm::mat4& clip_from_world, const glm::mat4& world_from_object) {
-    return {clip_from_world * world_from_object, world_from_object,
-            glm::transpose(glm::inverse(glm::mat3(world_from_object)))};
+    const glm::mat3 linear(world_from_object);
+    return {clip_from_world * world_from_object, world_from_object, glm::transpose(glm::inverse(linear)),
+            glm::determinant(linear) < 0.0f};
   }
+  // Whether a fragment is on the object's front side.
+  bool front_side(bool front_facing) const { return front_facing != mirrored; }
 };
 
 }  // namespace facet

@@ -20,8 +20,10 @@ struct SurfaceShader : LitUniforms {
     return {transforms.clip_from_object * p,
             {glm::vec3(transforms.world_from_object * p), transforms.normal_from_object * v.normal, v.color, v.uv}};
   }
+  // Back faces are lit with the normal reversed (two-sided lighting, as glTF asks of double-sided materials).
   glm::vec4 fragment(const Fragment<Varyings>& f) const {
-    return shade(albedo(f), glm::normalize(f.varyings.normal), f.varyings.world);
+    const glm::vec3 n = glm::normalize(f.varyings.normal);
+    return shade(albedo(f), transforms.front_side(f.front_facing) ? n : -n, f.varyings.world);
   }
 };
 
