@@ -37,6 +37,10 @@ struct Material {
   std::optional<Sampler> sampler{};
   // Drawn with its colour alone, no lighting, when the shading is Shading::automatic (glTF KHR_materials_unlit).
   bool unlit = false;
+  // A tangent-space normal map (glTF normalTexture: +X along u, +Y along v, +Z out of the surface), applied by the
+  // per-pixel lit shading with its x and y scaled by normal_scale; the diffuse texture's sampler filters it.
+  std::shared_ptr<const Texture> normal_map{};
+  float normal_scale = 1.0f;
   AlphaMode alpha_mode = AlphaMode::opaque;
   // Seen from both sides. false (glTF doubleSided false): back faces are culled when the look leaves culling to
   // the model (SceneOptions::cull_single_sided).

@@ -286,6 +286,8 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
   out.shininess = 2.0f + 126.0f * (1.0f - roughness) * (1.0f - roughness);
   out.diffuse_map = decode_texture(model, m.pbrMetallicRoughness.baseColorTexture.index, source);
   out.sampler = sampler_of(model, m.pbrMetallicRoughness.baseColorTexture.index);
+  out.normal_map = decode_texture(model, m.normalTexture.index, source);
+  out.normal_scale = std::isfinite(m.normalTexture.scale) ? static_cast<float>(m.normalTexture.scale) : 1.0f;
   out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
   out.double_sided = m.doubleSided;
   if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::blend;

@@ -48,11 +48,14 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
   switch (shading) {
     case Shading::automatic:
     case Shading::blinn_phong:
-      draw(lit_shader<SurfaceShader>(frame, transforms, surface, material, SpecularModel::blinn_phong));
+    case Shading::phong: {
+      const SpecularModel model = shading == Shading::phong ? SpecularModel::phong : SpecularModel::blinn_phong;
+      SurfaceShader shader = lit_shader<SurfaceShader>(frame, transforms, surface, material, model);
+      shader.normal_map = material.normal_map.get();
+      shader.normal_scale = material.normal_scale;
+      draw(shader);
       break;
-    case Shading::phong:
-      draw(lit_shader<SurfaceShader>(frame, transforms, surface, material, SpecularModel::phong));
-      break;
+    }
     case Shading::gouraud:
       draw(lit_shader<GouraudShader>(frame, transforms, surface, material, SpecularModel::blinn_phong));
       break;

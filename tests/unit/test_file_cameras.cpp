@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "facet/error.hpp"
@@ -183,6 +184,55 @@ TEST(GltfMaterials, AlphaModes) {
       render_through(test::write_file(dir, "opaque.gltf", square_with_cameras(kTwoCameras, "{" + red + "}")), 0, look);
   EXPECT_EQ(opaque.pixels, blended.pixels);
   EXPECT_EQ(opaque.center, glm::ivec4(255, 0, 0, 255));
+}
+
+// The square with per-vertex normals and uvs (u along +x, v along +y), seen through camera 0 of kTwoCameras.
+std::string lit_square(glm::vec3 normal, const std::string& material, const std::string& images) {
+  const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  const float uvs[] = {0, 1, 1, 1, 1, 0, 0, 0};  // glTF's top-left origin
+  const std::uint32_t indices[] = {0, 1, 2, 0, 2, 3};
+  std::string buffer(sizeof positions + 48 + sizeof uvs + sizeof indices, '\0');
+  std::memcpy(buffer.data(), positions, sizeof positions);
+  for (int k = 0; k < 4; ++k) std::memcpy(buffer.data() + 48 + 12 * k, &normal, 12);
+  std::memcpy(buffer.data() + 96, uvs, sizeof uvs);
+  std::memcpy(buffer.data() + 128, indices, sizeof indices);
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],)"
+         R"("nodes":[{"mesh":0},{"camera":0,"translation":[0,0,5]}],"cameras":)" +
+         kTwoCameras + R"(,"materials":[)" + material + "]" + images +
+         R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0,"NORMAL":1,"TEXCOORD_0":2},"indices":3,"material":0}]}],)"
+         R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]},)"
+         R"({"bufferView":1,"componentType":5126,"count":4,"type":"VEC3"},)"
+         R"({"bufferView":2,"componentType":5126,"count":4,"type":"VEC2"},)"
+         R"({"bufferView":3,"componentType":5125,"count":6,"type":"SCALAR"}],)"
+         R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":48},)"
+         R"({"buffer":0,"byteOffset":96,"byteLength":32},{"buffer":0,"byteOffset":128,"byteLength":24}],)"
+         R"("buffers":[{"byteLength":152,"uri":"data:application/octet-stream;base64,)" +
+         test::base64(buffer) + R"("}]})";
+}
+
+// A normal map tilting the normal to (0.6, 0, 0.8) in tangent space lights a flat square as a square whose vertex
+// normals are (0.6, 0, 0.8) is lit, and likewise for (0, 0.6, 0.8): tangent space follows u and v.
+TEST(GltfMaterials, NormalMapsTiltTheShadingNormal) {
+  const fs::path dir = test::scratch_dir("file_cameras");
+  const std::string plain = R"({"pbrMetallicRoughness":{"roughnessFactor":1}})";
+  const std::string mapped = R"({"pbrMetallicRoughness":{"roughnessFactor":1},"normalTexture":{"index":0}})";
+  const std::string images = R"(,"images":[{"uri":"normal.png"}],"textures":[{"source":0}])";
+  const LookSpec look;
+  const glm::ivec4 flat =
+      render_through(test::write_file(dir, "flat.gltf", lit_square({0, 0, 1}, plain, "")), 0, look).center;
+  // 204 and 230 are 0.6 and 0.804 after 2 t - 1; 128 is 0.004.
+  for (const auto& [texel, normal] : {std::pair{glm::u8vec3(204, 128, 230), glm::vec3(0.6f, 0.0f, 0.8f)},
+                                      std::pair{glm::u8vec3(128, 204, 230), glm::vec3(0.0f, 0.6f, 0.8f)}}) {
+    std::vector<std::uint8_t> image;
+    for (int i = 0; i < 4; ++i) image.insert(image.end(), {texel.x, texel.y, texel.z, 255});
+    write_png(dir / "normal.png", 2, 2, image);
+    const glm::ivec4 with_map =
+        render_through(test::write_file(dir, "mapped.gltf", lit_square({0, 0, 1}, mapped, images)), 0, look).center;
+    const glm::ivec4 tilted =
+        render_through(test::write_file(dir, "tilted.gltf", lit_square(normal, plain, "")), 0, look).center;
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(with_map[c], tilted[c], 3) << "normal " << normal.x << "," << normal.y;
+    EXPECT_GT(std::abs(flat.r - tilted.r), 8);  // the tilt shows (towards the light it saturates)
+  }
 }
 
 }  // namespace
