@@ -22,6 +22,7 @@ class Texture;
 // How a material's alpha is used (glTF alphaMode; the other readers give opaque).
 enum class AlphaMode {
   opaque,  // alpha ignored: the surface covers what is behind it
+  mask,    // opaque where alpha >= alpha_cutoff, and nothing elsewhere
   blend,   // alpha-blended over what is behind it, after the opaque surfaces, farthest first
 };
 
@@ -42,6 +43,7 @@ struct Material {
   std::shared_ptr<const Texture> normal_map{};
   float normal_scale = 1.0f;
   AlphaMode alpha_mode = AlphaMode::opaque;
+  float alpha_cutoff = 0.5f;  // AlphaMode::mask
   // Seen from both sides. false (glTF doubleSided false): back faces are culled when the look leaves culling to
   // the model (SceneOptions::cull_single_sided).
   bool double_sided = true;

@@ -291,7 +291,10 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
   out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
   out.double_sided = m.doubleSided;
   if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::blend;
-  if (m.alphaMode == "MASK") warn(source, "material " + printable(m.name) + ": alphaMode MASK is drawn opaque");
+  if (m.alphaMode == "MASK") {
+    out.alpha_mode = AlphaMode::mask;
+    if (std::isfinite(m.alphaCutoff)) out.alpha_cutoff = static_cast<float>(m.alphaCutoff);
+  }
   return out;
 }
 

@@ -38,13 +38,10 @@ S lit_shader(const FrameContext& frame, const ObjectTransforms& transforms, cons
 void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance& instance,
                 const ObjectTransforms& transforms, const PreparedMesh& prepared, const TriangleGroup& group) {
   const SceneOptions& options = *frame.options;
-  const auto index = static_cast<std::size_t>(group.material);
   const Material& material = material_of(*instance.mesh, group);
-  const SurfaceColor surface{options.color.value_or(material.diffuse),
-                             group.face_colors.empty() ? nullptr : group.face_colors.data(),
-                             group.material >= 0 ? prepared.textures[index] : nullptr,
-                             material.sampler.value_or(options.sampler), material.alpha_mode == AlphaMode::opaque};
-  const Shading shading = options.shading == Shading::automatic && material.unlit ? Shading::unlit : options.shading;
+  const SurfaceColor surface = surface_color(options, material, prepared, group);
+  const Shading shading = shading_of(options, material);
+  const bool masked = is_masked(options, material);
   switch (shading) {
     case Shading::automatic:
     case Shading::blinn_phong:
@@ -53,7 +50,13 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
       SurfaceShader shader = lit_shader<SurfaceShader>(frame, transforms, surface, material, model);
       shader.normal_map = material.normal_map.get();
       shader.normal_scale = material.normal_scale;
-      draw(shader);
+      if (masked) {
+        Masked<SurfaceShader> cut{shader};
+        cut.alpha_cutoff = material.alpha_cutoff;
+        draw(cut);
+      } else {
+        draw(shader);
+      }
       break;
     }
     case Shading::gouraud:
@@ -65,7 +68,15 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
       draw(shader);
       break;
     }
-    case Shading::unlit: draw(UnlitShader{transforms.clip_from_object, surface}); break;
+    case Shading::unlit:
+      if (masked) {
+        Masked<UnlitShader> cut{UnlitShader{transforms.clip_from_object, surface}};
+        cut.alpha_cutoff = material.alpha_cutoff;
+        draw(cut);
+      } else {
+        draw(UnlitShader{transforms.clip_from_object, surface});
+      }
+      break;
     case Shading::normals: draw(NormalShader{transforms}); break;
     case Shading::depth:
       draw(DepthShader{transforms.clip_from_object, frame.view->view_from_world * instance.world_from_object,
@@ -98,6 +109,23 @@ RenderState surface_state(const SceneOptions& options, const Material& material,
     state.order = DrawOrder::back_to_front;
   }
   return state;
+}
+
+SurfaceColor surface_color(const SceneOptions& options, const Material& material, const PreparedMesh& prepared,
+                           const TriangleGroup& group) {
+  return {options.color.value_or(material.diffuse), group.face_colors.empty() ? nullptr : group.face_colors.data(),
+          group.material >= 0 ? prepared.textures[static_cast<std::size_t>(group.material)] : nullptr,
+          material.sampler.value_or(options.sampler), material.alpha_mode == AlphaMode::opaque};
+}
+
+Shading shading_of(const SceneOptions& options, const Material& material) {
+  return options.shading == Shading::automatic && material.unlit ? Shading::unlit : options.shading;
+}
+
+bool is_masked(const SceneOptions& options, const Material& material) {
+  const Shading shading = shading_of(options, material);
+  return material.alpha_mode == AlphaMode::mask && (shading == Shading::automatic || shading == Shading::phong ||
+                                                    shading == Shading::blinn_phong || shading == Shading::unlit);
 }
 
 bool is_blended(const Mesh& mesh, const TriangleGroup& group) {

@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "facet/scene.hpp"
+#include "facet/shaders/surface_color.hpp"
 #include "scene/prepared_mesh.hpp"
 
 namespace facet::detail {
@@ -24,6 +25,14 @@ inline float max_scale(const glm::mat4& m) {
 // The group's material, or the default one (white, Blinn-Phong) for triangles without.
 const Material& material_of(const Mesh& mesh, const TriangleGroup& group);
 bool is_blended(const Mesh& mesh, const TriangleGroup& group);
+// The albedo sources of a group: the material's colour (or the options'), face colours, texture and sampler.
+SurfaceColor surface_color(const SceneOptions& options, const Material& material, const PreparedMesh& prepared,
+                           const TriangleGroup& group);
+// The shading a material is drawn with: the options', or unlit for an unlit material under automatic shading.
+Shading shading_of(const SceneOptions& options, const Material& material);
+// Whether its fragments below the alpha cutoff are discarded: AlphaMode::mask, under the shadings that have a
+// masked pipeline (automatic, Phong, Blinn-Phong, unlit); the others draw it opaque.
+bool is_masked(const SceneOptions& options, const Material& material);
 
 // The state a material's surfaces draw with: the options' culling (back faces of single-sided materials culled
 // when the options leave it to the model, the culled side swapped for a mirroring instance), and blending for

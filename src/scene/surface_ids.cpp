@@ -55,13 +55,22 @@ SurfaceIds Scene::render_ids(Renderer& renderer, Framebuffer& target, const View
         key_instance.push_back(static_cast<std::uint32_t>(i));
         key_triangle.push_back(t);
       }
-      RenderState state =
-          detail::surface_state(options, detail::material_of(*instance.mesh, group), transforms.mirrored);
+      const Material& material = detail::material_of(*instance.mesh, group);
+      RenderState state = detail::surface_state(options, material, transforms.mirrored);
       state.blend = BlendMode::none;
-      const UnlitShader shader{transforms.clip_from_object,
-                               SurfaceColor{glm::vec4(1.0f), key_colors.data(), nullptr, {}}};
-      renderer.draw(target, shader, std::span<const MeshVertex>(white), std::span<const std::uint32_t>(group.indices),
-                    state);
+      const std::span<const std::uint32_t> indices(group.indices);
+      if (detail::is_masked(options, material)) {
+        // Cut by the alpha the colour pass cuts by: the real vertices and albedo, the key written where kept.
+        Masked<UnlitShader> shader{
+            UnlitShader{transforms.clip_from_object, detail::surface_color(options, material, prepared, group)}};
+        shader.alpha_cutoff = material.alpha_cutoff;
+        shader.replace = key_colors.data();
+        renderer.draw(target, shader, std::span<const MeshVertex>(prepared.vertices), indices, state);
+      } else {
+        const UnlitShader shader{transforms.clip_from_object,
+                                 SurfaceColor{glm::vec4(1.0f), key_colors.data(), nullptr, {}}};
+        renderer.draw(target, shader, std::span<const MeshVertex>(white), indices, state);
+      }
     }
   };
   for (const std::size_t i : order) draw(i, false);

@@ -19,6 +19,7 @@
 #include "facet/render_job.hpp"
 #include "support/base64.hpp"
 #include "support/load_problem.hpp"
+#include "support/npy.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace facet {
@@ -233,6 +234,47 @@ TEST(GltfMaterials, NormalMapsTiltTheShadingNormal) {
     for (int c = 0; c < 3; ++c) EXPECT_NEAR(with_map[c], tilted[c], 3) << "normal " << normal.x << "," << normal.y;
     EXPECT_GT(std::abs(flat.r - tilted.r), 8);  // the tilt shows (towards the light it saturates)
   }
+}
+
+// MASK keeps the fragments whose alpha reaches the cutoff, opaque, and nothing else: a texture transparent on its
+// left half cuts the square in two, in the image, the mask and the ids alike; a factor below the cutoff hides all.
+TEST(GltfMaterials, MaskCutsByAlpha) {
+  const fs::path dir = test::scratch_dir("file_cameras");
+  write_png(dir / "cut.png", 2, 1, std::vector<std::uint8_t>{255, 255, 255, 0, 255, 255, 255, 255});
+  const std::string images = R"(,"images":[{"uri":"cut.png"}],"samplers":[{"magFilter":9728,"minFilter":9728}],)"
+                             R"("textures":[{"source":0,"sampler":0}])";
+  RenderJob job;
+  job.model = test::write_file(
+      dir, "cut.gltf",
+      lit_square({0, 0, 1}, R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0}},"alphaMode":"MASK"})", images));
+  job.width = job.height = 32;
+  job.camera.file_camera = 0;
+  job.outputs = {.color = dir / "c.png", .ids = dir / "i.npy", .mask = dir / "m.png"};
+  Renderer renderer(2);
+  render(job, renderer);
+  int w = 0, h = 0;
+  const std::vector<std::uint8_t> mask = read_png(dir / "m.png", w, h);
+  const test::Npy ids = test::read_npy(dir / "i.npy");
+  ASSERT_EQ(ids.words.size(), 2u * static_cast<std::size_t>(w * h));
+  int left = 0, right = 0;
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      const std::size_t p = static_cast<std::size_t>(y * w + x);
+      const bool drawn = mask[4 * p] != 0;
+      EXPECT_EQ(ids.words[2 * p] != kNoSurface, drawn) << x << "," << y;
+      (x < w / 2 ? left : right) += drawn;
+    }
+  EXPECT_EQ(left, 0);
+  EXPECT_GT(right, 60);
+
+  const auto covered = [&](const std::string& cutoff) {
+    const std::string material =
+        R"({"pbrMetallicRoughness":{"baseColorFactor":[1,1,1,0.4]},"alphaMode":"MASK")" + cutoff + "}";
+    return render_through(test::write_file(dir, "faint.gltf", lit_square({0, 0, 1}, material, "")), 0, LookSpec{})
+        .pixels;
+  };
+  EXPECT_EQ(covered(""), 0);  // the default cutoff, 0.5
+  EXPECT_EQ(covered(R"(,"alphaCutoff":0.3)"), 2 * right);
 }
 
 }  // namespace

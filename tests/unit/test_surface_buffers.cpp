@@ -26,6 +26,7 @@
 #include "facet/render_job.hpp"
 #include "support/base64.hpp"
 #include "support/load_problem.hpp"
+#include "support/npy.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace facet {
@@ -200,22 +201,6 @@ TEST(FaceIds, ValidateRefusesTheReservedIdAndWrongSizes) {
   EXPECT_THROW(validate(mesh, "cube"), InputError);
 }
 
-// The header and data of a little-endian 4-byte .npy file.
-struct Npy {
-  std::string header;
-  std::vector<std::uint32_t> words;
-};
-
-Npy read_npy(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (bytes.size() < 10 || bytes.compare(0, 6, "\x93NUMPY") != 0) throw std::runtime_error("not .npy");
-  const std::size_t length = static_cast<unsigned char>(bytes[8]) | static_cast<unsigned char>(bytes[9]) << 8;
-  Npy npy{bytes.substr(10, length), std::vector<std::uint32_t>((bytes.size() - 10 - length) / 4)};
-  std::memcpy(npy.words.data(), bytes.data() + 10 + length, npy.words.size() * 4);
-  return npy;
-}
-
 float as_float(std::uint32_t word) { return std::bit_cast<float>(word); }
 
 // What render() writes agrees: a pixel is empty in the mask, depth, normals and ids alike, or in none.
@@ -232,7 +217,8 @@ TEST(Render, EveryBufferAgreesOnWhereTheModelIs) {
                  .mask = dir / "m.png"};
   Renderer renderer(2);
   render(job, renderer);
-  const Npy depth = read_npy(dir / "d.npy"), normal = read_npy(dir / "n.npy"), ids = read_npy(dir / "i.npy");
+  const test::Npy depth = test::read_npy(dir / "d.npy"), normal = test::read_npy(dir / "n.npy"),
+                  ids = test::read_npy(dir / "i.npy");
   EXPECT_NE(normal.header.find("'descr': '<f4', 'fortran_order': False, 'shape': (48, 64, 3)"), std::string::npos);
   EXPECT_NE(ids.header.find("'descr': '<u4', 'fortran_order': False, 'shape': (48, 64, 2)"), std::string::npos);
   int w = 0, h = 0;

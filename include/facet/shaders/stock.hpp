@@ -8,6 +8,7 @@
 #include "facet/shaders/lighting.hpp"
 #include "facet/shaders/line.hpp"
 #include "facet/shaders/lit.hpp"
+#include "facet/shaders/masked.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
 #include "facet/shaders/normal.hpp"
 #include "facet/shaders/surface.hpp"
@@ -22,3 +23,5 @@ FACET_EXTERN_SHADER(facet::UnlitShader);
 FACET_EXTERN_SHADER(facet::NormalShader);
 FACET_EXTERN_SHADER(facet::DepthShader);
 FACET_EXTERN_SHADER(facet::LineShader);
+FACET_EXTERN_SHADER(facet::Masked<facet::SurfaceShader>);
+FACET_EXTERN_SHADER(facet::Masked<facet::UnlitShader>);
