@@ -37,3 +37,6 @@ build/bench/facet_microbench --benchmark_repetitions=3 --benchmark_report_aggreg
 
 echo "## loading, facet against Assimp"
 build/bench/facet_loader_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+
+echo "## PNG writing, facet against stb_image_write"
+build/bench/facet_image_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true

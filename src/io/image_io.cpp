@@ -1,4 +1,4 @@
-// image_io.cpp - atomic PNG (stb_image_write), .npy and OpenEXR writers, and a PNG reader for tests.
+// image_io.cpp - atomic PNG (libdeflate), .npy and OpenEXR writers, and a PNG reader for tests.
 #include "facet/image_io.hpp"
 
 #include <atomic>
@@ -18,10 +18,9 @@
 #include "facet/framebuffer.hpp"
 #include "io/exr.hpp"
 #include "io/file_util.hpp"
+#include "io/png.hpp"
 
-// The one stb_image_write implementation in facet. stb_image's implementation lives in src/texture/texture.cpp;
-// here only its declarations are needed.
-#define STB_IMAGE_WRITE_IMPLEMENTATION
+// stb_image's implementation lives in src/texture/texture.cpp; here only its declarations are needed.
 #include "io/stb.hpp"
 
 namespace facet {
@@ -82,12 +81,6 @@ void check_size(int width, int height, std::size_t count, std::size_t per_pixel,
                                 " given " + std::to_string(count) + " values");
 }
 
-void append_to_vector(void* context, void* data, int size) {
-  auto* out = static_cast<std::vector<std::uint8_t>*>(context);
-  const auto* bytes = static_cast<const std::uint8_t*>(data);
-  out->insert(out->end(), bytes, bytes + size);
-}
-
 }  // namespace
 
 void write_png(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba,
@@ -102,18 +95,13 @@ void write_png(const std::filesystem::path& path, int width, int height, std::sp
     pixels = rgb.data();
   }
   const int channels = keep_alpha ? 4 : 3;
-  std::vector<std::uint8_t> encoded;
-  if (!stbi_write_png_to_func(&append_to_vector, &encoded, width, height, channels, pixels, width * channels))
-    write_failed(path, "PNG encoding failed");
-  write_file_atomically(path, encoded);
+  const std::size_t bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels;
+  write_file_atomically(path, encode_png(width, height, channels, std::span(pixels, bytes)));
 }
 
 void write_png_gray(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> gray) {
   check_size(width, height, gray.size(), 1, "PNG");
-  std::vector<std::uint8_t> encoded;
-  if (!stbi_write_png_to_func(&append_to_vector, &encoded, width, height, 1, gray.data(), width))
-    write_failed(path, "PNG encoding failed");
-  write_file_atomically(path, encoded);
+  write_file_atomically(path, encode_png(width, height, 1, gray));
 }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {

@@ -1,6 +1,6 @@
-// stb.hpp - the stb_image and stb_image_write headers, with the warnings their implementations raise silenced.
-// The one file that compiles an implementation defines STB_IMAGE_IMPLEMENTATION or STB_IMAGE_WRITE_IMPLEMENTATION
-// (and any STBI_* options) before including this; every other includer gets the declarations only.
+// stb.hpp - the stb_image header, with the warnings its implementation raises silenced.
+// The one file that compiles the implementation defines STB_IMAGE_IMPLEMENTATION (and any STBI_* options) before
+// including this; every other includer gets the declarations only. PNG files are written by io/png.hpp.
 #pragma once
 
 // Third-party code we do not patch: without this, -Werror builds would fail inside stb.
@@ -13,5 +13,4 @@
 #pragma GCC diagnostic ignored "-Wunused-parameter"
 #pragma GCC diagnostic ignored "-Wimplicit-fallthrough"
 #include <stb_image.h>
-#include <stb_image_write.h>
 #pragma GCC diagnostic pop

@@ -57,6 +57,25 @@ TEST(ImageIoPng, RgbaRoundTrip) {
   EXPECT_EQ(names_in(path.parent_path()), std::vector<std::string>{"round_trip.png"});  // no temporary left
 }
 
+// Large enough for several deflate blocks, with runs (rows repeating, as backgrounds do) and noise between them;
+// every byte must come back, and a grey PNG must be colour type 0.
+TEST(ImageIoPng, LargeImagesAndGreyRoundTrip) {
+  const int width = 613, height = 411;
+  std::vector<std::uint8_t> pixels = random_bytes(static_cast<std::size_t>(width) * height * 4, 3);
+  for (int y = 100; y < 300; ++y)
+    std::copy_n(pixels.begin() + 99 * width * 4, width * 4,
+                pixels.begin() + static_cast<std::ptrdiff_t>(y) * width * 4);
+  const std::filesystem::path path = scratch_dir() / "large.png";
+  write_png(path, width, height, pixels);
+  int w = 0, h = 0;
+  EXPECT_EQ(read_png(path, w, h), pixels);
+  const std::vector<std::uint8_t> grey = random_bytes(static_cast<std::size_t>(width) * height, 4);
+  write_png_gray(path, width, height, grey);
+  EXPECT_EQ(read_bytes(path)[25], 0);  // IHDR colour type 0: grey
+  const std::vector<std::uint8_t> back = read_png(path, w, h);
+  for (std::size_t i = 0; i < grey.size(); ++i) ASSERT_EQ(back[4 * i], grey[i]) << i;
+}
+
 TEST(ImageIoPng, RgbWithoutAlpha) {
   const std::filesystem::path path = scratch_dir() / "rgb.png";
   const std::vector<std::uint8_t> pixels = random_bytes(3 * 4 * 4, 2);
