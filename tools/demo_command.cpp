@@ -7,6 +7,7 @@
 #include <span>
 
 #include "facet/mesh.hpp"
+#include "facet/output_template.hpp"
 #include "facet/primitives.hpp"
 #include "facet/projection.hpp"
 #include "facet/render_job.hpp"
@@ -103,37 +104,6 @@ DemoFrame turning_pentagon_frame(const std::shared_ptr<const Mesh>& mesh, double
 
 }  // namespace
 
-bool expand_frame_pattern(const std::string& pattern, int frame, std::string& out) {
-  static const std::string kKey = "{frame";
-  out.clear();
-  bool found = false;
-  std::size_t pos = 0;
-  for (;;) {
-    const std::size_t start = pattern.find(kKey, pos);
-    if (start == std::string::npos) break;
-    std::size_t i = start + kKey.size();
-    int width = 0;
-    if (i < pattern.size() && pattern[i] == ':') {
-      ++i;
-      while (i < pattern.size() && pattern[i] >= '0' && pattern[i] <= '9' && width < 100)
-        width = width * 10 + (pattern[i++] - '0');
-    }
-    if (i >= pattern.size() || pattern[i] != '}') {  // not a placeholder after all: keep the text
-      out.append(pattern, pos, i - pos);
-      pos = i;
-      continue;
-    }
-    std::string number = std::to_string(frame);
-    if (static_cast<int>(number.size()) < width) number.insert(0, static_cast<std::size_t>(width) - number.size(), '0');
-    out.append(pattern, pos, start - pos);
-    out += number;
-    pos = i + 1;
-    found = true;
-  }
-  out.append(pattern, pos, std::string::npos);
-  return found;
-}
-
 CLI::App* add_demo_command(CLI::App& app, DemoArgs& args) {
   CLI::App* demo = app.add_subcommand("demo", "Render a built-in demo scene, one frame or an animation");
   demo->add_option("scene", args.name,
@@ -154,10 +124,9 @@ CLI::App* add_demo_command(CLI::App& app, DemoArgs& args) {
 
 int run_demo(const DemoArgs& args) {
   const glm::ivec2 size = parse_resolution(args.output.resolution, "--resolution");
-  std::string name;
-  if (!expand_frame_pattern(args.output.output, 0, name) && args.frames > 1)
+  if (!template_has(args.output.output, "frame") && args.frames > 1)
     throw UsageError("--output: --frames needs {frame} or {frame:04} in the file name");
-  if (!args.output.output_depth.empty() && !expand_frame_pattern(args.output.output_depth, 0, name) && args.frames > 1)
+  if (!args.output.output_depth.empty() && !template_has(args.output.output_depth, "frame") && args.frames > 1)
     throw UsageError("--output-depth: --frames needs {frame} or {frame:04} in the file name");
 
   Mesh model;
@@ -189,10 +158,11 @@ int run_demo(const DemoArgs& args) {
     Scene scene;
     for (Instance& instance : frame.instances) scene.add(std::move(instance));
     const SceneOptions options = scene_options(look, frame.view.view_from_world, shading, glm::vec3(clear));
-    std::string color_path, depth_path;
-    expand_frame_pattern(args.output.output, i, color_path);
-    if (!args.output.output_depth.empty()) expand_frame_pattern(args.output.output_depth, i, depth_path);
-    draw_and_write(renderer, target, scene, frame.view, options, clear, {.color = color_path, .depth = depth_path});
+    const TemplateValues values{.frame = i};
+    const std::string depth_path =
+        args.output.output_depth.empty() ? std::string() : expand_template(args.output.output_depth, values);
+    draw_and_write(renderer, target, scene, frame.view, options, clear,
+                   {.color = expand_template(args.output.output, values), .depth = depth_path});
   }
   return 0;
 }

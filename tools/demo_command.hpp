@@ -23,8 +23,4 @@ CLI::App* add_demo_command(CLI::App& app, DemoArgs& args);
 // Renders the frames; throws UsageError for a frame count without a {frame} pattern, runtime errors for output.
 int run_demo(const DemoArgs& args);
 
-// Replaces each {frame}, {frame:N} or {frame:0N} in `pattern` with `frame` (zero-padded to N digits). Returns
-// whether the pattern held one.
-bool expand_frame_pattern(const std::string& pattern, int frame, std::string& out);
-
 }  // namespace facet::cli

@@ -1,15 +1,25 @@
-// render_command.cpp - `facet render`: the flags as a RenderJob, performed by the library.
+// render_command.cpp - `facet render`: the flags as one RenderJob per model, performed by the library.
 #include "render_command.hpp"
 
+#include <cstdio>
+#include <map>
+#include <stdexcept>
+#include <utility>
+
+#include "facet/error.hpp"
+#include "facet/output_template.hpp"
 #include "facet/render_job.hpp"
 
 namespace facet::cli {
 
 CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
-  CLI::App* render = app.add_subcommand("render", "Render a model file to a PNG");
-  render->add_option("model", args.model, "Model file (.obj, .gltf, .glb, .ply, .stl, or any format Assimp reads)")
+  CLI::App* render = app.add_subcommand("render", "Render model files to PNG images");
+  render
+      ->add_option("model", args.models,
+                   "Model files (.obj, .gltf, .glb, .ply, .stl, or any format Assimp reads); with several, the "
+                   "output names need {model}, {stem} or {n}")
       ->required()
-      ->type_name("MODEL");
+      ->type_name("MODEL...");
   add_output_options(*render, args.output, "1024,768");
   render
       ->add_option("--output-normal", args.output.output_normal,
@@ -31,28 +41,71 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
   return render;
 }
 
-RenderJob render_job(const RenderArgs& args) {
-  RenderJob job;
-  job.model = args.model;
+std::vector<RenderJob> render_jobs(const RenderArgs& args) {
+  RenderJob base;
   const glm::ivec2 size = parse_resolution(args.output.resolution, "--resolution");
-  job.width = size.x;
-  job.height = size.y;
-  job.camera = camera_spec(args.camera);
-  job.look = look_spec(args.look);
-  job.outputs = {.color = args.output.output,
-                 .depth = args.output.output_depth,
-                 .normal = args.output.output_normal,
-                 .ids = args.output.output_ids,
-                 .mask = args.output.output_mask,
-                 .camera = args.output.output_camera};
-  return job;
+  base.width = size.x;
+  base.height = size.y;
+  base.camera = camera_spec(args.camera);
+  base.look = look_spec(args.look);
+  const std::pair<const char*, const std::string*> outputs[] = {{"--output", &args.output.output},
+                                                                {"--output-depth", &args.output.output_depth},
+                                                                {"--output-normal", &args.output.output_normal},
+                                                                {"--output-ids", &args.output.output_ids},
+                                                                {"--output-mask", &args.output.output_mask},
+                                                                {"--output-camera", &args.output.output_camera}};
+  if (args.models.size() > 1)
+    for (const auto& [flag, pattern] : outputs)
+      if (!pattern->empty() && !template_has(*pattern, "model") && !template_has(*pattern, "stem") &&
+          !template_has(*pattern, "n"))
+        throw UsageError(std::string(flag) + ": several models need {model}, {stem} or {n} in the file name");
+
+  std::vector<RenderJob> jobs;
+  std::map<std::filesystem::path, std::size_t> writer;  // each output path and the model that writes it
+  for (std::size_t n = 0; n < args.models.size(); ++n) {
+    RenderJob job = base;
+    job.model = args.models[n];
+    const TemplateValues values{.model = job.model, .n = n};
+    const auto expand = [&](const std::string& pattern) -> std::filesystem::path {
+      if (pattern.empty()) return {};
+      std::filesystem::path path = expand_template(pattern, values);
+      const auto [it, added] = writer.try_emplace(path.lexically_normal(), n);
+      if (!added && it->second != n)
+        throw UsageError("outputs: " + args.models[it->second] + " and " + args.models[n] + " would both write " +
+                         path.string());
+      return path;
+    };
+    job.outputs = {.color = expand(args.output.output),
+                   .depth = expand(args.output.output_depth),
+                   .normal = expand(args.output.output_normal),
+                   .ids = expand(args.output.output_ids),
+                   .mask = expand(args.output.output_mask),
+                   .camera = expand(args.output.output_camera)};
+    jobs.push_back(std::move(job));
+  }
+  return jobs;
 }
 
 int run_render(const RenderArgs& args) {
-  const RenderJob job = render_job(args);
+  const std::vector<RenderJob> jobs = render_jobs(args);
   Renderer renderer(args.look.threads);
-  render(job, renderer);
-  return 0;
+  if (jobs.size() == 1) {
+    render(jobs.front(), renderer);
+    return 0;
+  }
+  // Several models: a bad one is reported and the others are still rendered; usage errors stop everything.
+  int failed = 0;
+  for (const RenderJob& job : jobs) {
+    try {
+      render(job, renderer);
+    } catch (const std::invalid_argument&) {
+      throw;
+    } catch (const std::exception& e) {
+      std::fprintf(stderr, "facet: error: %s\n", e.what());
+      ++failed;
+    }
+  }
+  return failed == 0 ? 0 : 1;
 }
 
 }  // namespace facet::cli

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <string>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -10,7 +11,7 @@
 namespace facet::cli {
 
 struct RenderArgs {
-  std::string model;
+  std::vector<std::string> models;
   CameraArgs camera;
   LookArgs look;
   OutputArgs output;
@@ -19,10 +20,14 @@ struct RenderArgs {
 // Adds the `render` subcommand, filling `args` when it is parsed.
 CLI::App* add_render_command(CLI::App& app, RenderArgs& args);
 
-// The job the flags describe; throws UsageError for a value CLI11 could not check alone.
-RenderJob render_job(const RenderArgs& args);
+// One job per model, its output names expanded ({model}, {stem}, {n}; output_template.hpp). Throws UsageError for
+// a value CLI11 could not check alone, for several models whose output names hold none of those fields, and for
+// two models that would write the same file.
+std::vector<RenderJob> render_jobs(const RenderArgs& args);
 
-// Runs it; throws InputError for bad input, UsageError or std::invalid_argument for bad usage.
+// Renders every job. With one model, throws InputError for bad input; with several, prints each failure as one
+// "facet: error:" line, renders the rest and returns 1 if any failed. Throws UsageError or std::invalid_argument
+// for bad usage.
 int run_render(const RenderArgs& args);
 
 }  // namespace facet::cli

@@ -111,6 +111,10 @@ expect resolution_negative 2 render "$box" --resolution=-5,10
 expect resolution_fraction 2 render "$box" --resolution 64.5,48
 expect position_two_numbers 2 render "$box" --camera-position 1,2
 expect camera_index_none 2 render "$box" --camera-index 0
+expect several_models_one_name 2 render "$box" "$box" --output "$scratch/several_models_one_name.png"
+expect_message several_models_one_name "several models need {model}, {stem} or {n}"
+expect same_name_twice 2 render "$box" "$box" --output "$scratch/{stem}.png"
+expect_message same_name_twice "would both write"
 expect ids_of_wireframe 2 render "$box" --wireframe --output-ids "$scratch/ids_of_wireframe.npy"
 expect position_text 2 render "$box" --camera-position 1,2,x
 expect position_nan 2 render "$box" --camera-position 1,nan,3

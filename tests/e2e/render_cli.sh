@@ -192,6 +192,21 @@ else
   bad "normal and ids" "$(head -n 2 "$scratch/ni.log")"
 fi
 
+# Several models, one command: output names from {stem} and {n:02}; a broken model is reported, the rest render.
+mkdir -p "$scratch/many"
+rm -f "$scratch/many"/*
+printf 'not a model\n' >"$scratch/many/broken.obj"
+"$facet" render "$models/box.obj" "$scratch/many/broken.obj" "$stl_models/Spider_binary.stl" --resolution 64,48 \
+  --output "$scratch/many/{n:02}_{stem}.png" --output-mask "$scratch/many/{stem}_mask.png" 2>"$scratch/many.log"
+status=$?
+made=$(cd "$scratch/many" && ls ./*.png 2>/dev/null | tr '\n' ' ')
+if [ "$status" = 1 ] && [ "$(grep -c '^facet: error: .*broken.obj' "$scratch/many.log")" = 1 ] &&
+  [ "$made" = "./00_box.png ./02_Spider_binary.png ./Spider_binary_mask.png ./box_mask.png " ]; then
+  ok "several models: $made"
+else
+  bad "several models" "exit $status, made: $made; $(head -n 2 "$scratch/many.log")"
+fi
+
 # facet info: counts and bounds, one item per line.
 if info=$("$facet" info "$models/box.obj" 2>"$scratch/info.log") &&
   grep -qx 'vertices: 8' <<<"$info" && grep -qx 'triangles: 12' <<<"$info" && grep -qx 'edges: 18' <<<"$info" &&
