@@ -2,7 +2,7 @@
 # deps.sh - installs the Debian packages facet needs to build, test and benchmark, skipping those already present.
 set -euo pipefail
 
-packages=(g++ cmake ninja-build pkg-config libglm-dev libstb-dev libtinyobjloader-dev libtinygltf-dev libassimp-dev libopenexr-dev libdraco-dev libdeflate-dev libcli11-dev
+packages=(g++ cmake ninja-build pkg-config libglm-dev libstb-dev libtinyobjloader-dev libtinygltf-dev libassimp-dev libopenexr-dev libdraco-dev libdeflate-dev libcli11-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels python3 time ccache clang)
 missing=()
 for p in "${packages[@]}"; do

@@ -8,6 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "batch_command.hpp"
 #include "bench_command.hpp"
 #include "cli_options.hpp"
 #include "demo_command.hpp"
@@ -40,16 +41,18 @@ int main(int argc, char** argv) {
   facet::cli::DemoArgs demo_args;
   facet::cli::InfoArgs info_args;
   facet::cli::BenchArgs bench_args;
+  facet::cli::BatchArgs batch_args;
   CLI::App* render = facet::cli::add_render_command(app, render_args);
   CLI::App* demo = facet::cli::add_demo_command(app, demo_args);
   CLI::App* info = facet::cli::add_info_command(app, info_args);
   CLI::App* bench = facet::cli::add_bench_command(app, bench_args);
+  CLI::App* batch = facet::cli::add_batch_command(app, batch_args);
 
   // CLI11 would list every argument as unexpected; name the command instead.
-  if (const std::string_view command = argc >= 2 ? argv[1] : "-"; (command.empty() || command[0] != '-') &&
-                                                                  command != "render" && command != "demo" &&
-                                                                  command != "info" && command != "bench")
-    return fail(std::string("unknown command '") + argv[1] + "': use render, demo, info or bench", kUsageError);
+  if (const std::string_view command = argc >= 2 ? argv[1] : "-";
+      (command.empty() || command[0] != '-') && command != "render" && command != "demo" && command != "info" &&
+      command != "bench" && command != "batch")
+    return fail(std::string("unknown command '") + argv[1] + "': use render, batch, demo, info or bench", kUsageError);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -67,7 +70,8 @@ int main(int argc, char** argv) {
     if (demo->parsed()) return facet::cli::run_demo(demo_args);
     if (info->parsed()) return facet::cli::run_info(info_args);
     if (bench->parsed()) return facet::cli::run_bench(bench_args);
-    return fail("no command given: use render, demo, info or bench (see facet --help)", kUsageError);
+    if (batch->parsed()) return facet::cli::run_batch(batch_args);
+    return fail("no command given: use render, batch, demo, info or bench (see facet --help)", kUsageError);
   } catch (const facet::InputError& e) {
     return fail(e.what(), kInputError);
   } catch (const facet::cli::UsageError& e) {

@@ -41,7 +41,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
   return render;
 }
 
-std::vector<RenderJob> render_jobs(const RenderArgs& args) {
+std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) {
   RenderJob base;
   const glm::ivec2 size = parse_resolution(args.output.resolution, "--resolution");
   base.width = size.x;
@@ -65,7 +65,7 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args) {
   for (std::size_t n = 0; n < args.models.size(); ++n) {
     RenderJob job = base;
     job.model = args.models[n];
-    const TemplateValues values{.model = job.model, .n = n};
+    const TemplateValues values{.model = job.model, .n = first_n + n};
     const auto expand = [&](const std::string& pattern) -> std::filesystem::path {
       if (pattern.empty()) return {};
       std::filesystem::path path = expand_template(pattern, values);

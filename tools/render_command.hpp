@@ -20,10 +20,10 @@ struct RenderArgs {
 // Adds the `render` subcommand, filling `args` when it is parsed.
 CLI::App* add_render_command(CLI::App& app, RenderArgs& args);
 
-// One job per model, its output names expanded ({model}, {stem}, {n}; output_template.hpp). Throws UsageError for
-// a value CLI11 could not check alone, for several models whose output names hold none of those fields, and for
-// two models that would write the same file.
-std::vector<RenderJob> render_jobs(const RenderArgs& args);
+// One job per model, its output names expanded ({model}, {stem}, {n} counting from first_n; output_template.hpp).
+// Throws UsageError for a value CLI11 could not check alone, for several models whose output names hold none of those
+// fields, and for two models that would write the same file.
+std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n = 0);
 
 // Renders every job. With one model, throws InputError for bad input; with several, prints each failure as one
 // "facet: error:" line, renders the rest and returns 1 if any failed. Throws UsageError or std::invalid_argument

@@ -1,0 +1,106 @@
+#!/usr/bin/env bash
+# batch_cli.sh - `facet batch`: JSON-lines and list jobs, the report, skipping and --force, shards, bad jobs files.
+# Usage: batch_cli.sh FACET SCRATCH. Prints one line per case and a closing "N passed, M failed".
+set -uo pipefail
+# shellcheck source=SCRIPTDIR/lib/common.bash
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.bash"
+facet=$1
+scratch=$2
+models=/usr/share/assimp/models
+mkdir -p "$scratch"
+rm -rf "${scratch:?}"/*
+cd "$scratch" || exit 1
+
+# Four jobs, one of them a model that does not exist; outputs in folders the batch makes.
+cat >jobs.jsonl <<EOF
+{"model": "$models/OBJ/box.obj", "output": "out/{stem}.png", "resolution": [64, 48]}
+{"model": "$models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb", "output": "out/{n:03}.png", "resolution": "64,48", "camera-azimuth-angle": 40}
+
+{"model": "missing.obj", "output": "out/missing.png"}
+{"model": "$models/STL/Spider_binary.stl", "output": "out/deep/{stem}.png", "resolution": [48, 48], "no-background": true, "output-mask": "out/deep/{stem}_mask.png"}
+EOF
+expected="out/001.png out/box.png out/deep/Spider_binary.png out/deep/Spider_binary_mask.png"
+listing() { (cd "$1" && find out -type f | sort | tr '\n' ' ' | sed 's/ $//'); }
+statuses() { python3 -c 'import json, sys; print(" ".join(json.loads(l)["status"] for l in open(sys.argv[1])))' "$1"; }
+
+"$facet" batch jobs.jsonl --report report.jsonl --quiet 2>first.log
+status=$?
+if [ "$status" = 1 ] && [ "$(listing .)" = "$expected" ] && [ "$(statuses report.jsonl)" = "ok ok failed ok" ] &&
+  grep -q '^facet: error: missing.obj: no such file' first.log; then
+  ok "jobs run, the broken one reported: $(statuses report.jsonl)"
+else
+  bad "first run" "exit $status, files '$(listing .)', report '$(statuses report.jsonl 2>&1)'"
+fi
+sums() { (cd "$1" && find out -type f | sort | xargs md5sum); }
+first=$(sums .)
+
+# A rerun skips what exists; --force renders it again, byte for byte the same.
+"$facet" batch jobs.jsonl --report again.jsonl --quiet 2>/dev/null
+if [ "$(statuses again.jsonl)" = "skipped skipped failed skipped" ] && [ "$(sums .)" = "$first" ]; then
+  ok "rerun skips the jobs whose outputs exist"
+else
+  bad "rerun" "report '$(statuses again.jsonl 2>&1)'"
+fi
+"$facet" batch jobs.jsonl --report forced.jsonl --force --quiet 2>/dev/null
+if [ "$(statuses forced.jsonl)" = "ok ok failed ok" ] && [ "$(sums .)" = "$first" ]; then
+  ok "--force renders again, identical bytes"
+else
+  bad "--force" "report '$(statuses forced.jsonl 2>&1)'"
+fi
+
+# Shards: two halves, and the same shares through Slurm's and Kubernetes' variables, make the files of one run.
+mkdir -p shards auto
+(cd shards && "$facet" batch ../jobs.jsonl --shard 0/2 --quiet 2>/dev/null; "$facet" batch ../jobs.jsonl --shard 1/2 --quiet 2>/dev/null)
+(cd auto && SLURM_ARRAY_TASK_ID=5 SLURM_ARRAY_TASK_MIN=4 SLURM_ARRAY_TASK_COUNT=2 "$facet" batch ../jobs.jsonl --shard auto --quiet 2>/dev/null
+  JOB_COMPLETION_INDEX=0 "$facet" batch ../jobs.jsonl --shard auto --shards 2 --quiet 2>/dev/null)
+if [ -n "$first" ] && [ "$(sums shards)" = "$first" ] && [ "$(sums auto)" = "$first" ]; then
+  ok "shards 0/2 + 1/2, and Slurm's and Kubernetes' shares, give the unsharded files"
+else
+  bad "shards" "shards: '$(listing shards)', auto: '$(listing auto)'"
+fi
+(cd auto && rm -rf out && JOB_COMPLETION_INDEX=1 "$facet" batch ../jobs.jsonl --shard auto --shards 2 --quiet 2>/dev/null)
+if [ "$(listing auto)" = "out/001.png out/deep/Spider_binary.png out/deep/Spider_binary_mask.png" ]; then
+  ok "shard 1 of 2 renders jobs 1 and 3"
+else
+  bad "shard 1 of 2" "'$(listing auto)'"
+fi
+
+# A plain list of models with an output template.
+printf '# thumbnails\n%s\n\n%s\n' "$models/OBJ/box.obj" "$models/PLY/cube_binary.ply" >list.txt
+mkdir -p list
+if (cd list && "$facet" batch ../list.txt --output 'out/{n}_{stem}.png' --quiet) &&
+  [ "$(listing list)" = "out/0_box.png out/1_cube_binary.png" ]; then
+  ok "a list of models with --output"
+else
+  bad "list" "'$(listing list)'"
+fi
+
+# Bad jobs files: one error line naming the line, exit 1 (2 for usage), before anything is rendered.
+expect_refused() {  # NAME STATUS TEXT FILE-CONTENT [FLAGS...]
+  local name=$1 want=$2 text=$3 content=$4
+  shift 4
+  mkdir -p "bad_$name"
+  printf '%s' "$content" >"bad_$name/jobs"
+  (cd "bad_$name" && "$facet" batch jobs "$@" >stdout 2>stderr)
+  local got=$?
+  if [ "$got" = "$want" ] && [ "$(wc -l <"bad_$name/stderr")" = 1 ] && grep -qF -- "$text" "bad_$name/stderr" &&
+    [ ! -e "bad_$name/out" ]; then
+    ok "$name ($got): $(cat "bad_$name/stderr")"
+  else
+    bad "$name" "exit $got: $(tr '\n' '|' <"bad_$name/stderr")"
+  fi
+}
+good="{\"model\": \"$models/OBJ/box.obj\", \"output\": \"out/a.png\"}"
+expect_refused not_json 1 "jobs: line 2: not valid JSON" "$good"$'\n{"model": \n'
+expect_refused unknown_key 1 "line 1: " "{\"model\": \"$models/OBJ/box.obj\", \"output\": \"out/a.png\", \"bogus\": 1}"$'\n'
+expect_refused wrong_type 1 'line 1: "resolution": expected a string, number, boolean or list' \
+  "{\"model\": \"$models/OBJ/box.obj\", \"output\": \"out/a.png\", \"resolution\": {\"w\": 1}}"$'\n'
+expect_refused no_model 1 'line 2: "model" (a string) is missing' "$good"$'\n{"output": "out/b.png"}\n'
+expect_refused bad_value 1 "line 1: --resolution" \
+  "{\"model\": \"$models/OBJ/box.obj\", \"output\": \"out/a.png\", \"resolution\": [0, 5]}"$'\n'
+expect_refused same_output 2 "lines 1 and 2 would both write" "$good"$'\n'"$good"$'\n'
+expect_refused list_without_output 2 "--output: a list of models needs an output template" "$models/OBJ/box.obj"$'\n'
+expect_refused bad_shard 2 "--shard: shard 2 of 2 does not exist" "$good"$'\n' --shard 2/2
+expect_refused no_scheduler 2 "--shard auto: neither" "$good"$'\n' --shard auto
+
+finish

@@ -1,0 +1,281 @@
+// batch_command.cpp - `facet batch`: jobs read and checked up front, then rendered by one renderer, with a report.
+#include "batch_command.hpp"
+
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <sstream>
+#include <stdexcept>
+
+#include <nlohmann/json.hpp>
+
+#include "facet/error.hpp"
+#include "render_command.hpp"
+
+namespace facet::cli {
+namespace {
+
+using Json = nlohmann::json;
+
+// A JSON value as the text of a flag's value: strings as they are, numbers as JSON writes them, lists joined by
+// commas; nullopt for anything else (objects, null, nested lists).
+std::optional<std::string> flag_text(const Json& value) {
+  if (value.is_string()) return value.get<std::string>();
+  if (value.is_number()) return value.dump();
+  if (!value.is_array()) return std::nullopt;
+  std::string joined;
+  for (const Json& item : value) {
+    if (!item.is_number() && !item.is_string()) return std::nullopt;
+    if (!joined.empty()) joined += ',';
+    joined += item.is_string() ? item.get<std::string>() : item.dump();
+  }
+  return joined;
+}
+
+// `facet render`'s arguments for one JSON object; throws std::invalid_argument naming the key at fault.
+std::vector<std::string> render_arguments(const Json& object, const std::string& default_output) {
+  if (!object.is_object()) throw std::invalid_argument("expected a JSON object");
+  const auto model = object.find("model");
+  if (model == object.end() || !model->is_string()) throw std::invalid_argument("\"model\" (a string) is missing");
+  std::vector<std::string> argv = {"facet", "render", model->get<std::string>()};
+  for (const auto& [key, value] : object.items()) {
+    if (key == "model") continue;
+    if (value.is_boolean()) {
+      if (value.get<bool>()) argv.push_back("--" + key);
+      continue;
+    }
+    const std::optional<std::string> text = flag_text(value);
+    if (!text) throw std::invalid_argument("\"" + key + "\": expected a string, number, boolean or list");
+    argv.push_back("--" + key);
+    argv.push_back(*text);
+  }
+  if (!object.contains("output") && !default_output.empty()) {
+    argv.push_back("--output");
+    argv.push_back(default_output);
+  }
+  return argv;
+}
+
+// The job the arguments describe, parsed by `facet render`'s own flags; CLI11's and the flags' errors become
+// std::invalid_argument.
+RenderJob job_of(const std::vector<std::string>& argv, std::size_t n) {
+  CLI::App app;
+  RenderArgs args;
+  add_render_command(app, args);
+  std::vector<const char*> pointers;
+  for (const std::string& a : argv) pointers.push_back(a.c_str());
+  try {
+    app.parse(static_cast<int>(pointers.size()), pointers.data());
+    return render_jobs(args, n).front();
+  } catch (const CLI::Error& e) {
+    throw std::invalid_argument(e.what());
+  } catch (const UsageError& e) {
+    throw std::invalid_argument(e.what());
+  }
+}
+
+std::vector<std::filesystem::path> paths_of(const OutputSpec& o) {
+  std::vector<std::filesystem::path> paths;
+  for (const std::filesystem::path* p : {&o.color, &o.depth, &o.normal, &o.ids, &o.mask, &o.camera})
+    if (!p->empty()) paths.push_back(*p);
+  return paths;
+}
+
+bool outputs_exist(const OutputSpec& outputs) {
+  std::error_code ignored;
+  for (const std::filesystem::path& p : paths_of(outputs))
+    if (!std::filesystem::exists(p, ignored)) return false;
+  return true;
+}
+
+std::size_t parse_count(const std::string& text, const std::string& what) {
+  std::size_t used = 0;
+  unsigned long value = 0;
+  try {
+    value = std::stoul(text, &used);
+  } catch (const std::exception&) {
+    used = 0;
+  }
+  if (used == 0 || used != text.size()) throw UsageError(what + ": expected a whole number, got \"" + text + "\"");
+  return value;
+}
+
+// Progress on stderr: a line rewritten in place on a terminal, a plain line every 5 seconds otherwise.
+class Progress {
+ public:
+  Progress(std::size_t total, bool quiet) : total_(total), quiet_(quiet), terminal_(::isatty(2) != 0) {}
+  void update(std::size_t done, bool last) {
+    if (quiet_) return;
+    const double elapsed = seconds_since(start_);
+    if (!terminal_ && !last && seconds_since(printed_) < 5.0) return;
+    printed_ = Clock::now();
+    const double rate = elapsed > 0.0 ? static_cast<double>(done) / elapsed : 0.0;
+    const double eta = rate > 0.0 ? static_cast<double>(total_ - done) / rate : 0.0;
+    std::fprintf(stderr, "%sfacet batch: %zu/%zu jobs, %.1f/s, %.0f s left%s", terminal_ ? "\r" : "", done, total_,
+                 rate, eta, terminal_ && !last ? "" : "\n");
+    std::fflush(stderr);
+  }
+
+ private:
+  using Clock = std::chrono::steady_clock;
+  static double seconds_since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+  std::size_t total_;
+  bool quiet_, terminal_;
+  Clock::time_point start_ = Clock::now(), printed_ = Clock::now();
+};
+
+}  // namespace
+
+CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
+  CLI::App* batch = app.add_subcommand("batch", "Render every job of a file in one process");
+  batch
+      ->add_option("jobs", args.jobs,
+                   "JSON lines of render flags ({\"model\": ..., \"output\": ..., \"resolution\": [256, 256]}), "
+                   "or one model path per line")
+      ->required()
+      ->type_name("JOBS");
+  batch->add_option("-o,--output", args.output, "Output template of jobs that name none, e.g. 'thumbs/{stem}.png'")
+      ->type_name("TEMPLATE");
+  batch->add_option("--report", args.report, "Write one JSON line per job: line, model, status, seconds, error")
+      ->type_name("FILE.jsonl");
+  batch->add_option("--shard", args.shard, "Render the jobs whose index % N is I, or 'auto' (Slurm, Kubernetes)")
+      ->type_name("I/N");
+  batch->add_option("--shards", args.shards, "The shard count for --shard auto with Kubernetes indexed jobs")
+      ->type_name("N");
+  batch->add_flag("--force", args.force, "Render jobs whose outputs exist too");
+  batch->add_flag("--quiet", args.quiet, "No progress on stderr");
+  batch->add_option("--threads", args.threads, "Render threads (0 = all cores)")->type_name("N");
+  return batch;
+}
+
+std::vector<BatchJob> read_batch_jobs(const BatchArgs& args) {
+  const std::string source = args.jobs;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(args.jobs, ec)) throw InputError(source, "no such file");
+  std::ifstream in(args.jobs);
+  if (!in) throw InputError(source, "cannot open file");
+  std::vector<std::pair<std::size_t, std::string>> lines;
+  std::string text;
+  for (std::size_t number = 1; std::getline(in, text); ++number) {
+    const std::size_t first = text.find_first_not_of(" \t\r");
+    if (first == std::string::npos || text[first] == '#') continue;
+    lines.emplace_back(number, text);
+  }
+  const bool json = !lines.empty() && lines.front().second[lines.front().second.find_first_not_of(" \t")] == '{';
+  if (!json && args.output.empty()) throw UsageError("--output: a list of models needs an output template");
+
+  std::vector<BatchJob> jobs;
+  std::map<std::filesystem::path, std::size_t> writer;  // each output path and the line that writes it
+  for (const auto& [number, line] : lines) {
+    const std::size_t n = jobs.size();
+    try {
+      std::vector<std::string> argv;
+      if (json) {
+        const Json object = Json::parse(line, nullptr, false);
+        if (object.is_discarded()) throw std::invalid_argument("not valid JSON");
+        argv = render_arguments(object, args.output);
+      } else {
+        std::string model = line.substr(line.find_first_not_of(" \t"));
+        while (!model.empty() && (model.back() == '\r' || model.back() == ' ' || model.back() == '\t'))
+          model.pop_back();
+        argv = {"facet", "render", model, "--output", args.output};
+      }
+      jobs.push_back({number, job_of(argv, n)});
+    } catch (const std::invalid_argument& e) {
+      throw InputError(source, "line " + std::to_string(number) + ": " + e.what());
+    }
+    for (const std::filesystem::path& path : paths_of(jobs.back().job.outputs)) {
+      const auto [it, added] = writer.try_emplace(path.lexically_normal(), number);
+      if (!added && it->second != number)
+        throw UsageError("lines " + std::to_string(it->second) + " and " + std::to_string(number) +
+                         " would both write " + path.string());
+    }
+  }
+  return jobs;
+}
+
+std::vector<std::size_t> shard_of(const BatchArgs& args, std::size_t count) {
+  std::size_t index = 0, shards = 1;
+  if (args.shard == "auto") {
+    const char* slurm_id = std::getenv("SLURM_ARRAY_TASK_ID");
+    const char* slurm_count = std::getenv("SLURM_ARRAY_TASK_COUNT");
+    const char* k8s_index = std::getenv("JOB_COMPLETION_INDEX");
+    if (slurm_id && slurm_count) {
+      const char* slurm_min = std::getenv("SLURM_ARRAY_TASK_MIN");
+      const std::size_t id = parse_count(slurm_id, "SLURM_ARRAY_TASK_ID");
+      const std::size_t min = slurm_min ? parse_count(slurm_min, "SLURM_ARRAY_TASK_MIN") : 0;
+      if (id < min) throw UsageError("--shard auto: SLURM_ARRAY_TASK_ID is below SLURM_ARRAY_TASK_MIN");
+      index = id - min;
+      shards = parse_count(slurm_count, "SLURM_ARRAY_TASK_COUNT");
+    } else if (k8s_index) {
+      if (args.shards < 1) throw UsageError("--shard auto: Kubernetes' JOB_COMPLETION_INDEX needs --shards N");
+      index = parse_count(k8s_index, "JOB_COMPLETION_INDEX");
+      shards = static_cast<std::size_t>(args.shards);
+    } else {
+      throw UsageError(
+          "--shard auto: neither Slurm's SLURM_ARRAY_TASK_ID and SLURM_ARRAY_TASK_COUNT nor "
+          "Kubernetes' JOB_COMPLETION_INDEX is set");
+    }
+  } else if (!args.shard.empty()) {
+    const std::size_t slash = args.shard.find('/');
+    if (slash == std::string::npos) throw UsageError("--shard: expected I/N or auto, got \"" + args.shard + "\"");
+    index = parse_count(args.shard.substr(0, slash), "--shard");
+    shards = parse_count(args.shard.substr(slash + 1), "--shard");
+  }
+  if (shards < 1 || index >= shards)
+    throw UsageError("--shard: shard " + std::to_string(index) + " of " + std::to_string(shards) + " does not exist");
+  std::vector<std::size_t> mine;
+  for (std::size_t k = index; k < count; k += shards) mine.push_back(k);
+  return mine;
+}
+
+int run_batch(const BatchArgs& args) {
+  const std::vector<BatchJob> jobs = read_batch_jobs(args);
+  const std::vector<std::size_t> mine = shard_of(args, jobs.size());
+  std::ofstream report;
+  if (!args.report.empty()) {
+    report.open(args.report, std::ios::trunc);
+    if (!report) throw std::runtime_error(args.report + ": cannot create file");
+  }
+  Renderer renderer(args.threads);
+  const bool terminal = ::isatty(2) != 0;
+  Progress progress(mine.size(), args.quiet);
+  int failed = 0;
+  std::size_t done = 0;
+  for (const std::size_t k : mine) {
+    const BatchJob& job = jobs[k];
+    Json entry = {{"line", job.line}, {"model", job.job.model.string()}};
+    const auto start = std::chrono::steady_clock::now();
+    if (!args.force && outputs_exist(job.job.outputs)) {
+      entry["status"] = "skipped";
+    } else {
+      try {
+        // Batches write into folder trees (thumbs/{stem}.png): the folders are made as needed.
+        for (const std::filesystem::path& path : paths_of(job.job.outputs))
+          if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+        render(job.job, renderer);
+        entry["status"] = "ok";
+      } catch (const std::exception& e) {
+        // On a terminal the progress line is open: the error starts a line of its own.
+        std::fprintf(stderr, "%sfacet: error: %s\n", !args.quiet && terminal ? "\n" : "", e.what());
+        entry["status"] = "failed";
+        entry["error"] = e.what();
+        ++failed;
+      }
+    }
+    entry["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (report.is_open()) report << entry.dump() << '\n' << std::flush;
+    ++done;
+    progress.update(done, done == mine.size());
+  }
+  if (report.is_open() && !report) throw std::runtime_error(args.report + ": cannot write file");
+  return failed == 0 ? 0 : 1;
+}
+
+}  // namespace facet::cli
