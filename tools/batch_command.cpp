@@ -3,15 +3,19 @@
 
 #include <unistd.h>
 
+#include <algorithm>
+#include <atomic>
 #include <chrono>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <map>
+#include <mutex>
 #include <optional>
 #include <sstream>
 #include <stdexcept>
+#include <thread>
 
 #include <nlohmann/json.hpp>
 
@@ -150,7 +154,10 @@ CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
       ->type_name("N");
   batch->add_flag("--force", args.force, "Render jobs whose outputs exist too");
   batch->add_flag("--quiet", args.quiet, "No progress on stderr");
-  batch->add_option("--threads", args.threads, "Render threads (0 = all cores)")->type_name("N");
+  batch
+      ->add_option("--threads", args.threads,
+                   "0: one job per core at a time (default); N: one job at a time on N threads")
+      ->type_name("N");
   return batch;
 }
 
@@ -243,36 +250,56 @@ int run_batch(const BatchArgs& args) {
     report.open(args.report, std::ios::trunc);
     if (!report) throw std::runtime_error(args.report + ": cannot create file");
   }
-  Renderer renderer(args.threads);
   const bool terminal = ::isatty(2) != 0;
   Progress progress(mine.size(), args.quiet);
+  std::mutex lock;  // guards the report, the progress and the counts
   int failed = 0;
   std::size_t done = 0;
-  for (const std::size_t k : mine) {
-    const BatchJob& job = jobs[k];
-    Json entry = {{"line", job.line}, {"model", job.job.model.string()}};
-    const auto start = std::chrono::steady_clock::now();
-    if (!args.force && outputs_exist(job.job.outputs)) {
-      entry["status"] = "skipped";
-    } else {
-      try {
-        // Batches write into folder trees (thumbs/{stem}.png): the folders are made as needed.
-        for (const std::filesystem::path& path : paths_of(job.job.outputs))
-          if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-        render(job.job, renderer);
-        entry["status"] = "ok";
-      } catch (const std::exception& e) {
+  std::atomic<std::size_t> next{0};
+
+  // Small models leave a renderer's threads idle between draws (loading, encoding), so with --threads 0 each core
+  // takes jobs of its own with a one-thread renderer; --threads N gives one renderer N threads.
+  const auto work = [&](int threads) {
+    Renderer renderer(threads);
+    for (std::size_t i = next++; i < mine.size(); i = next++) {
+      const BatchJob& job = jobs[mine[i]];
+      Json entry = {{"line", job.line}, {"model", job.job.model.string()}};
+      const auto start = std::chrono::steady_clock::now();
+      std::string error;
+      if (!args.force && outputs_exist(job.job.outputs)) {
+        entry["status"] = "skipped";
+      } else {
+        try {
+          // Batches write into folder trees (thumbs/{stem}.png): the folders are made as needed.
+          for (const std::filesystem::path& path : paths_of(job.job.outputs))
+            if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
+          render(job.job, renderer);
+          entry["status"] = "ok";
+        } catch (const std::exception& e) {
+          error = e.what();
+          entry["status"] = "failed";
+          entry["error"] = error;
+        }
+      }
+      entry["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      const std::lock_guard<std::mutex> hold(lock);
+      if (!error.empty()) {
         // On a terminal the progress line is open: the error starts a line of its own.
-        std::fprintf(stderr, "%sfacet: error: %s\n", !args.quiet && terminal ? "\n" : "", e.what());
-        entry["status"] = "failed";
-        entry["error"] = e.what();
+        std::fprintf(stderr, "%sfacet: error: %s\n", !args.quiet && terminal ? "\n" : "", error.c_str());
         ++failed;
       }
+      if (report.is_open()) report << entry.dump() << '\n' << std::flush;
+      ++done;
+      progress.update(done, done == mine.size());
     }
-    entry["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (report.is_open()) report << entry.dump() << '\n' << std::flush;
-    ++done;
-    progress.update(done, done == mine.size());
+  };
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t workers = args.threads == 0 ? std::min<std::size_t>(cores, mine.size()) : 1;
+  if (workers <= 1) {
+    work(args.threads);
+  } else {
+    std::vector<std::jthread> pool;
+    for (std::size_t w = 0; w < workers; ++w) pool.emplace_back(work, 1);
   }
   if (report.is_open() && !report) throw std::runtime_error(args.report + ": cannot write file");
   return failed == 0 ? 0 : 1;

@@ -19,7 +19,7 @@ struct BatchArgs {
   int shards = 0;      // the shard count for --shard auto under Kubernetes indexed jobs
   bool force = false;  // render jobs whose outputs all exist too
   bool quiet = false;  // no progress
-  int threads = 0;
+  int threads = 0;     // 0: one job per core at a time; N: jobs one after another on an N-thread renderer
 };
 
 // Adds the `batch` subcommand, filling `args` when it is parsed.
@@ -43,8 +43,9 @@ std::vector<BatchJob> read_batch_jobs(const BatchArgs& args);
 // --shard auto without Slurm's array variables or Kubernetes' JOB_COMPLETION_INDEX and --shards.
 std::vector<std::size_t> shard_of(const BatchArgs& args, std::size_t count);
 
-// Renders this shard's jobs with one renderer, skipping those whose outputs exist (unless --force); a failed job is
-// reported and the batch goes on. Returns 1 if any job failed, else 0.
+// Renders this shard's jobs, skipping those whose outputs exist (unless --force): with threads 0, one job per core
+// at a time, each core with a renderer of its own; else one after another. A failed job is reported and the
+// batch goes on. Returns 1 if any job failed, else 0.
 int run_batch(const BatchArgs& args);
 
 }  // namespace facet::cli
