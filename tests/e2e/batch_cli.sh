@@ -21,7 +21,11 @@ cat >jobs.jsonl <<EOF
 EOF
 expected="out/001.png out/box.png out/deep/Spider_binary.png out/deep/Spider_binary_mask.png"
 listing() { (cd "$1" && find out -type f | sort | tr '\n' ' ' | sed 's/ $//'); }
-statuses() { python3 -c 'import json, sys; print(" ".join(json.loads(l)["status"] for l in open(sys.argv[1])))' "$1"; }
+# The report's statuses in the jobs' order (jobs run on every core, so lines come in the order they finish).
+statuses() {
+  python3 -c 'import json, sys
+print(" ".join(e["status"] for e in sorted((json.loads(l) for l in open(sys.argv[1])), key=lambda e: e["line"])))' "$1"
+}
 
 "$facet" batch jobs.jsonl --report report.jsonl --quiet 2>first.log
 status=$?
