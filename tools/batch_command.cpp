@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -134,6 +135,12 @@ class Progress {
   Clock::time_point start_ = Clock::now(), printed_ = Clock::now();
 };
 
+// The signal that asked the batch to stop (SIGINT, SIGTERM), 0 while none has. Jobs in flight finish, so every
+// output is complete and renamed into place and no temporary file is left; the rest wait for a rerun.
+volatile std::sig_atomic_t stop_signal = 0;
+
+void request_stop(int signal) { stop_signal = signal; }
+
 }  // namespace
 
 CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
@@ -261,7 +268,7 @@ int run_batch(const BatchArgs& args) {
   // takes jobs of its own with a one-thread renderer; --threads N gives one renderer N threads.
   const auto work = [&](int threads) {
     Renderer renderer(threads);
-    for (std::size_t i = next++; i < mine.size(); i = next++) {
+    for (std::size_t i = next++; i < mine.size() && stop_signal == 0; i = next++) {
       const BatchJob& job = jobs[mine[i]];
       Json entry = {{"line", job.line}, {"model", job.job.model.string()}};
       const auto start = std::chrono::steady_clock::now();
@@ -293,6 +300,9 @@ int run_batch(const BatchArgs& args) {
       progress.update(done, done == mine.size());
     }
   };
+  stop_signal = 0;
+  std::signal(SIGINT, request_stop);
+  std::signal(SIGTERM, request_stop);
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
   const std::size_t workers = args.threads == 0 ? std::min<std::size_t>(cores, mine.size()) : 1;
   if (workers <= 1) {
@@ -301,7 +311,14 @@ int run_batch(const BatchArgs& args) {
     std::vector<std::jthread> pool;
     for (std::size_t w = 0; w < workers; ++w) pool.emplace_back(work, 1);
   }
+  std::signal(SIGINT, SIG_DFL);
+  std::signal(SIGTERM, SIG_DFL);
   if (report.is_open() && !report) throw std::runtime_error(args.report + ": cannot write file");
+  if (stop_signal != 0) {
+    std::fprintf(stderr, "facet: batch stopped by signal %d after %zu of %zu jobs; run it again to finish\n",
+                 static_cast<int>(stop_signal), done, mine.size());
+    return 128 + stop_signal;  // as a shell reports a process the signal ended
+  }
   return failed == 0 ? 0 : 1;
 }
 

@@ -45,7 +45,8 @@ std::vector<std::size_t> shard_of(const BatchArgs& args, std::size_t count);
 
 // Renders this shard's jobs, skipping those whose outputs exist (unless --force): with threads 0, one job per core
 // at a time, each core with a renderer of its own; else one after another. A failed job is reported and the
-// batch goes on. Returns 1 if any job failed, else 0.
+// batch goes on. SIGINT or SIGTERM stops it once the jobs in flight are written, returning 128 + the signal.
+// Returns 1 if any job failed, else 0.
 int run_batch(const BatchArgs& args);
 
 }  // namespace facet::cli

@@ -69,6 +69,30 @@ else
   bad "shard 1 of 2" "'$(listing auto)'"
 fi
 
+# SIGTERM midway: the jobs in flight finish, nothing partial or temporary is left, and a rerun completes the set
+# with the bytes of an uninterrupted run.
+python3 -c 'import sys
+for n in range(200): print(sys.argv[1])' "$models/OBJ/WusonOBJ.obj" >many.txt
+mkdir -p stopped whole
+(cd stopped && exec "$facet" batch ../many.txt --output 'out/{n}.png' --quiet 2>err.log) &
+pid=$!
+sleep 1
+kill -TERM "$pid"
+wait "$pid"
+stopped_status=$?
+made=$(find stopped/out -name '*.png' 2>/dev/null | wc -l)
+temporaries=$(find stopped -name '.*' -type f | wc -l)
+complete=$(for f in stopped/out/*.png; do tail -c 8 "$f" | grep -c IEND; done | grep -c 0)
+(cd stopped && "$facet" batch ../many.txt --output 'out/{n}.png' --quiet)
+resumed_status=$?
+(cd whole && "$facet" batch ../many.txt --output 'out/{n}.png' --quiet)
+if [ "$stopped_status" = 143 ] && [ "$made" -gt 0 ] && [ "$made" -lt 200 ] && [ "$temporaries" = 0 ] &&
+  [ "$complete" = 0 ] && [ "$resumed_status" = 0 ] && [ "$(sums stopped)" = "$(sums whole)" ]; then
+  ok "SIGTERM after $made of 200 jobs: no partial or temporary file; the rerun matches an uninterrupted run"
+else
+  bad "SIGTERM" "exit $stopped_status, $made made, $temporaries temporaries, $complete incomplete, rerun $resumed_status"
+fi
+
 # A plain list of models with an output template.
 printf '# thumbnails\n%s\n\n%s\n' "$models/OBJ/box.obj" "$models/PLY/cube_binary.ply" >list.txt
 mkdir -p list
