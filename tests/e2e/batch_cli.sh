@@ -62,6 +62,14 @@ if [ -n "$first" ] && [ "$(sums shards)" = "$first" ] && [ "$(sums auto)" = "$fi
 else
   bad "shards" "shards: '$(listing shards)', auto: '$(listing auto)'"
 fi
+# Three shards under GNU parallel, as docs/BATCH.md shows it, make exactly the files of one run.
+mkdir -p par
+(cd par && parallel --will-cite "$facet" batch ../jobs.jsonl --quiet --threads 1 --shard {}/3 ::: 0 1 2 2>/dev/null)
+if [ -n "$first" ] && [ "$(sums par)" = "$first" ]; then
+  ok "3 shards under GNU parallel give the unsharded files"
+else
+  bad "GNU parallel" "'$(listing par)'"
+fi
 (cd auto && rm -rf out && JOB_COMPLETION_INDEX=1 "$facet" batch ../jobs.jsonl --shard auto --shards 2 --quiet 2>/dev/null)
 if [ "$(listing auto)" = "out/001.png out/deep/Spider_binary.png out/deep/Spider_binary_mask.png" ]; then
   ok "shard 1 of 2 renders jobs 1 and 3"
