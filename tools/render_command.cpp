@@ -36,6 +36,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
       ->add_option("--output-camera", args.output.output_camera,
                    "Also write the camera as JSON: intrinsics K (OpenCV), poses, near, far")
       ->type_name("FILE.json");
+  render->add_flag("--timings", args.timings, "Print the time of each stage (load, prepare, draw, write) on stderr");
   add_camera_options(*render, args.camera);
   add_look_options(*render, args.look);
   return render;
@@ -86,18 +87,34 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
   return jobs;
 }
 
+namespace {
+
+// One line per render: "facet: timings: MODEL: load 2.1 ms, prepare 0.8 ms, draw 3.9 ms, write 24.6 ms, total 31.4 ms".
+void render_timed(const RenderJob& job, Renderer& renderer, bool print) {
+  if (!print) return render(job, renderer);
+  RenderTimings t;
+  render(job, renderer, &t);
+  const auto ms = [](double seconds) { return seconds * 1000.0; };
+  std::fprintf(stderr,
+               "facet: timings: %s: load %.1f ms, prepare %.1f ms, draw %.1f ms, write %.1f ms, total %.1f ms\n",
+               job.model.string().c_str(), ms(t.load), ms(t.prepare), ms(t.draw), ms(t.write),
+               ms(t.load + t.prepare + t.draw + t.write));
+}
+
+}  // namespace
+
 int run_render(const RenderArgs& args) {
   const std::vector<RenderJob> jobs = render_jobs(args);
   Renderer renderer(args.look.threads);
   if (jobs.size() == 1) {
-    render(jobs.front(), renderer);
+    render_timed(jobs.front(), renderer, args.timings);
     return 0;
   }
   // Several models: a bad one is reported and the others are still rendered; usage errors stop everything.
   int failed = 0;
   for (const RenderJob& job : jobs) {
     try {
-      render(job, renderer);
+      render_timed(job, renderer, args.timings);
     } catch (const std::invalid_argument&) {
       throw;
     } catch (const std::exception& e) {

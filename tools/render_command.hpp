@@ -12,6 +12,7 @@ namespace facet::cli {
 
 struct RenderArgs {
   std::vector<std::string> models;
+  bool timings = false;  // print each render's stage times on stderr
   CameraArgs camera;
   LookArgs look;
   OutputArgs output;

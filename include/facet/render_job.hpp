@@ -47,6 +47,14 @@ struct RenderJob {
   OutputSpec outputs;
 };
 
+// Where a render's time went, in seconds, when the caller asks (facet render --timings).
+struct RenderTimings {
+  double load = 0;     // reading and checking the model file
+  double prepare = 0;  // framing, the view, and the scene's vertex arrays, normals, edges and textures
+  double draw = 0;     // clearing, drawing and finishing the frame
+  double write = 0;    // every output: the second pass behind normals and ids, encoding, writing the files
+};
+
 // The background `facet render` uses when none is given: a mid blue-grey that white and dark models stand out from.
 inline constexpr glm::vec3 kDefaultBackground{0.42f, 0.45f, 0.5f};
 
@@ -68,10 +76,11 @@ glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback);
 // any output removes those already written, so a failed render leaves no file behind. Throws
 // std::invalid_argument when normals or ids are asked of a wireframe or edges look (their lines are no surface).
 void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
-                    const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs);
+                    const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs,
+                    RenderTimings* timings = nullptr);
 
 // Loads the model, frames it, draws it and writes the outputs. Throws InputError for a bad model file or an
 // output that cannot be written, std::invalid_argument for a bad job (size, camera, two outputs on one path).
-void render(const RenderJob& job, Renderer& renderer);
+void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings = nullptr);
 
 }  // namespace facet

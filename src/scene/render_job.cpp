@@ -1,6 +1,7 @@
 // render_job.cpp - a RenderJob performed: load, frame, view, look, draw, write every output or none.
 #include "facet/render_job.hpp"
 
+#include <chrono>
 #include <cstdint>
 #include <iterator>
 #include <memory>
@@ -54,6 +55,20 @@ glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback) {
 
 namespace {
 
+// Seconds since it was made or last asked.
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
 // Per pixel: the file's instance (node) id and face id of the triangle seen, kNoSurface for both where empty.
 std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfaces) {
   std::vector<std::uint32_t> out(2 * surfaces.instance.size(), kNoSurface);
@@ -69,13 +84,15 @@ std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfac
 }  // namespace
 
 void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
-                    const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs) {
+                    const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs, RenderTimings* timings) {
   const bool surface_pass = !outputs.normal.empty() || !outputs.ids.empty();
   if (surface_pass && (options.wireframe || options.edges))
     throw std::invalid_argument("normal and id outputs show surfaces: not with wireframe or edges");
+  Stopwatch clock;
   renderer.clear(target, clear, 1.0f);
   scene.render(renderer, target, view, options);
   renderer.finish(target);
+  if (timings) timings->draw = clock.lap();
   std::vector<std::filesystem::path> written;
   try {
     if (!outputs.color.empty()) {
@@ -110,6 +127,7 @@ void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const
       written.push_back(outputs.mask);
     }
     if (!outputs.camera.empty()) write_text(outputs.camera, camera_json(view, target.width(), target.height()));
+    if (timings) timings->write = clock.lap();
   } catch (...) {
     std::error_code ignored;
     for (const std::filesystem::path& path : written) std::filesystem::remove(path, ignored);
@@ -131,7 +149,7 @@ bool has_area(const Mesh& mesh) {
 
 }  // namespace
 
-void render(const RenderJob& job, Renderer& renderer) {
+void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
   const std::filesystem::path* paths[] = {&job.outputs.color, &job.outputs.depth, &job.outputs.normal,
                                           &job.outputs.ids,   &job.outputs.mask,  &job.outputs.camera};
   for (std::size_t i = 0; i < std::size(paths); ++i)
@@ -141,9 +159,11 @@ void render(const RenderJob& job, Renderer& renderer) {
   if (job.width < 1 || job.height < 1 || job.width > kMaxDimension || job.height > kMaxDimension)
     throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
 
+  Stopwatch clock;
   auto mesh = std::make_shared<Mesh>(load_model(job.model));
   if (!has_area(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
   apply_look_color(*mesh, job.look);
+  if (timings) timings->load = clock.lap();
   const Framing framing = framing_of(*mesh, job.model.string());
   const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
   const View view = job.camera.file_camera
@@ -155,7 +175,8 @@ void render(const RenderJob& job, Renderer& renderer) {
   Scene scene;
   scene.add(Instance{mesh, glm::mat4(1.0f)});
   Framebuffer target(job.width, job.height);
-  draw_and_write(renderer, target, scene, view, options, clear, job.outputs);
+  if (timings) timings->prepare = clock.lap();
+  draw_and_write(renderer, target, scene, view, options, clear, job.outputs, timings);
 }
 
 }  // namespace facet

@@ -207,6 +207,16 @@ else
   bad "several models" "exit $status, made: $made; $(head -n 2 "$scratch/many.log")"
 fi
 
+# --timings: one line per render on stderr with every stage.
+if "$facet" render "$models/box.obj" --resolution 64,48 --output "$scratch/timed.png" --timings 2>"$scratch/timed.log" &&
+  [ "$(wc -l <"$scratch/timed.log")" = 1 ] &&
+  grep -Eq '^facet: timings: .*box.obj: load [0-9.]+ ms, prepare [0-9.]+ ms, draw [0-9.]+ ms, write [0-9.]+ ms, total [0-9.]+ ms$' \
+    "$scratch/timed.log"; then
+  ok "--timings: $(cat "$scratch/timed.log")"
+else
+  bad "--timings" "$(head -n 2 "$scratch/timed.log")"
+fi
+
 # facet info: counts and bounds, one item per line.
 if info=$("$facet" info "$models/box.obj" 2>"$scratch/info.log") &&
   grep -qx 'vertices: 8' <<<"$info" && grep -qx 'triangles: 12' <<<"$info" && grep -qx 'edges: 18' <<<"$info" &&
