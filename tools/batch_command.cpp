@@ -11,7 +11,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <map>
 #include <mutex>
 #include <optional>
 #include <sstream>
@@ -85,16 +84,9 @@ RenderJob job_of(const std::vector<std::string>& argv, std::size_t n) {
   }
 }
 
-std::vector<std::filesystem::path> paths_of(const OutputSpec& o) {
-  std::vector<std::filesystem::path> paths;
-  for (const std::filesystem::path* p : {&o.color, &o.depth, &o.normal, &o.ids, &o.mask, &o.camera})
-    if (!p->empty()) paths.push_back(*p);
-  return paths;
-}
-
 bool outputs_exist(const OutputSpec& outputs) {
   std::error_code ignored;
-  for (const std::filesystem::path& p : paths_of(outputs))
+  for (const std::filesystem::path& p : output_paths(outputs))
     if (!std::filesystem::exists(p, ignored)) return false;
   return true;
 }
@@ -185,7 +177,6 @@ std::vector<BatchJob> read_batch_jobs(const BatchArgs& args) {
   if (!json && args.output.empty()) throw UsageError("--output: a list of models needs an output template");
 
   std::vector<BatchJob> jobs;
-  std::map<std::filesystem::path, std::size_t> writer;  // each output path and the line that writes it
   for (const auto& [number, line] : lines) {
     const std::size_t n = jobs.size();
     try {
@@ -204,13 +195,12 @@ std::vector<BatchJob> read_batch_jobs(const BatchArgs& args) {
     } catch (const std::invalid_argument& e) {
       throw InputError(source, "line " + std::to_string(number) + ": " + e.what());
     }
-    for (const std::filesystem::path& path : paths_of(jobs.back().job.outputs)) {
-      const auto [it, added] = writer.try_emplace(path.lexically_normal(), number);
-      if (!added && it->second != number)
-        throw UsageError("lines " + std::to_string(it->second) + " and " + std::to_string(number) +
-                         " would both write " + path.string());
-    }
   }
+  std::vector<OutputSpec> outputs;
+  for (const BatchJob& job : jobs) outputs.push_back(job.job.outputs);
+  if (const std::optional<OutputClash> clash = find_output_clash(outputs))
+    throw UsageError("lines " + std::to_string(jobs[clash->first].line) + " and " +
+                     std::to_string(jobs[clash->second].line) + " would both write " + clash->path.string());
   return jobs;
 }
 
@@ -278,7 +268,7 @@ int run_batch(const BatchArgs& args) {
       } else {
         try {
           // Batches write into folder trees (thumbs/{stem}.png): the folders are made as needed.
-          for (const std::filesystem::path& path : paths_of(job.job.outputs))
+          for (const std::filesystem::path& path : output_paths(job.job.outputs))
             if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
           render(job.job, renderer);
           entry["status"] = "ok";

@@ -2,7 +2,6 @@
 #include "render_command.hpp"
 
 #include <cstdio>
-#include <map>
 #include <stdexcept>
 #include <utility>
 
@@ -62,19 +61,12 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
         throw UsageError(std::string(flag) + ": several models need {model}, {stem} or {n} in the file name");
 
   std::vector<RenderJob> jobs;
-  std::map<std::filesystem::path, std::size_t> writer;  // each output path and the model that writes it
   for (std::size_t n = 0; n < args.models.size(); ++n) {
     RenderJob job = base;
     job.model = args.models[n];
     const TemplateValues values{.model = job.model, .n = first_n + n};
-    const auto expand = [&](const std::string& pattern) -> std::filesystem::path {
-      if (pattern.empty()) return {};
-      std::filesystem::path path = expand_template(pattern, values);
-      const auto [it, added] = writer.try_emplace(path.lexically_normal(), n);
-      if (!added && it->second != n)
-        throw UsageError("outputs: " + args.models[it->second] + " and " + args.models[n] + " would both write " +
-                         path.string());
-      return path;
+    const auto expand = [&](const std::string& pattern) {
+      return pattern.empty() ? std::filesystem::path() : std::filesystem::path(expand_template(pattern, values));
     };
     job.outputs = {.color = expand(args.output.output),
                    .depth = expand(args.output.output_depth),
@@ -84,6 +76,11 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
                    .camera = expand(args.output.output_camera)};
     jobs.push_back(std::move(job));
   }
+  std::vector<OutputSpec> specs;
+  for (const RenderJob& job : jobs) specs.push_back(job.outputs);
+  if (const std::optional<OutputClash> clash = find_output_clash(specs))
+    throw UsageError("outputs: " + args.models[clash->first] + " and " + args.models[clash->second] +
+                     " would both write " + clash->path.string());
   return jobs;
 }
 

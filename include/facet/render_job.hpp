@@ -3,6 +3,8 @@
 
 #include <filesystem>
 #include <optional>
+#include <span>
+#include <vector>
 
 #include <glm/glm.hpp>
 
@@ -38,6 +40,18 @@ struct OutputSpec {
   std::filesystem::path mask{};    // 8-bit greyscale PNG: 255 where a surface is drawn, 0 where empty
   std::filesystem::path camera{};  // JSON: size, near, far, intrinsics and poses (camera_json in view_spec.hpp)
 };
+
+// The files an OutputSpec names, the empty ones left out, in the order of its fields.
+std::vector<std::filesystem::path> output_paths(const OutputSpec& outputs);
+
+// Two of several renders that would write one file: their indices in the list and the path.
+struct OutputClash {
+  std::size_t first = 0, second = 0;
+  std::filesystem::path path;
+};
+// The first clash between different entries of `outputs` (paths compared lexically normalised), or nullopt. A path
+// named twice within one entry is render()'s to refuse.
+std::optional<OutputClash> find_output_clash(std::span<const OutputSpec> outputs);
 
 struct RenderJob {
   std::filesystem::path model;

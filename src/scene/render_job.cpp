@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cstdint>
 #include <iterator>
+#include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -83,6 +84,23 @@ std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfac
 
 }  // namespace
 
+std::vector<std::filesystem::path> output_paths(const OutputSpec& o) {
+  std::vector<std::filesystem::path> paths;
+  for (const std::filesystem::path* p : {&o.color, &o.depth, &o.normal, &o.ids, &o.mask, &o.camera})
+    if (!p->empty()) paths.push_back(*p);
+  return paths;
+}
+
+std::optional<OutputClash> find_output_clash(std::span<const OutputSpec> outputs) {
+  std::map<std::filesystem::path, std::size_t> writer;  // each path and the first entry that writes it
+  for (std::size_t k = 0; k < outputs.size(); ++k)
+    for (const std::filesystem::path& path : output_paths(outputs[k])) {
+      const auto [it, added] = writer.try_emplace(path.lexically_normal(), k);
+      if (!added && it->second != k) return OutputClash{it->second, k, path};
+    }
+  return std::nullopt;
+}
+
 void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
                     const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs, RenderTimings* timings) {
   const bool surface_pass = !outputs.normal.empty() || !outputs.ids.empty();
@@ -150,12 +168,11 @@ bool has_area(const Mesh& mesh) {
 }  // namespace
 
 void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
-  const std::filesystem::path* paths[] = {&job.outputs.color, &job.outputs.depth, &job.outputs.normal,
-                                          &job.outputs.ids,   &job.outputs.mask,  &job.outputs.camera};
-  for (std::size_t i = 0; i < std::size(paths); ++i)
-    for (std::size_t k = i + 1; k < std::size(paths); ++k)
-      if (!paths[i]->empty() && paths[i]->lexically_normal() == paths[k]->lexically_normal())
-        throw std::invalid_argument("outputs: " + paths[k]->string() + " is named twice");
+  const std::vector<std::filesystem::path> paths = output_paths(job.outputs);
+  for (std::size_t i = 0; i < paths.size(); ++i)
+    for (std::size_t k = i + 1; k < paths.size(); ++k)
+      if (paths[i].lexically_normal() == paths[k].lexically_normal())
+        throw std::invalid_argument("outputs: " + paths[k].string() + " is named twice");
   if (job.width < 1 || job.height < 1 || job.width > kMaxDimension || job.height > kMaxDimension)
     throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
 
