@@ -74,6 +74,7 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
                    .ids = expand(args.output.output_ids),
                    .mask = expand(args.output.output_mask),
                    .camera = expand(args.output.output_camera)};
+    check_output_formats(job.outputs);
     jobs.push_back(std::move(job));
   }
   std::vector<OutputSpec> specs;

@@ -12,8 +12,9 @@ namespace facet {
 class Framebuffer;
 
 // Writes an 8-bit PNG from rgba (R, G, B, A bytes per pixel, top row first); RGB only when keep_alpha is false.
-// The file is written under a temporary name in the same folder and renamed into place, so a failure never leaves
-// a partial file at path. Throws std::invalid_argument for a bad size, std::runtime_error("<path>: <reason>") when
+// A regular file (or the one a symlink points to) is written under a temporary name in the same folder and renamed
+// into place, so a failure never leaves a partial file at path. "-" is standard output; a device, a FIFO or a link
+// into /proc/self/fd (such as /dev/stdout) is opened and written in place, never replaced. Throws std::invalid_argument for a bad size, std::runtime_error("<path>: <reason>") when
 // the file cannot be written.
 void write_png(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba,
                bool keep_alpha = true);

@@ -44,6 +44,12 @@ struct OutputSpec {
 // The files an OutputSpec names, the empty ones left out, in the order of its fields.
 std::vector<std::filesystem::path> output_paths(const OutputSpec& outputs);
 
+// Refuses, before anything renders, an output whose extension names a format facet does not write for it: the
+// colour image and the mask are PNG (.png), depth and normals NumPy (.npy) or OpenEXR (.exr), ids .npy and the
+// camera JSON (.json), in any case. A name with no extension (such as /dev/null, or "-" for standard output) takes
+// the output's first format. Throws std::invalid_argument("<path>: ...") naming what is written there.
+void check_output_formats(const OutputSpec& outputs);
+
 // Two of several renders that would write one file: their indices in the list and the path.
 struct OutputClash {
   std::size_t first = 0, second = 0;

@@ -1,23 +1,18 @@
-// image_io.cpp - atomic PNG (libdeflate), .npy and OpenEXR writers, and a PNG reader for tests.
+// image_io.cpp - PNG (libdeflate), .npy and OpenEXR writers over write_output, and a PNG reader for tests.
 #include "facet/image_io.hpp"
 
-#include <atomic>
 #include <bit>
 #include <cctype>
-#include <cerrno>
-#include <cstdio>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <system_error>
-
-#include <unistd.h>
 
 #include "facet/error.hpp"
 #include "facet/framebuffer.hpp"
 #include "io/exr.hpp"
 #include "io/file_util.hpp"
+#include "io/output_file.hpp"
 #include "io/png.hpp"
 
 // stb_image's implementation lives in src/texture/texture.cpp; here only its declarations are needed.
@@ -26,51 +21,6 @@
 namespace facet {
 
 namespace {
-
-[[noreturn]] void write_failed(const std::filesystem::path& path, const std::string& reason) {
-  throw std::runtime_error(path.string() + ": " + reason);
-}
-
-// A name in the same folder as path (so the final rename cannot cross file systems), unique per process and call,
-// hidden so that a crash mid-write leaves nothing that looks like the real output.
-std::filesystem::path temporary_name(const std::filesystem::path& path) {
-  static std::atomic<unsigned> counter{0};
-  // Appended piecewise: GCC 12 reports a false -Wrestrict for "." + std::string.
-  std::string name(1, '.');
-  name += path.filename().string();
-  name += '.';
-  name += std::to_string(::getpid());
-  name += '.';
-  name += std::to_string(counter.fetch_add(1));
-  name += ".tmp";
-  return path.parent_path() / name;
-}
-
-// Writes bytes to a temporary file and renames it over path: readers see either the old file or the whole new one.
-void write_file_atomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
-  if (path.empty() || !path.has_filename()) write_failed(path, "not a file name");
-  const std::filesystem::path temp = temporary_name(path);
-  // "x": never reuse an existing file, should a stale temporary with this name exist.
-  std::FILE* file = std::fopen(temp.c_str(), "wbx");
-  if (!file) write_failed(path, "cannot create file: " + errno_text(errno));
-  bool ok = std::fwrite(bytes.data(), 1, bytes.size(), file) == bytes.size();
-  int err = ok ? 0 : errno;
-  if (std::fclose(file) != 0 && ok) {  // the buffered tail is written here, so this can fail too (disk full)
-    ok = false;
-    err = errno;
-  }
-  std::error_code ec;
-  if (!ok) {
-    std::filesystem::remove(temp, ec);
-    write_failed(path, "cannot write file: " + errno_text(err));
-  }
-  std::filesystem::rename(temp, path, ec);
-  if (ec) {
-    std::error_code ignored;
-    std::filesystem::remove(temp, ignored);
-    write_failed(path, "cannot replace file: " + ec.message());
-  }
-}
 
 void check_size(int width, int height, std::size_t count, std::size_t per_pixel, const char* what) {
   if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
@@ -96,16 +46,16 @@ void write_png(const std::filesystem::path& path, int width, int height, std::sp
   }
   const int channels = keep_alpha ? 4 : 3;
   const std::size_t bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels;
-  write_file_atomically(path, encode_png(width, height, channels, std::span(pixels, bytes)));
+  write_output(path, encode_png(width, height, channels, std::span(pixels, bytes)));
 }
 
 void write_png_gray(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> gray) {
   check_size(width, height, gray.size(), 1, "PNG");
-  write_file_atomically(path, encode_png(width, height, 1, gray));
+  write_output(path, encode_png(width, height, 1, gray));
 }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
-  write_file_atomically(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
+  write_output(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 
 void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha) {
@@ -152,7 +102,7 @@ void write_npy_words(const std::filesystem::path& path, const char* descr, int w
     const auto bits = std::bit_cast<std::uint32_t>(v);
     for (int b = 0; b < 4; ++b) *out++ = static_cast<std::uint8_t>(bits >> (8 * b));  // little-endian
   }
-  write_file_atomically(path, bytes);
+  write_output(path, bytes);
 }
 
 bool is_exr(const std::filesystem::path& path) {
@@ -177,7 +127,7 @@ void write_float_image(const std::filesystem::path& path, int width, int height,
   if (!is_exr(path)) return write_npy_words(path, "<f4", width, height, channels, values);
   if (channels < 1) throw std::invalid_argument("EXR image: channel count " + std::to_string(channels));
   check_size(width, height, values.size(), static_cast<std::size_t>(channels), "EXR image");
-  write_file_atomically(path, encode_exr(width, height, channels, values));
+  write_output(path, encode_exr(width, height, channels, values));
 }
 
 }  // namespace facet

@@ -1,19 +1,23 @@
 // render_job.cpp - a RenderJob performed: load, frame, view, look, draw, write every output or none.
 #include "facet/render_job.hpp"
 
+#include <algorithm>
+#include <cctype>
 #include <chrono>
 #include <cstdint>
+#include <initializer_list>
 #include <iterator>
 #include <map>
 #include <memory>
 #include <stdexcept>
 #include <string>
-#include <system_error>
+#include <string_view>
 #include <vector>
 
 #include "facet/error.hpp"
 #include "facet/image_io.hpp"
 #include "facet/model_io.hpp"
+#include "io/output_file.hpp"
 
 namespace facet {
 
@@ -91,6 +95,27 @@ std::vector<std::filesystem::path> output_paths(const OutputSpec& o) {
   return paths;
 }
 
+void check_output_formats(const OutputSpec& o) {
+  struct Rule {
+    const std::filesystem::path* path;
+    const char* what;
+    std::initializer_list<std::string_view> extensions;
+  };
+  const Rule rules[] = {{&o.color, "the colour image as PNG (.png)", {".png"}},
+                        {&o.depth, "depth as .npy or .exr", {".npy", ".exr"}},
+                        {&o.normal, "normals as .npy or .exr", {".npy", ".exr"}},
+                        {&o.ids, "ids as .npy", {".npy"}},
+                        {&o.mask, "the mask as PNG (.png)", {".png"}},
+                        {&o.camera, "the camera as JSON (.json)", {".json"}}};
+  for (const Rule& rule : rules) {
+    std::string extension = rule.path->extension().string();
+    if (extension.empty()) continue;
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (std::find(rule.extensions.begin(), rule.extensions.end(), extension) == rule.extensions.end())
+      throw std::invalid_argument(rule.path->string() + ": facet writes " + rule.what + ", not " + extension);
+  }
+}
+
 std::optional<OutputClash> find_output_clash(std::span<const OutputSpec> outputs) {
   std::map<std::filesystem::path, std::size_t> writer;  // each path and the first entry that writes it
   for (std::size_t k = 0; k < outputs.size(); ++k)
@@ -147,8 +172,7 @@ void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const
     if (!outputs.camera.empty()) write_text(outputs.camera, camera_json(view, target.width(), target.height()));
     if (timings) timings->write = clock.lap();
   } catch (...) {
-    std::error_code ignored;
-    for (const std::filesystem::path& path : written) std::filesystem::remove(path, ignored);
+    for (const std::filesystem::path& path : written) discard_output(path);
     throw;
   }
 }
@@ -173,6 +197,7 @@ void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
     for (std::size_t k = i + 1; k < paths.size(); ++k)
       if (paths[i].lexically_normal() == paths[k].lexically_normal())
         throw std::invalid_argument("outputs: " + paths[k].string() + " is named twice");
+  check_output_formats(job.outputs);
   if (job.width < 1 || job.height < 1 || job.width > kMaxDimension || job.height > kMaxDimension)
     throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
 

@@ -25,7 +25,7 @@ printf 'hello\n' >"$scratch/model.xyz"
 head -c 400 /usr/share/assimp/models/PLY/cube_binary.ply >"$scratch/truncated.ply"
 printf 'ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nproperty float y\nproperty float z\n' \
   >"$scratch/header.ply"
-mkdir -p "$scratch/folder.obj"
+mkdir -p "$scratch/folder.obj" "$scratch/folder.png"
 
 # expect NAME STATUS [-n] FACET-ARGS...: runs facet writing to $scratch/NAME.png (unless the args name an output or
 # -n asks for none) and checks the exit status, that stderr is exactly one "facet: error: " line, and that no output file appeared.
@@ -86,7 +86,7 @@ expect truncated_ply_header 1 info "$scratch/header.ply"
 expect_message truncated_ply_header "no 'end_header' line"
 expect directory_model 1 render "$scratch/folder.obj"
 expect unwritable_output 1 render "$box" --output "$scratch/no/such/folder/out.png"
-expect output_is_directory 1 render "$box" --output "$scratch/folder.obj"
+expect output_is_directory 1 render "$box" --output "$scratch/folder.png"
 expect unwritable_depth 1 render "$box" --output "$scratch/unwritable_depth.png" \
   --output-depth "$scratch/no/such/folder/depth.npy"
 expect unwritable_camera 1 render "$box" --output "$scratch/unwritable_camera.png" \
