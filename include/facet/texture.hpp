@@ -71,6 +71,45 @@ inline glm::vec4 blend_portable(std::uint64_t bottom_pair, std::uint64_t top_pai
   return (bottom + (top - bottom) * beta) / 255.0f;
 }
 
+// sRGB's transfer functions (IEC 61966-2-1) by table, for textures whose texels are sRGB-encoded colour. The decode
+// table maps a byte to linear light in [0, 1]; the encode table holds the exact curve at kSrgbEncodeSteps + 1 evenly
+// spaced points of [0, 1], interpolated linearly by srgb_encode (off the curve by less than 2e-5).
+inline constexpr int kSrgbEncodeSteps = 4096;
+const float* srgb_decode_table();  // 256 entries
+const float* srgb_encode_table();  // kSrgbEncodeSteps + 1 entries
+
+// Linear light to its sRGB encoding, both in [0, 1]; values outside (and NaN) are clamped first.
+inline float srgb_encode(float linear, const float* table) {
+  const float x = linear > 0.0f ? (linear < 1.0f ? linear : 1.0f) : 0.0f;
+  const float f = x * static_cast<float>(kSrgbEncodeSteps);
+  int i = static_cast<int>(f);
+  i = i < kSrgbEncodeSteps ? i : kSrgbEncodeSteps - 1;
+  const float w = f - static_cast<float>(i);
+  return table[i] + (table[i + 1] - table[i]) * w;
+}
+
+// blend for sRGB-encoded texels: red, green and blue decoded to linear light, interpolated there (the same lerps as
+// blend) and encoded again; alpha, which is linear, exactly as blend does it.
+inline glm::vec4 blend_srgb(std::uint64_t bottom_pair, std::uint64_t top_pair, float alpha, float beta) {
+  const float* decode = srgb_decode_table();
+  const float* encode = srgb_encode_table();
+  const std::uint32_t t[4] = {static_cast<std::uint32_t>(bottom_pair), static_cast<std::uint32_t>(bottom_pair >> 32),
+                              static_cast<std::uint32_t>(top_pair), static_cast<std::uint32_t>(top_pair >> 32)};
+  glm::vec4 out;
+  for (int c = 0; c < 4; ++c) {
+    const auto value = [&](std::uint32_t texel) {
+      const std::uint32_t byte = (texel >> (8 * c)) & 0xffu;
+      return c < 3 ? decode[byte] : static_cast<float>(byte);
+    };
+    const float c00 = value(t[0]), c10 = value(t[1]), c01 = value(t[2]), c11 = value(t[3]);
+    const float bottom = c00 + (c10 - c00) * alpha;
+    const float top = c01 + (c11 - c01) * alpha;
+    const float mixed = bottom + (top - bottom) * beta;
+    out[c] = c < 3 ? srgb_encode(mixed, encode) : mixed / 255.0f;
+  }
+  return out;
+}
+
 // The same two functions in SSE2, for the scalar sampling path's per-pixel work: the same IEEE operations per
 // lane, so they agree bit for bit with the portable ones (tests/unit/test_texture.cpp checks that).
 #if defined(FACET_TEXTURE_SSE2)
@@ -115,17 +154,27 @@ inline glm::vec4 blend(std::uint64_t bottom, std::uint64_t top, float alpha, flo
 
 }  // namespace detail
 
+// What a texture's red, green and blue bytes hold (alpha is always linear coverage).
+enum class TexelEncoding {
+  linear,  // values filtered as stored: data such as normal maps, and the benchmark's checker
+  // sRGB-encoded colour, as image files and glTF base colour textures hold it: decoded to linear light before
+  // filtering (bilinear, trilinear and the mipmap chain) and the filtered colour encoded again, since facet shades
+  // and writes sRGB-encoded colours, as OpenGL does with sRGB textures and no sRGB framebuffer
+  srgb,
+};
+
 class Texture {
  public:
   Texture() = default;
   // rgba holds width*height little-endian RGBA8 texels (r in the low byte), row 0 at v = 0, column 0 at u = 0.
   // Throws std::invalid_argument unless 1 <= width, height <= kMaxTextureSize and the size matches.
-  Texture(int width, int height, std::vector<std::uint32_t> rgba);
+  Texture(int width, int height, std::vector<std::uint32_t> rgba, TexelEncoding encoding = TexelEncoding::linear);
 
   int width() const { return levels_[0].width; }
   int height() const { return levels_[0].height; }
   int levels() const { return level_count_; }  // 1 until generate_mipmaps(), 0 when empty
   bool empty() const { return level_count_ == 0; }
+  TexelEncoding encoding() const { return srgb_ ? TexelEncoding::srgb : TexelEncoding::linear; }
   int level_width(int level) const { return levels_[static_cast<std::size_t>(level)].width; }
   int level_height(int level) const { return levels_[static_cast<std::size_t>(level)].height; }
 
@@ -133,7 +182,8 @@ class Texture {
   // texel is the area-weighted average of the texels of the previous level it covers (a 2x2 box for even sizes).
   void generate_mipmaps();
 
-  // Texel (x, y) of a level as floats in [0, 1]; no wrapping, the indices must be in range.
+  // Texel (x, y) of a level as floats in [0, 1], as stored (sRGB-encoded for an sRGB texture); no wrapping, the
+  // indices must be in range.
   glm::vec4 texel(int level, int x, int y) const;
 
   // Level 0 only: nearest or bilinear (trilinear has no derivatives here, so it behaves like bilinear).
@@ -149,7 +199,8 @@ class Texture {
   glm::vec4 sample(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, const Sampler& sampler) const;
 
   // sample(uv, sampler) for 16 lanes. The benchmark's case (bilinear, repeat, power-of-two) runs in lanes with the
-  // same IEEE operations as the scalar path, so both give identical results; other samplers sample lane by lane.
+  // same IEEE operations as the scalar path, so both give identical results, for both encodings; other samplers
+  // sample lane by lane.
   FACET_LANES_INLINE simd::Color sample_lanes(const simd::Vec2& uv, const Sampler& sampler) const;
 
   // Starts loading the texels sample_lanes(uv, sampler) will read, without waiting for them: call it early enough
@@ -181,9 +232,10 @@ class Texture {
       bottom = bottom << 32 | bottom >> 32;
       top = top << 32 | top >> 32;
     }
-    return detail::blend(bottom, top, p.alpha, p.beta);
+    return srgb_ ? detail::blend_srgb(bottom, top, p.alpha, p.beta) : detail::blend(bottom, top, p.alpha, p.beta);
   }
 
+  template <bool Srgb>
   FACET_LANES_INLINE simd::Color bilinear_repeat_pow2_lanes(const simd::Vec2& uv) const;
   bool bilinear_repeat_pow2_applies(const Sampler& sampler) const {
     return pow2_ && sampler.filter != Filter::nearest && sampler.wrap_u == Wrap::repeat &&
@@ -200,10 +252,14 @@ class Texture {
   glm::vec4 sample_level0(glm::vec2 uv, const Sampler& sampler) const;
   glm::vec4 sample_nearest(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const;
   glm::vec4 sample_bilinear(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const;
+  // sample_bilinear's result in linear light (an sRGB texture's colour decoded, not encoded again), for trilinear's
+  // blend between levels.
+  glm::vec4 sample_bilinear_linear(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const;
 
   std::array<Level, kMaxTextureLevels> levels_{};
   int level_count_ = 0;
   bool pow2_ = false;                  // level 0 has power-of-two sides: the inline fast path applies
+  bool srgb_ = false;                  // TexelEncoding::srgb
   std::vector<std::uint32_t> texels_;  // all levels, level 0 first, each padded and row-major, row 0 at v = 0
 };
 
@@ -211,7 +267,8 @@ class Texture {
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 inline simd::Color Texture::sample_lanes(const simd::Vec2& uv, const Sampler& sampler) const {
-  if (bilinear_repeat_pow2_applies(sampler)) return bilinear_repeat_pow2_lanes(uv);
+  if (bilinear_repeat_pow2_applies(sampler))
+    return srgb_ ? bilinear_repeat_pow2_lanes<true>(uv) : bilinear_repeat_pow2_lanes<false>(uv);
   simd::Color c;
   for (int k = 0; k < simd::kLanes; ++k) {
     const glm::vec4 s = sample(glm::vec2(uv.x[k], uv.y[k]), sampler);
@@ -267,7 +324,9 @@ inline void Texture::prefetch_lanes(const simd::Vec2& uv, const Sampler& sampler
   }
 }
 
-// bilinear_repeat_pow2 lane by lane: split_floor, the padded 8-byte pair loads and blend, in the same order.
+// bilinear_repeat_pow2 lane by lane: split_floor, the padded 8-byte pair loads and blend (or blend_srgb), in the
+// same order.
+template <bool Srgb>
 inline simd::Color Texture::bilinear_repeat_pow2_lanes(const simd::Vec2& uv) const {
   using namespace simd;
   const Level& l = levels_[0];
@@ -297,14 +356,36 @@ inline simd::Color Texture::bilinear_repeat_pow2_lanes(const simd::Vec2& uv) con
     const Float top = c01 + (c11 - c01) * alpha;
     return (bottom + (top - bottom) * beta) / 255.0f;
   };
+  if constexpr (Srgb) {
+    // blend_srgb per lane: a table lookup per texel and channel, which no lane instruction does faster.
+    const float* decode = detail::srgb_decode_table();
+    const float* encode = detail::srgb_encode_table();
+    auto colour = [&](int shift) __attribute__((always_inline)) {
+      Float c00, c10, c01, c11;
+      for (int k = 0; k < kLanes; ++k) {
+        c00[k] = decode[(t00[k] >> shift) & 0xffu];
+        c10[k] = decode[(t10[k] >> shift) & 0xffu];
+        c01[k] = decode[(t01[k] >> shift) & 0xffu];
+        c11[k] = decode[(t11[k] >> shift) & 0xffu];
+      }
+      const Float bottom = c00 + (c10 - c00) * alpha;
+      const Float top = c01 + (c11 - c01) * alpha;
+      const Float mixed = bottom + (top - bottom) * beta;
+      Float out;
+      for (int k = 0; k < kLanes; ++k) out[k] = detail::srgb_encode(mixed[k], encode);
+      return out;
+    };
+    return {colour(0), colour(8), colour(16), channel(24)};
+  }
   return {channel(0), channel(8), channel(16), channel(24)};
 }
 
 #pragma GCC diagnostic pop
 
 // Loads a PNG, JPEG, TGA or BMP file as RGBA (missing channels filled as stb_image does: grey to RGB, alpha 255),
-// flipped so that row 0 (the image's bottom row) is at v = 0, with mipmaps. Throws InputError naming the file.
-Texture load_texture(const std::filesystem::path& path);
+// flipped so that row 0 (the image's bottom row) is at v = 0, with mipmaps. Image files hold sRGB colour unless
+// they hold data (a normal map: TexelEncoding::linear). Throws InputError naming the file.
+Texture load_texture(const std::filesystem::path& path, TexelEncoding encoding = TexelEncoding::srgb);
 
 // The benchmark texture of BENCHMARK.md section 7 (size x size, 128-texel cells, row 0 at v = 0), without mipmaps
 // (the benchmark samples with GL_LINEAR). Throws std::invalid_argument unless 1 <= size <= kMaxTextureSize.

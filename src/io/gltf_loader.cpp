@@ -188,7 +188,7 @@ glm::mat4 local_transform(const tinygltf::Node& node) {
 }
 
 // glTF images are stored top row first with v = 0 at the top, so rows are kept in file order.
-std::shared_ptr<const Texture> decode_texture(const tinygltf::Model& model, int texture_index,
+std::shared_ptr<const Texture> decode_texture(const tinygltf::Model& model, int texture_index, TexelEncoding encoding,
                                               const std::string& source) {
   if (texture_index < 0 || static_cast<std::size_t>(texture_index) >= model.textures.size()) return nullptr;
   const int image_index = model.textures[static_cast<std::size_t>(texture_index)].source;
@@ -213,7 +213,7 @@ std::shared_ptr<const Texture> decode_texture(const tinygltf::Model& model, int 
     rgba[(height - 1 - i / width) * width + i % width] = r | g << 8 | b << 16 | a << 24;
   }
   try {
-    auto texture = std::make_shared<Texture>(image.width, image.height, std::move(rgba));
+    auto texture = std::make_shared<Texture>(image.width, image.height, std::move(rgba), encoding);
     texture->generate_mipmaps();
     return texture;
   } catch (const std::invalid_argument& e) {
@@ -284,9 +284,9 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
   const float roughness = static_cast<float>(std::clamp(m.pbrMetallicRoughness.roughnessFactor, 0.0, 1.0));
   out.specular = glm::vec3(0.5f * (1.0f - roughness));
   out.shininess = 2.0f + 126.0f * (1.0f - roughness) * (1.0f - roughness);
-  out.diffuse_map = decode_texture(model, m.pbrMetallicRoughness.baseColorTexture.index, source);
+  out.diffuse_map = decode_texture(model, m.pbrMetallicRoughness.baseColorTexture.index, TexelEncoding::srgb, source);
   out.sampler = sampler_of(model, m.pbrMetallicRoughness.baseColorTexture.index);
-  out.normal_map = decode_texture(model, m.normalTexture.index, source);
+  out.normal_map = decode_texture(model, m.normalTexture.index, TexelEncoding::linear, source);
   out.normal_scale = std::isfinite(m.normalTexture.scale) ? static_cast<float>(m.normalTexture.scale) : 1.0f;
   out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
   out.double_sided = m.doubleSided;

@@ -52,8 +52,27 @@ glm::vec4 Texture::sample_bilinear(int level, glm::vec2 uv, Wrap wrap_u, Wrap wr
   const int j0 = wrap_index(p.j, l.height, wrap_v), j1 = wrap_index(p.j + 1, l.height, wrap_v);
   const std::uint32_t* row0 = texels_.data() + l.offset + static_cast<std::size_t>(j0) * l.stride;
   const std::uint32_t* row1 = texels_.data() + l.offset + static_cast<std::size_t>(j1) * l.stride;
-  return detail::blend(row0[i0] | std::uint64_t{row0[i1]} << 32, row1[i0] | std::uint64_t{row1[i1]} << 32, p.alpha,
-                       p.beta);
+  const std::uint64_t bottom = row0[i0] | std::uint64_t{row0[i1]} << 32, top = row1[i0] | std::uint64_t{row1[i1]} << 32;
+  return srgb_ ? detail::blend_srgb(bottom, top, p.alpha, p.beta) : detail::blend(bottom, top, p.alpha, p.beta);
+}
+
+glm::vec4 Texture::sample_bilinear_linear(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const {
+  const Level& l = levels_[static_cast<std::size_t>(level)];
+  const detail::Split p = detail::split_floor(uv.x * l.fwidth - 0.5f, uv.y * l.fheight - 0.5f);
+  const int i0 = wrap_index(p.i, l.width, wrap_u), i1 = wrap_index(p.i + 1, l.width, wrap_u);
+  const int j0 = wrap_index(p.j, l.height, wrap_v), j1 = wrap_index(p.j + 1, l.height, wrap_v);
+  const std::uint32_t* row0 = texels_.data() + l.offset + static_cast<std::size_t>(j0) * l.stride;
+  const std::uint32_t* row1 = texels_.data() + l.offset + static_cast<std::size_t>(j1) * l.stride;
+  const float* decode = detail::srgb_decode_table();
+  const auto value = [&](std::uint32_t texel) {
+    const glm::vec4 v = detail::unpack_bytes(texel) / 255.0f;
+    if (!srgb_) return v;
+    const auto byte = [&](int c) { return decode[(texel >> (8 * c)) & 0xffu]; };
+    return glm::vec4(byte(0), byte(1), byte(2), v.a);
+  };
+  const glm::vec4 bottom = glm::mix(value(row0[i0]), value(row0[i1]), p.alpha);
+  const glm::vec4 top = glm::mix(value(row1[i0]), value(row1[i1]), p.alpha);
+  return glm::mix(bottom, top, p.beta);
 }
 
 glm::vec4 Texture::sample(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, const Sampler& sampler) const {
@@ -71,10 +90,19 @@ glm::vec4 Texture::sample(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, cons
   if (lod >= max_level) return sample_bilinear(level_count_ - 1, uv, sampler.wrap_u, sampler.wrap_v);
   const int d = static_cast<int>(lod);
   const float f = lod - static_cast<float>(d);
-  const glm::vec4 a = sample_bilinear(d, uv, sampler.wrap_u, sampler.wrap_v);
-  if (f == 0.0f) return a;
-  const glm::vec4 b = sample_bilinear(d + 1, uv, sampler.wrap_u, sampler.wrap_v);
-  return a + (b - a) * f;
+  if (f == 0.0f) return sample_bilinear(d, uv, sampler.wrap_u, sampler.wrap_v);
+  if (!srgb_) {
+    const glm::vec4 a = sample_bilinear(d, uv, sampler.wrap_u, sampler.wrap_v);
+    const glm::vec4 b = sample_bilinear(d + 1, uv, sampler.wrap_u, sampler.wrap_v);
+    return a + (b - a) * f;
+  }
+  // The two levels blend in linear light too; the colour is encoded once, at the end.
+  const glm::vec4 a = sample_bilinear_linear(d, uv, sampler.wrap_u, sampler.wrap_v);
+  const glm::vec4 b = sample_bilinear_linear(d + 1, uv, sampler.wrap_u, sampler.wrap_v);
+  const glm::vec4 mixed = a + (b - a) * f;
+  const float* encode = detail::srgb_encode_table();
+  return {detail::srgb_encode(mixed.r, encode), detail::srgb_encode(mixed.g, encode),
+          detail::srgb_encode(mixed.b, encode), mixed.a};
 }
 
 }  // namespace facet

@@ -2,6 +2,8 @@
 #include "facet/texture.hpp"
 
 #include <algorithm>
+#include <array>
+#include <cmath>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -37,7 +39,8 @@ int row_stride(int width) {
 
 static_assert(kMaxTextureSize == STBI_MAX_DIMENSIONS);
 
-Texture::Texture(int width, int height, std::vector<std::uint32_t> rgba) {
+Texture::Texture(int width, int height, std::vector<std::uint32_t> rgba, TexelEncoding encoding)
+    : srgb_(encoding == TexelEncoding::srgb) {
   if (width < 1 || height < 1 || width > kMaxTextureSize || height > kMaxTextureSize)
     throw std::invalid_argument("texture size " + std::to_string(width) + "x" + std::to_string(height) +
                                 " is outside 1.." + std::to_string(kMaxTextureSize));
@@ -69,6 +72,36 @@ glm::vec4 Texture::texel(int level, int x, int y) const {
   const Level& l = levels_[static_cast<std::size_t>(level)];
   return detail::unpack_bytes(texels_[l.offset + static_cast<std::size_t>(y) * l.stride + x]) / 255.0f;
 }
+
+namespace detail {
+
+const float* srgb_decode_table() {
+  static const std::array<float, 256> table = [] {
+    std::array<float, 256> t{};
+    for (int i = 0; i < 256; ++i) {
+      const double c = i / 255.0;
+      t[static_cast<std::size_t>(i)] =
+          static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
+    }
+    return t;
+  }();
+  return table.data();
+}
+
+const float* srgb_encode_table() {
+  static const std::array<float, kSrgbEncodeSteps + 1> table = [] {
+    std::array<float, kSrgbEncodeSteps + 1> t{};
+    for (int i = 0; i <= kSrgbEncodeSteps; ++i) {
+      const double x = static_cast<double>(i) / kSrgbEncodeSteps;
+      t[static_cast<std::size_t>(i)] =
+          static_cast<float>(x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055);
+    }
+    return t;
+  }();
+  return table.data();
+}
+
+}  // namespace detail
 
 namespace {
 
@@ -114,6 +147,23 @@ void Texture::generate_mipmaps() {
   texels_.resize(total);
 
   std::vector<glm::vec4> row_sums;  // one source level reduced horizontally, for one destination row
+  // Texels are averaged in linear light, 0..255: an sRGB texture's colour decoded, and the average encoded again
+  // (exactly, not by table: this runs once per texel).
+  const float* decode = detail::srgb_decode_table();
+  const auto unpack = [&](std::uint32_t texel) {
+    const glm::vec4 v = detail::unpack_bytes(texel);
+    if (!srgb_) return v;
+    const auto c = [&](float byte) { return decode[static_cast<int>(byte)] * 255.0f; };
+    return glm::vec4(c(v.r), c(v.g), c(v.b), v.a);
+  };
+  const auto pack = [&](glm::vec4 v) {
+    if (!srgb_) return v;
+    const auto c = [](float linear) {
+      const double x = std::clamp(linear / 255.0, 0.0, 1.0);
+      return static_cast<float>(255.0 * (x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055));
+    };
+    return glm::vec4(c(v.r), c(v.g), c(v.b), v.a);
+  };
   while (levels_[level_count_ - 1].width > 1 || levels_[level_count_ - 1].height > 1) {
     const Level& src = levels_[level_count_ - 1];
     const int w = std::max(1, src.width / 2), h = std::max(1, src.height / 2);
@@ -133,14 +183,14 @@ void Texture::generate_mipmaps() {
         for (int x = 0; x < w; ++x) {
           const AxisTaps& vx = tx[static_cast<std::size_t>(x)];
           glm::vec4 sum(0.0f);
-          for (int m = 0; m < vx.count; ++m) sum += detail::unpack_bytes(row[vx.first + m]) * vx.weight[m];
+          for (int m = 0; m < vx.count; ++m) sum += unpack(row[vx.first + m]) * vx.weight[m];
           row_sums[static_cast<std::size_t>(x)] += sum * vy.weight[k];
         }
       }
       std::uint32_t* out = texels_.data() + dst.offset + static_cast<std::size_t>(y) * dst.stride;
       for (int x = 0; x < w; ++x) {
         // Round to nearest; the clamp guards against weights summing a hair above 1.
-        const glm::vec4 c = glm::clamp(glm::floor(row_sums[static_cast<std::size_t>(x)] + 0.5f), 0.0f, 255.0f);
+        const glm::vec4 c = glm::clamp(glm::floor(pack(row_sums[static_cast<std::size_t>(x)]) + 0.5f), 0.0f, 255.0f);
         out[x] = static_cast<std::uint32_t>(c.x) | static_cast<std::uint32_t>(c.y) << 8 |
                  static_cast<std::uint32_t>(c.z) << 16 | static_cast<std::uint32_t>(c.w) << 24;
       }
@@ -158,7 +208,7 @@ namespace {
 
 }  // namespace
 
-Texture load_texture(const std::filesystem::path& path) {
+Texture load_texture(const std::filesystem::path& path, TexelEncoding encoding) {
   const std::vector<unsigned char> bytes = read_image_file(path);
   const int length = static_cast<int>(bytes.size());
   int w = 0, h = 0, channels = 0;
@@ -180,7 +230,7 @@ Texture load_texture(const std::filesystem::path& path) {
       dst[x] = std::uint32_t{src[0]} | std::uint32_t{src[1]} << 8 | std::uint32_t{src[2]} << 16 |
                std::uint32_t{src[3]} << 24;
   }
-  Texture texture(w, h, std::move(texels));
+  Texture texture(w, h, std::move(texels), encoding);
   texture.generate_mipmaps();
   return texture;
 }

@@ -177,27 +177,89 @@ TEST(TextureSampling, LanesMatchTheScalarSampleBitForBit) {
   for (const glm::ivec2 size : {glm::ivec2(8, 4), glm::ivec2(5, 3)}) {
     std::vector<std::uint32_t> texels(static_cast<std::size_t>(size.x * size.y));
     for (auto& p : texels) p = rgba(byte(rng), byte(rng), byte(rng), byte(rng));
-    const Texture t(size.x, size.y, texels);
-    for (const Sampler sampler : {Sampler{Filter::bilinear}, Sampler{Filter::trilinear}}) {
-      for (int batch = 0; batch < 200; ++batch) {
-        simd::Vec2 uv;
-        for (int k = 0; k < simd::kLanes; ++k) {
-          uv.x[k] = batch == 0 ? special[k] : coord(rng);
-          uv.y[k] = batch == 1 ? special[k] : coord(rng);
-        }
-        simd::Color lanes;
-        sample_lanes_dispatched(t, uv, sampler, lanes);
-        for (int k = 0; k < simd::kLanes; ++k) {
-          const glm::vec4 scalar = t.sample(glm::vec2(uv.x[k], uv.y[k]), sampler);
-          const float got[4] = {lanes.r[k], lanes.g[k], lanes.b[k], lanes.a[k]};
-          for (int c = 0; c < 4; ++c)
-            ASSERT_EQ(std::bit_cast<std::uint32_t>(got[c]), std::bit_cast<std::uint32_t>(scalar[c]))
-                << size.x << "x" << size.y << " batch " << batch << " lane " << k << " channel " << c << " at "
-                << uv.x[k] << ", " << uv.y[k];
+    for (const TexelEncoding encoding : {TexelEncoding::linear, TexelEncoding::srgb}) {
+      const Texture t(size.x, size.y, texels, encoding);
+      for (const Sampler sampler : {Sampler{Filter::bilinear}, Sampler{Filter::trilinear}}) {
+        for (int batch = 0; batch < 200; ++batch) {
+          simd::Vec2 uv;
+          for (int k = 0; k < simd::kLanes; ++k) {
+            uv.x[k] = batch == 0 ? special[k] : coord(rng);
+            uv.y[k] = batch == 1 ? special[k] : coord(rng);
+          }
+          simd::Color lanes;
+          sample_lanes_dispatched(t, uv, sampler, lanes);
+          for (int k = 0; k < simd::kLanes; ++k) {
+            const glm::vec4 scalar = t.sample(glm::vec2(uv.x[k], uv.y[k]), sampler);
+            const float got[4] = {lanes.r[k], lanes.g[k], lanes.b[k], lanes.a[k]};
+            for (int c = 0; c < 4; ++c)
+              ASSERT_EQ(std::bit_cast<std::uint32_t>(got[c]), std::bit_cast<std::uint32_t>(scalar[c]))
+                  << size.x << "x" << size.y << " batch " << batch << " lane " << k << " channel " << c << " at "
+                  << uv.x[k] << ", " << uv.y[k] << (encoding == TexelEncoding::srgb ? " (sRGB)" : "");
+          }
         }
       }
     }
   }
+}
+
+// IEC 61966-2-1's curves, in double precision.
+double srgb_to_linear(double c) { return c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4); }
+double linear_to_srgb(double x) { return x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055; }
+
+TEST(TextureSrgb, TablesFollowTheStandardCurves) {
+  const float* decode = detail::srgb_decode_table();
+  const float* encode = detail::srgb_encode_table();
+  EXPECT_EQ(decode[0], 0.0f);
+  EXPECT_EQ(decode[255], 1.0f);
+  EXPECT_NEAR(decode[128], 0.2158605, 1e-6);
+  for (int b = 0; b < 256; ++b) {
+    EXPECT_NEAR(decode[b], srgb_to_linear(b / 255.0), 1e-7) << b;
+    // Decoding and encoding again gives the byte back.
+    EXPECT_EQ(std::lround(detail::srgb_encode(decode[b], encode) * 255.0f), b);
+  }
+  for (int i = 0; i <= 100000; ++i) {
+    const double x = i / 100000.0;
+    ASSERT_NEAR(detail::srgb_encode(static_cast<float>(x), encode), linear_to_srgb(x), 2e-5) << x;
+  }
+  EXPECT_EQ(detail::srgb_encode(-1.0f, encode), 0.0f);
+  EXPECT_EQ(detail::srgb_encode(NAN, encode), 0.0f);
+  EXPECT_EQ(detail::srgb_encode(7.0f, encode), 1.0f);
+}
+
+// Half way between a black and a white texel is half the light: sRGB 0.735, not the 0.5 of blending the codes.
+TEST(TextureSrgb, BilinearBlendsInLinearLight) {
+  const std::vector<std::uint32_t> black_white = {rgba(0, 0, 0, 0), rgba(255, 255, 255, 255)};
+  const glm::vec4 code_blend = Texture(2, 1, black_white).sample({0.5f, 0.5f}, Sampler{Filter::bilinear});
+  const Texture srgb(2, 1, black_white, TexelEncoding::srgb);
+  EXPECT_EQ(srgb.encoding(), TexelEncoding::srgb);
+  const float half_light = static_cast<float>(linear_to_srgb(0.5));
+  expect_color(code_blend, glm::vec4(0.5f));
+  for (const Wrap wrap : {Wrap::repeat, Wrap::clamp}) {  // the inline power-of-two path and the general one
+    const Sampler sampler{Filter::bilinear, wrap, wrap};
+    expect_color(srgb.sample({0.5f, 0.5f}, sampler), glm::vec4(half_light, half_light, half_light, 0.5f), 2e-5f);
+  }
+  // Nearest filtering and texel() give the stored codes.
+  expect_color(srgb.sample({0.74f, 0.5f}, Sampler{Filter::nearest}), glm::vec4(1.0f));
+  expect_color(srgb.texel(0, 0, 0), glm::vec4(0.0f));
+}
+
+// A black and white checker's next level is the average light, sRGB 188, where averaging the codes gives 128; and
+// trilinear filtering blends the two levels in linear light as well.
+TEST(TextureSrgb, MipmapsAndTrilinearAverageLight) {
+  const std::vector<std::uint32_t> checker = {rgba(0, 0, 0), rgba(255, 255, 255), rgba(255, 255, 255), rgba(0, 0, 0)};
+  Texture codes(2, 2, checker), light(2, 2, checker, TexelEncoding::srgb);
+  codes.generate_mipmaps();
+  light.generate_mipmaps();
+  ASSERT_EQ(light.levels(), 2);
+  expect_color(codes.texel(1, 0, 0), bytes(128, 128, 128));
+  expect_color(light.texel(1, 0, 0), bytes(188, 188, 188));
+  // lod 0.5 at the centre: level 0 blends all four texels (half light), level 1 is 188; half of each, in light.
+  const Sampler trilinear{Filter::trilinear};
+  const glm::vec2 step(std::sqrt(2.0f) / 2.0f, 0.0f);  // sqrt(2) texels of level 0 per pixel: lod 0.5
+  const double expected = linear_to_srgb(0.5 * (0.5 + srgb_to_linear(188 / 255.0)));
+  const glm::vec4 got = light.sample({0.5f, 0.5f}, step, glm::vec2(0.0f), trilinear);
+  for (int c = 0; c < 3; ++c) EXPECT_NEAR(got[c], expected, 5e-5) << c;
+  EXPECT_NEAR(got.a, 1.0f, 1e-6f);
 }
 
 // The SSE2 split and blend that x86-64 uses must give exactly what the portable code gives on other machines.
@@ -377,6 +439,8 @@ TEST(TextureLoad, PngIsFlippedSoRowZeroIsTheBottom) {
                                             255, 255, 255, 255, 0, 0,   0, 255, 128, 128, 128, 64};
   write_png(png, 3, 2, pixels);
   const Texture t = load_texture(png);
+  EXPECT_EQ(t.encoding(), TexelEncoding::srgb);  // image files hold colour unless the caller says otherwise
+  EXPECT_EQ(load_texture(png, TexelEncoding::linear).encoding(), TexelEncoding::linear);
   ASSERT_EQ(t.width(), 3);
   ASSERT_EQ(t.height(), 2);
   EXPECT_EQ(t.levels(), 2);
