@@ -6,9 +6,10 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
-#include <set>
+#include <utility>
 
 #include "facet/mesh.hpp"
+#include "facet/model.hpp"
 #include "facet/model_io.hpp"
 
 namespace facet::cli {
@@ -56,7 +57,9 @@ CLI::App* add_info_command(CLI::App& app, InfoArgs& args) {
 
 int run_info(const InfoArgs& args) {
   std::string format;
-  const Mesh mesh = load_model(args.model, format);
+  Model model = read_model(args.model, format);
+  const std::size_t meshes = model.meshes.size(), instances = model.instances.size();
+  const Mesh mesh = flatten(std::move(model), args.model);
   const Bounds box = bounds(mesh);
   std::printf("file: %s\n", args.model.c_str());
   std::printf("format: %s\n", format.c_str());
@@ -70,8 +73,8 @@ int run_info(const InfoArgs& args) {
   for (const Material& m : mesh.materials) textured += m.diffuse_map || !m.diffuse_texture.empty();
   std::printf("textured materials: %zu\n", textured);
   std::printf("cameras: %zu\n", mesh.cameras.size());
-  std::set<std::uint32_t> instances(mesh.instance_ids.begin(), mesh.instance_ids.end());
-  std::printf("instances: %zu\n", std::max<std::size_t>(instances.size(), 1));
+  std::printf("meshes: %zu\n", meshes);
+  std::printf("instances: %zu\n", instances);
   print_vec3("bounds min", box.min);
   print_vec3("bounds max", box.max);
   print_vec3("size", box.max - box.min);

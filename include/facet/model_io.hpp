@@ -1,4 +1,4 @@
-// model_io.hpp - loading model files into meshes: Wavefront OBJ (with its MTL materials), PLY, STL and glTF 2.0.
+// model_io.hpp - reading model files: Wavefront OBJ (with its MTL materials), PLY, STL, glTF 2.0 and Assimp's formats.
 #pragma once
 
 #include <cstdint>
@@ -6,14 +6,17 @@
 #include <string>
 
 #include "facet/mesh.hpp"
+#include "facet/model.hpp"
 
 namespace facet {
 
 // Files larger than this are refused before reading (1 GiB).
 inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 
-// Loads a model into an indexed, triangulated, validated mesh with at least one triangle. The reader is chosen by the
-// (case-insensitive) extension, ".obj", ".ply", ".stl", ".gltf" or ".glb"; a file with another extension or none is
+// Reads a model file into a Model (model.hpp): its indexed, triangulated, validated meshes in their own
+// coordinates, the instances placing them (at least one triangle in all) and its cameras. The reader is chosen by
+// the (case-insensitive) extension, ".obj", ".ply", ".stl", ".gltf", ".glb", or one Assimp reads; a file with another
+// extension or none is
 // recognised by its content ("ply" magic line, GLB magic, glTF JSON, a binary STL's size, "solid", or OBJ
 // statements after any comments). Polygons are
 // triangulated as fans (c0 c1 c2), (c0 c2 c3), ... when convex and ear-clipped when concave, corner order kept;
@@ -34,18 +37,19 @@ inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 //   STL (binary, or ASCII with one or more solids): exactly equal positions are welded into one vertex (+0 and -0
 //     alike), numbered in order of first use; facet normals and colours are ignored (normals left empty).
 //   glTF 2.0 (.gltf with external or data: buffers and images, .glb), through tinygltf: the default scene (else
-//     every root node) flattened into one mesh in world space, node matrices and TRS applied (normals by the
-//     inverse transpose, mirrored nodes re-wound); triangles, strips and fans of every primitive, indexed or not;
+//     every root node), each node that places a mesh an instance with its matrix or TRS composed down the
+//     hierarchy; triangles, strips and fans of every primitive, indexed or not;
 //     NORMAL, TEXCOORD_0 and COLOR_0 of any component type, sparse accessors; one material per glTF material
 //     (baseColorFactor -> diffuse, baseColorTexture decoded into diffuse_map, roughness -> specular and
 //     shininess); Draco-compressed primitives decoded; the cameras the scene's nodes place (Mesh::cameras). Points
 //     and lines are skipped with a warning; an extension the file lists as required that facet does not implement
 //     (it implements KHR_mesh_quantization, KHR_texture_transform, KHR_materials_unlit and
 //     KHR_draco_mesh_compression) is refused naming it.
+//   Other formats, through Assimp (triangulated, points and lines dropped): each aiMesh with its material, placed
+//     by the nodes of the scene's node tree.
 // Every reader records where each triangle came from: Mesh::face_ids numbers the file's faces (OBJ `f` lines of
-// 3+ corners; PLY faces; glTF triangles per mesh; Assimp triangles per mesh), a polygon's triangles
-// sharing one; Mesh::instance_ids names the glTF node, or the Assimp mesh, that placed it (empty for OBJ, PLY and
-// STL, and face_ids empty where every face is one triangle).
+// 3+ corners; PLY faces; glTF triangles per mesh; Assimp triangles per mesh), a polygon's triangles sharing one
+// (empty where every face is one triangle); ModelInstance::id names the glTF node, or the Assimp node, placing it.
 // Throws InputError(path, problem) with a one-line problem, naming the line (text) or byte offset (binary) where
 // that helps, for: no such file, not a regular file, an empty or too large file, an unsupported format, a file
 // that does not parse or ends early, counts that do not fit in the file, references to vertices/uvs/normals that
@@ -53,9 +57,13 @@ inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 // than supported (OBJ 255, PLY 1024), or no triangles at all.
 // A missing MTL file, a missing texture file (diffuse_texture is then left empty), dropped faces, unknown PLY header
 // lines and data after a PLY's last element only print a one-line "facet: warning: ..." to stderr.
-Mesh load_model(const std::filesystem::path& path);
-
+Model read_model(const std::filesystem::path& path);
 // The same, also naming the reader that read it: "OBJ", "PLY", "STL", "glTF", "GLB" or "Assimp (ext)".
+Model read_model(const std::filesystem::path& path, std::string& format);
+
+// read_model(path) flattened into one world-space mesh (flatten in model.hpp), with the file's cameras and each
+// triangle's instance id in Mesh::instance_ids: what `facet render` draws.
+Mesh load_model(const std::filesystem::path& path);
 Mesh load_model(const std::filesystem::path& path, std::string& format);
 
 }  // namespace facet

@@ -1,4 +1,4 @@
-// assimp_loader.cpp - every other format Assimp reads (FBX, COLLADA, 3DS, OFF, X3D, 3MF, ...), as one mesh.
+// assimp_loader.cpp - every other format Assimp reads (FBX, COLLADA, 3DS, OFF, X3D, 3MF, ...): meshes and nodes.
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
@@ -11,16 +11,15 @@
 #include <filesystem>
 #include <string>
 #include <string_view>
+#include <utility>
+#include <vector>
 
 #include "facet/error.hpp"
+#include "facet/model.hpp"
 #include "io/loaders.hpp"
 
 namespace facet {
 namespace {
-
-// Assimp's loaders expand some files a great deal (instanced nodes, tessellated surfaces): past this many
-// vertices the model is refused rather than allowed to take the machine's memory.
-constexpr std::size_t kMaxVertices = std::size_t{1} << 27;
 
 glm::vec4 color_of(const aiMaterial& m, const char* key, unsigned type, unsigned index, glm::vec4 fallback) {
   aiColor4D c;
@@ -91,16 +90,60 @@ bool assimp_reads(const std::string& extension) {
   return !extension.empty() && Assimp::Importer().IsExtensionSupported(extension);
 }
 
-Mesh load_with_assimp(const std::filesystem::path& path, std::string_view bytes, const std::string& source) {
+namespace {
+
+// One aiMesh as an object-space Mesh with its one material; an empty mesh when it holds no triangles.
+Mesh mesh_of(const aiMesh& m, unsigned index, const std::vector<Material>& materials, const std::string& source) {
+  Mesh out;
+  if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || m.mNumVertices == 0) return out;
+  if (m.mNumVertices > kMaxModelVertices) throw InputError(source, "a mesh has more than 2^27 vertices");
+  bool finite_normals = m.mNormals != nullptr;
+  for (unsigned v = 0; v < m.mNumVertices; ++v) {
+    out.positions.emplace_back(m.mVertices[v].x, m.mVertices[v].y, m.mVertices[v].z);
+    if (m.mNormals) {
+      const glm::vec3 n(m.mNormals[v].x, m.mNormals[v].y, m.mNormals[v].z);
+      finite_normals = finite_normals && std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z);
+      out.normals.push_back(n);
+    }
+    if (m.mTextureCoords[0]) out.uvs.emplace_back(m.mTextureCoords[0][v].x, m.mTextureCoords[0][v].y);
+    if (const aiColor4D* c = m.mColors[0]) out.colors.emplace_back(c[v].r, c[v].g, c[v].b, c[v].a);
+  }
+  // Non-finite normals are dropped rather than refused: the renderer derives normals for a mesh that has none.
+  if (!finite_normals) out.normals.clear();
+  const bool has_material = m.mMaterialIndex < materials.size();
+  if (has_material) out.materials.push_back(materials[m.mMaterialIndex]);
+  for (unsigned f = 0; f < m.mNumFaces; ++f) {
+    const aiFace& face = m.mFaces[f];
+    if (face.mNumIndices != 3) continue;
+    for (unsigned k = 0; k < 3; ++k) {
+      if (face.mIndices[k] >= m.mNumVertices)
+        throw InputError(source, "mesh " + std::to_string(index) + " face " + std::to_string(f) + " index " +
+                                     std::to_string(face.mIndices[k]) + " is out of range");
+      out.indices.push_back(face.mIndices[k]);
+    }
+    if (has_material) out.face_materials.push_back(0);
+    out.face_ids.push_back(f);
+  }
+  validate(out, source);
+  return out;
+}
+
+glm::mat4 matrix_of(const aiMatrix4x4& m) {
+  // aiMatrix4x4 is row-major (a1 a2 a3 a4 is the first row); glm is column-major.
+  return glm::mat4(m.a1, m.b1, m.c1, m.d1, m.a2, m.b2, m.c2, m.d2, m.a3, m.b3, m.c3, m.d3, m.a4, m.b4, m.c4, m.d4);
+}
+
+}  // namespace
+
+Model load_with_assimp(const std::filesystem::path& path, std::string_view bytes, const std::string& source) {
   std::string extension = path.extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (extension == ".off") check_off_counts(bytes, source);
   Assimp::Importer importer;
-  // Lines and points are dropped by the sort; the pre-transform flattens the node hierarchy into world space,
-  // as the glTF reader does.
+  // Lines and points are dropped by the sort; the node tree is walked below, as the glTF reader walks its nodes.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
-  const unsigned flags = aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_PreTransformVertices |
-                         aiProcess_ValidateDataStructure | aiProcess_FindInvalidData;
+  const unsigned flags =
+      aiProcess_Triangulate | aiProcess_SortByPType | aiProcess_ValidateDataStructure | aiProcess_FindInvalidData;
   // From the path rather than the bytes already read: many of these formats name companion files (materials,
   // skeletons, external parts) that Assimp opens beside the model.
   const aiScene* scene = importer.ReadFile(path.string(), flags);
@@ -110,51 +153,44 @@ Mesh load_with_assimp(const std::filesystem::path& path, std::string_view bytes,
     throw InputError(source, "Assimp cannot read it (" + printable(error.empty() ? "no scene" : error) + ")");
   }
 
-  Mesh out;
   const std::filesystem::path folder = path.parent_path();
-  for (unsigned i = 0; i < scene->mNumMaterials; ++i)
-    out.materials.push_back(material_of(*scene->mMaterials[i], folder));
-  bool all_normals = true, any_uvs = false, any_colors = false;
-  for (unsigned i = 0; i < scene->mNumMeshes; ++i) {
-    const aiMesh& m = *scene->mMeshes[i];
-    if (!(m.mPrimitiveTypes & aiPrimitiveType_TRIANGLE) || m.mNumVertices == 0) continue;
-    const std::size_t base = out.positions.size();
-    if (m.mNumVertices > kMaxVertices - base) throw InputError(source, "the model expands to more than 2^27 vertices");
-    for (unsigned v = 0; v < m.mNumVertices; ++v) {
-      out.positions.emplace_back(m.mVertices[v].x, m.mVertices[v].y, m.mVertices[v].z);
-      out.normals.push_back(m.mNormals ? glm::vec3(m.mNormals[v].x, m.mNormals[v].y, m.mNormals[v].z)
-                                       : glm::vec3(0, 0, 1));
-      out.uvs.push_back(m.mTextureCoords[0] ? glm::vec2(m.mTextureCoords[0][v].x, m.mTextureCoords[0][v].y)
-                                            : glm::vec2(0));
-      const aiColor4D* c = m.mColors[0];
-      out.colors.push_back(c ? glm::vec4(c[v].r, c[v].g, c[v].b, c[v].a) : glm::vec4(1.0f));
-    }
-    all_normals = all_normals && m.mNormals;
-    any_uvs = any_uvs || m.mTextureCoords[0];
-    any_colors = any_colors || m.mColors[0];
-    const int material = m.mMaterialIndex < out.materials.size() ? static_cast<int>(m.mMaterialIndex) : -1;
-    for (unsigned f = 0; f < m.mNumFaces; ++f) {
-      const aiFace& face = m.mFaces[f];
-      if (face.mNumIndices != 3) continue;
-      for (unsigned k = 0; k < 3; ++k) {
-        if (face.mIndices[k] >= m.mNumVertices)
-          throw InputError(source, "mesh " + std::to_string(i) + " face " + std::to_string(f) + " index " +
-                                       std::to_string(face.mIndices[k]) + " is out of range");
-        out.indices.push_back(static_cast<std::uint32_t>(base + face.mIndices[k]));
+  std::vector<Material> materials;
+  for (unsigned i = 0; i < scene->mNumMaterials; ++i) materials.push_back(material_of(*scene->mMaterials[i], folder));
+  Model out;
+  constexpr std::uint32_t kUnread = 0xFFFFFFFFu, kNoTriangles = 0xFFFFFFFEu;
+  std::vector<std::uint32_t> slots(scene->mNumMeshes, kUnread);  // per aiMesh: its index in out.meshes
+  std::size_t expanded = 0;
+  // Depth first, parents before children, with a stack of its own: a file can nest nodes deeper than a thread's
+  // stack would allow recursion to.
+  std::vector<std::pair<const aiNode*, glm::mat4>> pending{{scene->mRootNode, glm::mat4(1.0f)}};
+  std::uint32_t node_number = 0;
+  while (!pending.empty()) {
+    const auto [node, parent] = pending.back();
+    pending.pop_back();
+    const std::uint32_t id = node_number++;
+    if (id == kNoSurface) throw InputError(source, "the scene has more nodes than 32-bit ids can number");
+    const glm::mat4 world = parent * matrix_of(node->mTransformation);
+    for (unsigned k = 0; k < node->mNumMeshes; ++k) {
+      const unsigned index = node->mMeshes[k];
+      if (index >= scene->mNumMeshes)
+        throw InputError(source, "a node places mesh " + std::to_string(index) + ", which does not exist");
+      std::uint32_t& slot = slots[index];
+      if (slot == kUnread) {
+        Mesh mesh = mesh_of(*scene->mMeshes[index], index, materials, source);
+        slot = mesh.indices.empty() ? kNoTriangles : static_cast<std::uint32_t>(out.meshes.size());
+        if (!mesh.indices.empty()) out.meshes.push_back(std::move(mesh));
       }
-      out.face_materials.push_back(material);
-      out.face_ids.push_back(f);
-      out.instance_ids.push_back(i);
+      if (slot == kNoTriangles) continue;
+      const std::size_t count = out.meshes[slot].vertex_count();
+      if (count > kMaxModelVertices - expanded)
+        throw InputError(source, "the model expands to more than 2^27 vertices");
+      expanded += count;
+      out.instances.push_back(ModelInstance{slot, world, id});
     }
+    for (unsigned c = node->mNumChildren; c-- > 0;)
+      if (node->mChildren[c]) pending.emplace_back(node->mChildren[c], world);
   }
-  if (out.indices.empty()) throw InputError(source, "no triangles found");
-  // Non-finite normals are replaced rather than refused: the renderer recomputes them when a mesh has none.
-  for (const glm::vec3& n : out.normals)
-    if (!std::isfinite(n.x) || !std::isfinite(n.y) || !std::isfinite(n.z)) all_normals = false;
-  if (!all_normals) out.normals.clear();
-  if (!any_uvs) out.uvs.clear();
-  if (!any_colors) out.colors.clear();
-  validate(out, source);
+  if (out.instances.empty()) throw InputError(source, "no triangles found");
   return out;
 }
 

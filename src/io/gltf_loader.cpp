@@ -1,4 +1,4 @@
-// gltf_loader.cpp - glTF 2.0 (.gltf with its buffers and images, .glb) through tinygltf: the default scene as one mesh.
+// gltf_loader.cpp - glTF 2.0 (.gltf with its buffers and images, .glb) through tinygltf: the default scene's meshes.
 #include <tiny_gltf.h>
 
 #include <algorithm>
@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "facet/error.hpp"
+#include "facet/model.hpp"
 #include "facet/texture.hpp"
 #include "io/gltf_primitive.hpp"
 #include "io/loaders.hpp"
@@ -26,9 +27,6 @@ namespace {
 // (KHR_draco_mesh_compression).
 const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization", "KHR_texture_transform",
                                                   "KHR_materials_unlit", "KHR_draco_mesh_compression"};
-
-// Instancing can multiply a small file's triangles: a node graph that would expand past this is refused.
-constexpr std::size_t kMaxVertices = std::size_t{1} << 27;
 
 struct Reader {
   const tinygltf::Model& model;
@@ -298,11 +296,16 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
   return out;
 }
 
-class Flattener {
+// Walks the scene's nodes: each glTF mesh a node places is read once into an object-space Mesh, each such node
+// becomes an instance.
+class SceneReader {
  public:
-  Flattener(const tinygltf::Model& model, const std::string& source) : model_(model), reader_{model, source} {
-    for (const tinygltf::Material& m : model.materials)
+  SceneReader(const tinygltf::Model& model, const std::string& source)
+      : model_(model), reader_{model, source}, slots_(model.meshes.size(), kUnread) {
+    for (const tinygltf::Material& m : model.materials) {
       uv_transforms_.push_back(uv_transform_of(m.pbrMetallicRoughness.baseColorTexture, source));
+      materials_.push_back(material_of(model_, m, source));
+    }
   }
 
   void node(int index, const glm::mat4& parent, int depth) {
@@ -311,33 +314,52 @@ class Flattener {
     if (depth > 64 || on_path_.count(index)) reader_.fail("node " + std::to_string(index) + " is its own ancestor");
     const tinygltf::Node& n = model_.nodes[static_cast<std::size_t>(index)];
     const glm::mat4 world = parent * local_transform(n);
-    if (n.mesh >= 0) mesh(n.mesh, world, static_cast<std::uint32_t>(index));
+    if (n.mesh >= 0) place(n.mesh, world, static_cast<std::uint32_t>(index));
     if (n.camera >= 0) camera(n.camera, world);
     on_path_.insert(index);
     for (int child : n.children) node(child, world, depth + 1);
     on_path_.erase(index);
   }
 
-  Mesh finish() {
-    if (out_.indices.empty()) reader_.fail("the default scene has no triangles");
-    if (!all_normals_) out_.normals.clear();
-    if (!any_uvs_) out_.uvs.clear();
-    if (!any_colors_) out_.colors.clear();
-    for (const tinygltf::Material& m : model_.materials)
-      out_.materials.push_back(material_of(model_, m, reader_.source));
-    validate(out_, reader_.source);
+  Model finish() {
+    if (out_.instances.empty()) reader_.fail("the default scene has no triangles");
     return std::move(out_);
   }
 
  private:
-  // Each node placing a mesh is an instance (its node index); the mesh's triangles are numbered across its
-  // primitives, in order, from 0 for every instance.
-  void mesh(int index, const glm::mat4& world, std::uint32_t node) {
+  static constexpr std::uint32_t kUnread = 0xFFFFFFFFu, kNoTriangles = 0xFFFFFFFEu;
+
+  // Each node placing a mesh is an instance (its node index). Instancing can multiply a small file's triangles, so
+  // the vertices the scene expands to are counted as it is walked, and a graph that would pass the limit is refused.
+  void place(int index, const glm::mat4& world, std::uint32_t node) {
     if (static_cast<std::size_t>(index) >= model_.meshes.size())
       reader_.fail("mesh " + std::to_string(index) + " does not exist");
+    std::uint32_t& slot = slots_[static_cast<std::size_t>(index)];
+    if (slot == kUnread) slot = read_mesh(index);
+    if (slot == kNoTriangles) return;
+    const std::size_t count = out_.meshes[slot].vertex_count();
+    if (count > kMaxModelVertices - expanded_) reader_.fail("the scene expands to more than 2^27 vertices");
+    expanded_ += count;
+    out_.instances.push_back(ModelInstance{slot, world, node});
+  }
+
+  // The mesh's triangles are numbered across its primitives, in order; its materials are those its primitives use.
+  std::uint32_t read_mesh(int index) {
+    mesh_ = Mesh{};
+    local_materials_.assign(materials_.size(), -1);
+    all_normals_ = true;
+    any_uvs_ = any_colors_ = false;
     std::uint32_t face = 0;
-    for (const tinygltf::Primitive& p : model_.meshes[static_cast<std::size_t>(index)].primitives)
-      primitive(p, world, node, face);
+    for (const tinygltf::Primitive& p : model_.meshes[static_cast<std::size_t>(index)].primitives) primitive(p, face);
+    if (mesh_.indices.empty()) return kNoTriangles;
+    if (!all_normals_) mesh_.normals.clear();
+    if (!any_uvs_) mesh_.uvs.clear();
+    if (!any_colors_) mesh_.colors.clear();
+    if (std::all_of(mesh_.face_materials.begin(), mesh_.face_materials.end(), [](int m) { return m < 0; }))
+      mesh_.face_materials.clear();
+    validate(mesh_, reader_.source);
+    out_.meshes.push_back(std::move(mesh_));
+    return static_cast<std::uint32_t>(out_.meshes.size() - 1);
   }
 
   // A camera as its node places it. The spec allows no scale on camera nodes; any is removed, keeping the
@@ -390,7 +412,7 @@ class Flattener {
     return out;
   }
 
-  void primitive(const tinygltf::Primitive& p, const glm::mat4& world, std::uint32_t node, std::uint32_t& face) {
+  void primitive(const tinygltf::Primitive& p, std::uint32_t& face) {
     const bool draco = p.extensions.count("KHR_draco_mesh_compression") > 0;
     if (!draco && p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
         p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
@@ -398,11 +420,12 @@ class Flattener {
       warned_points_ = true;
       return;
     }
-    const std::size_t base = out_.positions.size();
+    const std::size_t base = mesh_.positions.size();
     // Draco decodes to a triangle list whatever the primitive's mode.
-    PrimitiveArrays data = draco ? decode_draco(model_, p, kMaxVertices - base, reader_.source) : accessor_arrays(p);
+    PrimitiveArrays data =
+        draco ? decode_draco(model_, p, kMaxModelVertices - base, reader_.source) : accessor_arrays(p);
     const std::size_t count = data.positions.size() / 3;
-    if (count > kMaxVertices - base) reader_.fail("the scene expands to more than 2^27 vertices");
+    if (count > kMaxModelVertices - base) reader_.fail("a mesh has more than 2^27 vertices");
     const auto check_count = [&](const std::vector<float>& values, std::size_t components, const char* name) {
       if (!values.empty() && values.size() != count * components)
         reader_.fail(std::string(name) + " has " + std::to_string(values.size() / components) + " elements but " +
@@ -425,73 +448,83 @@ class Flattener {
     corners.resize(corners.size() / 3 * 3);
 
     const std::vector<float>& positions = data.positions;
-    const glm::mat3 normal_from_object = glm::transpose(glm::inverse(glm::mat3(world)));
     for (std::size_t i = 0; i < count; ++i)
-      out_.positions.push_back(
-          glm::vec3(world * glm::vec4(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2], 1)));
-    append_normals(data.normals, count, normal_from_object);
+      mesh_.positions.emplace_back(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
+    append_normals(data.normals, count);
     const int material =
         p.material >= 0 && static_cast<std::size_t>(p.material) < model_.materials.size() ? p.material : -1;
     append_uvs(data.uvs, count, material >= 0 ? uv_transforms_[static_cast<std::size_t>(material)] : glm::mat3(1.0f));
     append_colors(data.colors, data.color_components, count);
 
-    // A mirroring transform turns counter-clockwise triangles clockwise; swapping two corners restores the front.
-    const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
+    const std::int32_t local = material < 0 ? -1 : local_material(material);
     for (std::size_t t = 0; t < corners.size(); t += 3) {
-      const auto a = static_cast<std::uint32_t>(base) + corners[t];
-      const auto b = static_cast<std::uint32_t>(base) + corners[t + (mirrored ? 2 : 1)];
-      const auto c = static_cast<std::uint32_t>(base) + corners[t + (mirrored ? 1 : 2)];
-      out_.indices.insert(out_.indices.end(), {a, b, c});
-      out_.face_materials.push_back(material);
-      out_.face_ids.push_back(face++);
-      out_.instance_ids.push_back(node);
+      const auto b = static_cast<std::uint32_t>(base);
+      mesh_.indices.insert(mesh_.indices.end(), {b + corners[t], b + corners[t + 1], b + corners[t + 2]});
+      mesh_.face_materials.push_back(local);
+      mesh_.face_ids.push_back(face++);
     }
   }
 
-  void append_normals(const std::vector<float>& n, std::size_t count, const glm::mat3& normal_from_object) {
+  // The file's material in the mesh being read, added to its materials at first use.
+  std::int32_t local_material(int material) {
+    std::int32_t& local = local_materials_[static_cast<std::size_t>(material)];
+    if (local < 0) {
+      local = static_cast<std::int32_t>(mesh_.materials.size());
+      mesh_.materials.push_back(materials_[static_cast<std::size_t>(material)]);
+    }
+    return local;
+  }
+
+  void append_normals(const std::vector<float>& n, std::size_t count) {
     if (n.empty()) {
       all_normals_ = false;
-      out_.normals.resize(out_.positions.size(), glm::vec3(0, 0, 1));
+      mesh_.normals.resize(mesh_.positions.size(), glm::vec3(0, 0, 1));
       return;
     }
     for (std::size_t i = 0; i < count; ++i) {
-      const glm::vec3 v = normal_from_object * glm::vec3(n[3 * i], n[3 * i + 1], n[3 * i + 2]);
+      const glm::vec3 v(n[3 * i], n[3 * i + 1], n[3 * i + 2]);
       const float length = glm::length(v);
-      out_.normals.push_back(std::isfinite(length) && length > 0.0f ? v / length : glm::vec3(0, 0, 1));
+      mesh_.normals.push_back(std::isfinite(length) && length > 0.0f ? v / length : glm::vec3(0, 0, 1));
     }
   }
 
   // The material's texture transform is applied here, in glTF's texture space (origin at the image's top-left):
-  // each primitive's vertices are its own in the flat mesh. Then v becomes 1 - v, facet's (and OpenGL's) bottom-left
+  // each primitive's vertices are its own in the mesh. Then v becomes 1 - v, facet's (and OpenGL's) bottom-left
   // origin, as OBJ, PLY and Assimp's readers give it, so a mesh's uvs mean the same whatever file it came from.
   void append_uvs(const std::vector<float>& uv, std::size_t count, const glm::mat3& uv_transform) {
     if (uv.empty()) {
-      out_.uvs.resize(out_.positions.size(), glm::vec2(0.0f));
+      mesh_.uvs.resize(mesh_.positions.size(), glm::vec2(0.0f));
       return;
     }
     any_uvs_ = true;
     for (std::size_t i = 0; i < count; ++i) {
       const glm::vec3 moved = uv_transform * glm::vec3(uv[2 * i], uv[2 * i + 1], 1.0f);
-      out_.uvs.emplace_back(moved.x, 1.0f - moved.y);
+      mesh_.uvs.emplace_back(moved.x, 1.0f - moved.y);
     }
   }
 
   void append_colors(const std::vector<float>& c, int components, std::size_t count) {
     if (c.empty()) {
-      out_.colors.resize(out_.positions.size(), glm::vec4(1.0f));
+      mesh_.colors.resize(mesh_.positions.size(), glm::vec4(1.0f));
       return;
     }
     any_colors_ = true;
     const auto k = static_cast<std::size_t>(components);
     for (std::size_t i = 0; i < count; ++i)
-      out_.colors.emplace_back(c[k * i], c[k * i + 1], c[k * i + 2], components == 4 ? c[k * i + 3] : 1.0f);
+      mesh_.colors.emplace_back(c[k * i], c[k * i + 1], c[k * i + 2], components == 4 ? c[k * i + 3] : 1.0f);
   }
 
   const tinygltf::Model& model_;
   Reader reader_;
-  Mesh out_;
-  std::set<int> on_path_;
+  Model out_;
+  std::vector<Material> materials_;       // the file's, decoded once
   std::vector<glm::mat3> uv_transforms_;  // per material: its base colour texture's KHR_texture_transform
+  std::vector<std::uint32_t> slots_;      // per glTF mesh: its index in out_.meshes, kUnread or kNoTriangles
+  std::set<int> on_path_;
+  std::size_t expanded_ = 0;  // vertices of every instance placed so far
+  // The mesh being read.
+  Mesh mesh_;
+  std::vector<std::int32_t> local_materials_;  // per file material: its index in mesh_.materials, or -1
   bool all_normals_ = true, any_uvs_ = false, any_colors_ = false, warned_points_ = false;
 };
 
@@ -499,7 +532,7 @@ class Flattener {
 
 bool is_gltf_binary(std::string_view bytes) { return bytes.size() >= 12 && bytes.substr(0, 4) == "glTF"; }
 
-Mesh load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source) {
+Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source) {
   tinygltf::TinyGLTF gltf;
   tinygltf::Model model;
   std::string error, warning;
@@ -522,10 +555,10 @@ Mesh load_gltf(const std::filesystem::path& path, std::string_view bytes, const 
       throw InputError(source,
                        "requires the glTF extension " + printable(extension) + ", which facet does not support");
 
-  Flattener flat(model, source);
+  SceneReader scene_reader(model, source);
   const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;
   if (static_cast<std::size_t>(scene) < model.scenes.size()) {
-    for (int root : model.scenes[static_cast<std::size_t>(scene)].nodes) flat.node(root, glm::mat4(1.0f), 0);
+    for (int root : model.scenes[static_cast<std::size_t>(scene)].nodes) scene_reader.node(root, glm::mat4(1.0f), 0);
   } else {
     // No scenes: every node that is nobody's child is a root.
     std::vector<bool> is_child(model.nodes.size(), false);
@@ -534,9 +567,9 @@ Mesh load_gltf(const std::filesystem::path& path, std::string_view bytes, const 
         if (child >= 0 && static_cast<std::size_t>(child) < is_child.size())
           is_child[static_cast<std::size_t>(child)] = true;
     for (std::size_t i = 0; i < model.nodes.size(); ++i)
-      if (!is_child[i]) flat.node(static_cast<int>(i), glm::mat4(1.0f), 0);
+      if (!is_child[i]) scene_reader.node(static_cast<int>(i), glm::mat4(1.0f), 0);
   }
-  return flat.finish();
+  return scene_reader.finish();
 }
 
 }  // namespace facet

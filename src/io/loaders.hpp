@@ -1,4 +1,4 @@
-// loaders.hpp - the model readers behind load_model() (OBJ, PLY, STL, glTF) and the helpers they share.
+// loaders.hpp - the model readers behind read_model() (OBJ, PLY, STL, glTF, Assimp) and the helpers they share.
 #pragma once
 
 #include <cstdint>
@@ -7,20 +7,22 @@
 #include <string_view>
 
 #include "facet/mesh.hpp"
+#include "facet/model.hpp"
 
 namespace facet {
 
 // Each reader gets the model's path (OBJ resolves its MTL and texture files against it), the whole file read once
-// by load_model (non-empty, at most kMaxModelFileBytes) and the source name for its InputErrors. Each returns a
-// validated mesh with at least one triangle, or throws InputError(source, one-line problem).
+// by read_model (non-empty, at most kMaxModelFileBytes) and the source name for its InputErrors. Each returns a
+// validated mesh (or model, each of its meshes validated) with at least one triangle placed, or throws
+// InputError(source, one-line problem).
 Mesh load_obj(const std::filesystem::path& path, std::string& bytes, const std::string& source);
 Mesh load_ply(std::string_view bytes, const std::string& source);
 Mesh load_stl(std::string_view bytes, const std::string& source);
-// glTF resolves external buffers and images against the path's folder.
-Mesh load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source);
+// glTF resolves external buffers and images against the path's folder; its meshes and node instances.
+Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source);
 
-// Every other format Assimp reads, as one mesh in world space; Assimp opens the file (and its companions) itself.
-Mesh load_with_assimp(const std::filesystem::path& path, std::string_view bytes, const std::string& source);
+// Every other format Assimp reads, its meshes and node instances; Assimp opens the file (and its companions) itself.
+Model load_with_assimp(const std::filesystem::path& path, std::string_view bytes, const std::string& source);
 // Whether Assimp has a reader for this extension (".fbx", with the dot).
 bool assimp_reads(const std::string& extension);
 

@@ -8,6 +8,7 @@
 #include <new>
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "facet/error.hpp"
 #include "io/loaders.hpp"
@@ -110,14 +111,22 @@ Format format_of_content(std::string_view bytes) {
   return Format::kUnknown;
 }
 
-}  // namespace
-
-Mesh load_model(const fs::path& path) {
-  std::string format;
-  return load_model(path, format);
+// A format without nodes: its one mesh, placed once where it is.
+Model one_mesh(Mesh mesh) {
+  Model model;
+  model.meshes.push_back(std::move(mesh));
+  model.instances.push_back(ModelInstance{});
+  return model;
 }
 
-Mesh load_model(const fs::path& path, std::string& format_name) {
+}  // namespace
+
+Model read_model(const fs::path& path) {
+  std::string format;
+  return read_model(path, format);
+}
+
+Model read_model(const fs::path& path, std::string& format_name) {
   const std::string source = path.string();
   const std::uintmax_t size = checked_file_size(path, source);
   const std::string extension = path.extension().string();
@@ -130,9 +139,9 @@ Mesh load_model(const fs::path& path, std::string& format_name) {
   if (format == Format::kAssimp) format_name += " (" + printable(extension.substr(1)) + ")";
   try {
     switch (format) {
-      case Format::kObj: return load_obj(path, bytes, source);
-      case Format::kPly: return load_ply(bytes, source);
-      case Format::kStl: return load_stl(bytes, source);
+      case Format::kObj: return one_mesh(load_obj(path, bytes, source));
+      case Format::kPly: return one_mesh(load_ply(bytes, source));
+      case Format::kStl: return one_mesh(load_stl(bytes, source));
       case Format::kGltf: return load_gltf(path, bytes, source);
       case Format::kAssimp: return load_with_assimp(path, bytes, source);
       case Format::kUnknown: break;
@@ -143,6 +152,20 @@ Mesh load_model(const fs::path& path, std::string& format_name) {
   if (extension.empty())
     throw InputError(source, std::string("unsupported model format (no file extension; ") + kSupported + ")");
   throw InputError(source, "unsupported model format '" + printable(extension) + "' (" + kSupported + ")");
+}
+
+Mesh load_model(const fs::path& path) {
+  std::string format;
+  return load_model(path, format);
+}
+
+Mesh load_model(const fs::path& path, std::string& format_name) {
+  Model model = read_model(path, format_name);
+  try {
+    return flatten(std::move(model), path.string());
+  } catch (const std::bad_alloc&) {
+    throw InputError(path.string(), "out of memory while loading");
+  }
 }
 
 }  // namespace facet

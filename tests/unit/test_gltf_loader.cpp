@@ -1,6 +1,7 @@
 // test_gltf_loader.cpp - glTF 2.0 through load_model(): the three forms of one file, node transforms, real files.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -147,10 +148,17 @@ TEST(GltfLoader, TextureTransformsAndSamplersFollowTheFile) {
   const Expected expected[6] = {{{0.5f, 0.0f}},           {{0.0f, 0.5f}},
                                 {{0.5f, 0.5f}},           {{}, 0.39269908169872414f},
                                 {{}, 0.0f, {1.5f, 1.5f}}, {{-0.2f, -0.1f}, 0.3f, {1.5f, 1.5f}}};
+  // The flattened mesh numbers materials in order of first use; the file's order is known by name.
+  const std::string names[6] = {"Offset U", "Offset V", "Offset UV", "Rotation", "Scale", "All"};
+  const auto file_index = [&](std::int32_t m) {
+    if (m < 0) return -1;
+    const auto found = std::find(std::begin(names), std::end(names), transformed.materials[m].name);
+    return found == std::end(names) ? -1 : static_cast<int>(found - std::begin(names));
+  };
   std::size_t checked = 0;
   for (std::size_t t = 0; t < transformed.face_materials.size(); ++t) {
-    const std::int32_t m = transformed.face_materials[t];
-    if (m < 0 || m >= 6) continue;
+    const int m = file_index(transformed.face_materials[t]);
+    if (m < 0) continue;
     const Expected& e = expected[m];
     for (int k = 0; k < 3; ++k) {
       const std::uint32_t v = transformed.indices[3 * t + k];
@@ -167,13 +175,20 @@ TEST(GltfLoader, TextureTransformsAndSamplersFollowTheFile) {
   EXPECT_GE(checked, 6u * 6u);  // two triangles per transformed square at least
 
   // Textures 0 and 1 use sampler 0 (CLAMP_TO_EDGE, LINEAR); the marker textures have no sampler.
-  for (std::size_t m = 0; m < 6; ++m) {
+  std::size_t transformed_materials = 0;
+  for (std::size_t m = 0; m < transformed.materials.size(); ++m) {
+    if (file_index(static_cast<std::int32_t>(m)) < 0) continue;
+    ++transformed_materials;
     ASSERT_TRUE(transformed.materials[m].sampler) << m;
     EXPECT_EQ(transformed.materials[m].sampler->wrap_u, Wrap::clamp);
     EXPECT_EQ(transformed.materials[m].sampler->wrap_v, Wrap::clamp);
     EXPECT_EQ(transformed.materials[m].sampler->filter, Filter::bilinear);
   }
-  for (std::size_t m = 6; m < transformed.materials.size(); ++m) EXPECT_FALSE(transformed.materials[m].sampler);
+  EXPECT_EQ(transformed_materials, 6u);
+  for (std::size_t m = 0; m < transformed.materials.size(); ++m)
+    if (file_index(static_cast<std::int32_t>(m)) < 0) {
+      EXPECT_FALSE(transformed.materials[m].sampler) << m;
+    }
 }
 
 // KHR_materials_unlit marks its material unlit (the scene then draws it with its colour alone), and is accepted

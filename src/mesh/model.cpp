@@ -1,0 +1,129 @@
+// model.cpp - flatten(): a model's instances placed into one world-space mesh.
+#include "facet/model.hpp"
+
+#include <cmath>
+#include <string>
+#include <utility>
+
+#include "facet/error.hpp"
+
+namespace facet {
+
+namespace {
+
+bool same_material(const Material& a, const Material& b) {
+  const auto same_sampler = [](const std::optional<Sampler>& x, const std::optional<Sampler>& y) {
+    if (x.has_value() != y.has_value()) return false;
+    return !x || (x->filter == y->filter && x->wrap_u == y->wrap_u && x->wrap_v == y->wrap_v);
+  };
+  return a.name == b.name && a.diffuse == b.diffuse && a.specular == b.specular && a.shininess == b.shininess &&
+         a.diffuse_texture == b.diffuse_texture && a.diffuse_map == b.diffuse_map &&
+         same_sampler(a.sampler, b.sampler) && a.unlit == b.unlit && a.normal_map == b.normal_map &&
+         a.normal_scale == b.normal_scale && a.alpha_mode == b.alpha_mode && a.alpha_cutoff == b.alpha_cutoff &&
+         a.double_sided == b.double_sided;
+}
+
+// The index of an equal material in `materials`, appending it if there is none. Models have few materials, and
+// each mesh's are looked up once, so a linear search serves.
+std::int32_t material_index(std::vector<Material>& materials, const Material& m) {
+  for (std::size_t i = 0; i < materials.size(); ++i)
+    if (same_material(materials[i], m)) return static_cast<std::int32_t>(i);
+  materials.push_back(m);
+  return static_cast<std::int32_t>(materials.size() - 1);
+}
+
+bool is_identity(const glm::mat4& m) { return m == glm::mat4(1.0f); }
+
+}  // namespace
+
+Mesh flatten(Model model, const std::string& source) {
+  std::size_t vertices = 0, triangles = 0;
+  bool all_normals = true, any_uvs = false, any_colors = false, any_face_colors = false, any_ids = false;
+  for (const ModelInstance& instance : model.instances) {
+    if (instance.mesh >= model.meshes.size())
+      throw InputError(source, "instance " + std::to_string(instance.id) + " places mesh " +
+                                   std::to_string(instance.mesh) + ", which does not exist");
+    const Mesh& mesh = model.meshes[instance.mesh];
+    if (mesh.vertex_count() > kMaxModelVertices - vertices)
+      throw InputError(source, "the model expands to more than 2^27 vertices");
+    vertices += mesh.vertex_count();
+    triangles += mesh.triangle_count();
+    all_normals = all_normals && !mesh.normals.empty();
+    any_uvs = any_uvs || !mesh.uvs.empty();
+    any_colors = any_colors || !mesh.colors.empty();
+    any_face_colors = any_face_colors || !mesh.face_colors.empty();
+    any_ids = any_ids || instance.id != 0;
+  }
+  if (triangles == 0) throw InputError(source, "the model places no triangles");
+
+  // One mesh placed once, as it is: the common case of every single-mesh format, moved rather than copied.
+  if (model.instances.size() == 1 && is_identity(model.instances[0].world_from_object) && !any_ids) {
+    Mesh out = std::move(model.meshes[model.instances[0].mesh]);
+    out.cameras = std::move(model.cameras);
+    return out;
+  }
+
+  Mesh out;
+  out.positions.reserve(vertices);
+  if (all_normals) out.normals.reserve(vertices);
+  if (any_uvs) out.uvs.reserve(vertices);
+  if (any_colors) out.colors.reserve(vertices);
+  out.indices.reserve(3 * triangles);
+  out.face_ids.reserve(triangles);
+  if (any_ids) out.instance_ids.reserve(triangles);
+  bool any_materials = false;
+  for (const Mesh& mesh : model.meshes) any_materials = any_materials || !mesh.face_materials.empty();
+  if (any_materials) out.face_materials.reserve(triangles);
+
+  // Per mesh, its materials' indices among the flattened mesh's, found once.
+  std::vector<std::vector<std::int32_t>> material_map(model.meshes.size());
+  std::vector<bool> mapped(model.meshes.size(), false);
+  for (const ModelInstance& instance : model.instances) {
+    const Mesh& mesh = model.meshes[instance.mesh];
+    std::vector<std::int32_t>& materials = material_map[instance.mesh];
+    if (!mapped[instance.mesh]) {
+      for (const Material& m : mesh.materials) materials.push_back(material_index(out.materials, m));
+      mapped[instance.mesh] = true;
+    }
+    const glm::mat4& world = instance.world_from_object;
+    const glm::mat3 normal_from_object = glm::transpose(glm::inverse(glm::mat3(world)));
+    const auto base = static_cast<std::uint32_t>(out.positions.size());
+    for (const glm::vec3& p : mesh.positions) out.positions.push_back(glm::vec3(world * glm::vec4(p, 1.0f)));
+    if (all_normals)
+      for (const glm::vec3& n : mesh.normals) {
+        const glm::vec3 v = normal_from_object * n;
+        const float length = glm::length(v);
+        out.normals.push_back(std::isfinite(length) && length > 0.0f ? v / length : glm::vec3(0, 0, 1));
+      }
+    if (any_uvs) {
+      if (mesh.uvs.empty()) out.uvs.resize(out.positions.size(), glm::vec2(0.0f));
+      else out.uvs.insert(out.uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
+    }
+    if (any_colors) {
+      if (mesh.colors.empty()) out.colors.resize(out.positions.size(), glm::vec4(1.0f));
+      else out.colors.insert(out.colors.end(), mesh.colors.begin(), mesh.colors.end());
+    }
+    if (any_face_colors) {
+      if (mesh.face_colors.empty())
+        out.face_colors.resize(out.face_colors.size() + mesh.triangle_count(), glm::vec4(1.0f));
+      else out.face_colors.insert(out.face_colors.end(), mesh.face_colors.begin(), mesh.face_colors.end());
+    }
+    // A mirroring transform turns counter-clockwise triangles clockwise; swapping two corners restores the front.
+    const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
+    for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
+      const std::uint32_t* c = &mesh.indices[3 * t];
+      out.indices.insert(out.indices.end(), {base + c[0], base + c[mirrored ? 2 : 1], base + c[mirrored ? 1 : 2]});
+      out.face_ids.push_back(mesh.face_id(t));
+      if (any_ids) out.instance_ids.push_back(instance.id);
+      if (any_materials) {
+        const std::int32_t m = mesh.face_materials.empty() ? -1 : mesh.face_materials[t];
+        out.face_materials.push_back(m < 0 ? -1 : materials[static_cast<std::size_t>(m)]);
+      }
+    }
+  }
+  out.cameras = std::move(model.cameras);
+  validate(out, source);
+  return out;
+}
+
+}  // namespace facet
