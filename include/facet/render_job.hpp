@@ -1,9 +1,11 @@
 // render_job.hpp - one render as plain data (model, size, camera, look, outputs) and the function that performs it.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <optional>
 #include <span>
+#include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
@@ -71,8 +73,8 @@ struct RenderJob {
 struct RenderTimings {
   double load = 0;     // reading and checking the model file
   double prepare = 0;  // framing, the view, and the scene's vertex arrays, normals, edges and textures
-  double draw = 0;     // clearing, drawing and finishing the frame
-  double write = 0;    // every output: the second pass behind normals and ids, encoding, writing the files
+  double draw = 0;     // clearing, drawing and finishing the frame, the second pass behind normals and ids
+  double write = 0;    // every output encoded and written
 };
 
 // The background `facet render` uses when none is given: a mid blue-grey that white and dark models stand out from.
@@ -91,13 +93,48 @@ void apply_look_color(Mesh& mesh, const LookSpec& look);
 // The clear colour of a look: its background (or `fallback`), alpha 0 when transparent.
 glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback);
 
+// Which buffers draw_buffers reads back.
+struct BufferRequest {
+  bool color = true;
+  bool depth = false;
+  bool normal = false;
+  bool ids = false;
+  bool mask = false;
+};
+
+// One frame's buffers, width * height pixels each, top row first; those not asked for are empty.
+struct FrameBuffers {
+  int width = 0, height = 0;
+  std::vector<std::uint8_t> color;  // RGBA8
+  std::vector<float> depth;         // linear eye-space depth, 0 where empty
+  std::vector<glm::vec3> normal;    // camera-space unit shading normals, (0, 0, 0) where empty
+  SurfaceIds surfaces;              // ids: the scene instance and its mesh's triangle; kNoSurface where empty
+  std::vector<std::uint32_t> ids;   // ids: file_ids(), 2 per pixel
+  std::vector<std::uint8_t> mask;   // 255 where a surface is drawn, 0 where empty
+};
+
+// Clears target, draws the scene and reads back the buffers asked for, all from one frame, so a pixel is empty in
+// all of them or in none. Normals and ids take a second pass (Scene::render_ids) over a framebuffer of target's
+// size. Throws std::invalid_argument when normals or ids are asked of a wireframe or edges look (their lines are
+// no surface).
+FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
+                          const SceneOptions& options, glm::vec4 clear, const BufferRequest& request);
+
+// Per pixel of `surfaces` (from this scene), the file's ids of the triangle seen: its mesh's Mesh::instance_id and
+// Mesh::face_id, two values per pixel; kNoSurface for both where empty. What --output-ids writes.
+std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfaces);
+
 // Clears, draws the scene, and writes the outputs. Normals and ids take a second pass (Scene::render_ids) over a
 // framebuffer of target's size; ids name each triangle's Mesh::instance_id and Mesh::face_id. A failure writing
-// any output removes those already written, so a failed render leaves no file behind. Throws
-// std::invalid_argument when normals or ids are asked of a wireframe or edges look (their lines are no surface).
+// any output removes those already written, so a failed render leaves no file behind. Throws as draw_buffers.
 void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
                     const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs,
                     RenderTimings* timings = nullptr);
+
+// What render() draws, read back as buffers instead of written (job.outputs is ignored); `camera`, when given,
+// receives camera_json of the view. Throws as render() does.
+FrameBuffers render_buffers(const RenderJob& job, Renderer& renderer, const BufferRequest& request,
+                            std::string* camera = nullptr);
 
 // Loads the model, frames it, draws it and writes the outputs. Throws InputError for a bad model file or an
 // output that cannot be written, std::invalid_argument for a bad job (size, camera, two outputs on one path).

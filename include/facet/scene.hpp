@@ -93,6 +93,11 @@ class Scene {
   Scene& operator=(Scene&&) noexcept;
 
   void add(Instance instance);
+  // Moves instance `index` (its place in instances()). Throws std::out_of_range for an index there is none at.
+  void set_transform(std::size_t index, const glm::mat4& world_from_object);
+  // Removes instance `index`; the later ones move down by one. A mesh's prepared data goes with its last instance.
+  // Throws std::out_of_range for an index there is none at.
+  void remove(std::size_t index);
   std::size_t size() const;
   const std::vector<Instance>& instances() const;
 

@@ -74,18 +74,6 @@ class Stopwatch {
   std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
 };
 
-// Per pixel: the file's instance (node) id and face id of the triangle seen, kNoSurface for both where empty.
-std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfaces) {
-  std::vector<std::uint32_t> out(2 * surfaces.instance.size(), kNoSurface);
-  for (std::size_t p = 0; p < surfaces.instance.size(); ++p) {
-    if (surfaces.instance[p] == kNoSurface) continue;
-    const Mesh& mesh = *scene.instances()[surfaces.instance[p]].mesh;
-    out[2 * p] = mesh.instance_id(surfaces.triangle[p]);
-    out[2 * p + 1] = mesh.face_id(surfaces.triangle[p]);
-  }
-  return out;
-}
-
 }  // namespace
 
 std::vector<std::filesystem::path> output_paths(const OutputSpec& o) {
@@ -126,50 +114,80 @@ std::optional<OutputClash> find_output_clash(std::span<const OutputSpec> outputs
   return std::nullopt;
 }
 
-void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
-                    const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs, RenderTimings* timings) {
-  const bool surface_pass = !outputs.normal.empty() || !outputs.ids.empty();
+FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
+                          const SceneOptions& options, glm::vec4 clear, const BufferRequest& request) {
+  const bool surface_pass = request.normal || request.ids;
   if (surface_pass && (options.wireframe || options.edges))
     throw std::invalid_argument("normal and id outputs show surfaces: not with wireframe or edges");
-  Stopwatch clock;
   renderer.clear(target, clear, 1.0f);
   scene.render(renderer, target, view, options);
   renderer.finish(target);
+  FrameBuffers out;
+  out.width = target.width();
+  out.height = target.height();
+  if (request.color) out.color = target.rgba8();
+  // Depth and mask come from one depth read, so every buffer agrees on which pixels are empty.
+  if (request.depth || request.mask) out.depth = linear_depth(target, view.clip_from_view);
+  if (request.mask) {
+    out.mask.resize(out.depth.size());
+    for (std::size_t i = 0; i < out.depth.size(); ++i) out.mask[i] = out.depth[i] > 0.0f ? 255 : 0;
+    if (!request.depth) out.depth = {};
+  }
+  if (surface_pass) {
+    Framebuffer id_target(target.width(), target.height());
+    out.surfaces = scene.render_ids(renderer, id_target, view, options);
+    if (request.normal) out.normal = scene.camera_normals(out.surfaces, view);
+    if (request.ids) out.ids = file_ids(scene, out.surfaces);
+  }
+  return out;
+}
+
+std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfaces) {
+  std::vector<std::uint32_t> out(2 * surfaces.instance.size(), kNoSurface);
+  for (std::size_t p = 0; p < surfaces.instance.size(); ++p) {
+    if (surfaces.instance[p] == kNoSurface) continue;
+    const Mesh& mesh = *scene.instances()[surfaces.instance[p]].mesh;
+    out[2 * p] = mesh.instance_id(surfaces.triangle[p]);
+    out[2 * p + 1] = mesh.face_id(surfaces.triangle[p]);
+  }
+  return out;
+}
+
+void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
+                    const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs, RenderTimings* timings) {
+  Stopwatch clock;
+  // The colour image is encoded straight from the framebuffer, not from a copy.
+  const BufferRequest request{.color = false,
+                              .depth = !outputs.depth.empty(),
+                              .normal = !outputs.normal.empty(),
+                              .ids = !outputs.ids.empty(),
+                              .mask = !outputs.mask.empty()};
+  const FrameBuffers buffers = draw_buffers(renderer, target, scene, view, options, clear, request);
   if (timings) timings->draw = clock.lap();
   std::vector<std::filesystem::path> written;
   try {
+    const int w = buffers.width, h = buffers.height;
     if (!outputs.color.empty()) {
       write_png(outputs.color, target, clear.a < 1.0f);
       written.push_back(outputs.color);
     }
-    // Depth and mask come from one depth read, so every buffer agrees on which pixels are empty.
-    const bool needs_depth = !outputs.depth.empty() || !outputs.mask.empty();
-    const std::vector<float> depth = needs_depth ? linear_depth(target, view.clip_from_view) : std::vector<float>{};
     if (!outputs.depth.empty()) {
-      write_float_image(outputs.depth, target.width(), target.height(), 1, depth);
+      write_float_image(outputs.depth, w, h, 1, buffers.depth);
       written.push_back(outputs.depth);
     }
-    if (surface_pass) {
-      Framebuffer id_target(target.width(), target.height());
-      const SurfaceIds surfaces = scene.render_ids(renderer, id_target, view, options);
-      if (!outputs.normal.empty()) {
-        const std::vector<glm::vec3> normals = scene.camera_normals(surfaces, view);
-        write_float_image(outputs.normal, target.width(), target.height(), 3,
-                          std::span(&normals.data()->x, 3 * normals.size()));
-        written.push_back(outputs.normal);
-      }
-      if (!outputs.ids.empty()) {
-        write_npy(outputs.ids, target.width(), target.height(), 2, file_ids(scene, surfaces));
-        written.push_back(outputs.ids);
-      }
+    if (!outputs.normal.empty()) {
+      write_float_image(outputs.normal, w, h, 3, std::span(&buffers.normal.data()->x, 3 * buffers.normal.size()));
+      written.push_back(outputs.normal);
+    }
+    if (!outputs.ids.empty()) {
+      write_npy(outputs.ids, w, h, 2, buffers.ids);
+      written.push_back(outputs.ids);
     }
     if (!outputs.mask.empty()) {
-      std::vector<std::uint8_t> mask(depth.size());
-      for (std::size_t i = 0; i < depth.size(); ++i) mask[i] = depth[i] > 0.0f ? 255 : 0;
-      write_png_gray(outputs.mask, target.width(), target.height(), mask);
+      write_png_gray(outputs.mask, w, h, buffers.mask);
       written.push_back(outputs.mask);
     }
-    if (!outputs.camera.empty()) write_text(outputs.camera, camera_json(view, target.width(), target.height()));
+    if (!outputs.camera.empty()) write_text(outputs.camera, camera_json(view, w, h));
     if (timings) timings->write = clock.lap();
   } catch (...) {
     for (const std::filesystem::path& path : written) discard_output(path);
@@ -189,6 +207,35 @@ bool has_area(const Mesh& mesh) {
   return false;
 }
 
+// A job's model loaded and framed, its view and look, ready to draw.
+struct JobFrame {
+  View view;
+  SceneOptions options;
+  glm::vec4 clear{};
+  Scene scene;
+};
+
+JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
+  if (job.width < 1 || job.height < 1 || job.width > kMaxDimension || job.height > kMaxDimension)
+    throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
+  Stopwatch clock;
+  auto mesh = std::make_shared<Mesh>(load_model(job.model));
+  if (!has_area(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
+  apply_look_color(*mesh, job.look);
+  if (timings) timings->load = clock.lap();
+  const Framing framing = framing_of(*mesh, job.model.string());
+  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
+  JobFrame frame;
+  frame.view = job.camera.file_camera
+                   ? file_camera_view(*mesh, *job.camera.file_camera, framing, aspect, job.model.string())
+                   : make_view(job.camera, framing, aspect);
+  frame.clear = clear_color(job.look, kDefaultBackground);
+  frame.options = scene_options(job.look, frame.view.view_from_world, Shading::automatic, glm::vec3(frame.clear));
+  frame.scene.add(Instance{mesh, glm::mat4(1.0f)});
+  if (timings) timings->prepare = clock.lap();
+  return frame;
+}
+
 }  // namespace
 
 void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
@@ -198,27 +245,18 @@ void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
       if (paths[i].lexically_normal() == paths[k].lexically_normal())
         throw std::invalid_argument("outputs: " + paths[k].string() + " is named twice");
   check_output_formats(job.outputs);
-  if (job.width < 1 || job.height < 1 || job.width > kMaxDimension || job.height > kMaxDimension)
-    throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
-
-  Stopwatch clock;
-  auto mesh = std::make_shared<Mesh>(load_model(job.model));
-  if (!has_area(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
-  apply_look_color(*mesh, job.look);
-  if (timings) timings->load = clock.lap();
-  const Framing framing = framing_of(*mesh, job.model.string());
-  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
-  const View view = job.camera.file_camera
-                        ? file_camera_view(*mesh, *job.camera.file_camera, framing, aspect, job.model.string())
-                        : make_view(job.camera, framing, aspect);
-  const glm::vec4 clear = clear_color(job.look, kDefaultBackground);
-  const SceneOptions options = scene_options(job.look, view.view_from_world, Shading::automatic, glm::vec3(clear));
-
-  Scene scene;
-  scene.add(Instance{mesh, glm::mat4(1.0f)});
+  JobFrame frame = prepare_job(job, timings);
   Framebuffer target(job.width, job.height);
-  if (timings) timings->prepare = clock.lap();
-  draw_and_write(renderer, target, scene, view, options, clear, job.outputs, timings);
+  draw_and_write(renderer, target, frame.scene, frame.view, frame.options, frame.clear, job.outputs, timings);
+}
+
+FrameBuffers render_buffers(const RenderJob& job, Renderer& renderer, const BufferRequest& request,
+                            std::string* camera) {
+  JobFrame frame = prepare_job(job, nullptr);
+  Framebuffer target(job.width, job.height);
+  FrameBuffers buffers = draw_buffers(renderer, target, frame.scene, frame.view, frame.options, frame.clear, request);
+  if (camera) *camera = camera_json(frame.view, job.width, job.height);
+  return buffers;
 }
 
 }  // namespace facet

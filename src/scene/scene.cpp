@@ -21,6 +21,19 @@ void Scene::add(Instance instance) {
   impl_->instances.push_back(std::move(instance));
 }
 
+void Scene::set_transform(std::size_t index, const glm::mat4& world_from_object) {
+  impl_->instances.at(index).world_from_object = world_from_object;
+}
+
+void Scene::remove(std::size_t index) {
+  std::vector<Instance>& instances = impl_->instances;
+  const std::shared_ptr<const Mesh> mesh = instances.at(index).mesh;
+  instances.erase(instances.begin() + static_cast<std::ptrdiff_t>(index));
+  // The address keys the prepared data only while an instance holds the mesh alive (see Impl::prepared).
+  if (std::none_of(instances.begin(), instances.end(), [&](const Instance& i) { return i.mesh == mesh; }))
+    impl_->prepared.erase(mesh.get());
+}
+
 std::size_t Scene::size() const { return impl_->instances.size(); }
 
 const std::vector<Instance>& Scene::instances() const { return impl_->instances; }
