@@ -1,0 +1,309 @@
+"""scene.py - meshes, cameras, lights and the scene graph, in pyrender's shapes."""
+import math
+
+import numpy as np
+
+from . import _facet
+
+
+def _pose(pose, name="pose"):
+    """A 4x4 float64 copy of pose (identity for None); raises ValueError for anything else."""
+    if pose is None:
+        return np.eye(4)
+    m = np.array(pose, dtype=np.float64)
+    if m.shape != (4, 4):
+        raise ValueError(f"{name}: expected a 4x4 matrix, got shape {m.shape}")
+    if not np.all(np.isfinite(m)):
+        raise ValueError(f"{name}: holds a non-finite value")
+    return m
+
+
+def _color(value, default, name):
+    """An RGB(A) colour as a float array of 4, alpha 1 if not given; uint8 values are scaled by 1/255."""
+    if value is None:
+        value = default
+    c = np.asarray(value)
+    if c.dtype == np.uint8:
+        c = c / 255.0
+    c = np.asarray(c, dtype=np.float64).reshape(-1)
+    if c.size not in (3, 4) or not np.all(np.isfinite(c)):
+        raise ValueError(f"{name}: expected 3 or 4 finite values, got {value!r}")
+    return np.append(c, 1.0) if c.size == 3 else c
+
+
+class Mesh:
+    """A triangle mesh: positions N x 3, faces F x 3, and optional per-vertex normals, uvs and colours and a texture.
+
+    Any float and integer dtypes and memory orders are accepted; faces must be integers. Colours are floats in 0..1
+    or uint8, N x 3 or N x 4. A texture is an image H x W (x 3 or 4), top row first, uint8 or floats in 0..1, drawn
+    with the uvs (v = 0 at the image's bottom row, as in OpenGL and pyrender). Bad arrays raise ValueError.
+    """
+
+    def __init__(self, positions, faces, normals=None, uvs=None, colors=None, texture=None):
+        self._core = _facet.MeshCore(positions, faces, normals, uvs, colors, texture)
+
+    @classmethod
+    def from_file(cls, path):
+        """The whole model file as one mesh in world space (every format `facet render` reads).
+
+        Raises FileNotFoundError for a missing file and facet.LoadError (an OSError and a ValueError) for one that
+        cannot be read, naming the file and the problem.
+        """
+        mesh = cls.__new__(cls)
+        mesh._core = _facet.MeshCore.from_file(str(path))
+        return mesh
+
+    @classmethod
+    def from_trimesh(cls, mesh):
+        """From a trimesh.Trimesh (its vertices, faces, vertex normals and vertex colours)."""
+        colors = None
+        visual = getattr(mesh, "visual", None)
+        if visual is not None and getattr(visual, "kind", None) == "vertex":
+            colors = np.asarray(visual.vertex_colors)
+        return cls(np.asarray(mesh.vertices), np.asarray(mesh.faces), normals=np.asarray(mesh.vertex_normals),
+                   colors=colors)
+
+    @property
+    def bounds(self):
+        """2 x 3: the minimum and maximum corner of the positions."""
+        return self._core.bounds
+
+    @property
+    def centroid(self):
+        return self.bounds.mean(axis=0)
+
+    @property
+    def vertex_count(self):
+        return self._core.vertex_count
+
+    @property
+    def triangle_count(self):
+        return self._core.triangle_count
+
+
+class PerspectiveCamera:
+    """A pinhole camera with a vertical field of view (radians); zfar None: just beyond the scene."""
+
+    def __init__(self, yfov, znear=0.05, zfar=None, aspectRatio=None, name=None):
+        if not 0.0 < yfov < math.pi:
+            raise ValueError(f"yfov: must lie in (0, pi), got {yfov}")
+        _check_planes(znear, zfar)
+        if aspectRatio is not None and not aspectRatio > 0.0:
+            raise ValueError(f"aspectRatio: must be positive, got {aspectRatio}")
+        self.yfov, self.znear, self.zfar, self.aspectRatio, self.name = yfov, znear, zfar, aspectRatio, name
+
+    def get_projection_matrix(self, width, height, zfar=None):
+        far = self.zfar if self.zfar is not None else zfar
+        aspect = self.aspectRatio if self.aspectRatio is not None else width / height
+        t = math.tan(self.yfov / 2.0)
+        p = np.zeros((4, 4))
+        p[0, 0] = 1.0 / (aspect * t)
+        p[1, 1] = 1.0 / t
+        _depth_rows(p, self.znear, far)
+        return p
+
+
+class IntrinsicsCamera:
+    """A pinhole camera given in pixels, in OpenCV's convention: a point at camera coordinates (X, Y, Z), x right,
+    y down, z forward, lands at u = fx X / Z + cx, v = fy Y / Z + cy, where pixel (0, 0)'s centre is u = v = 0.
+    Its pose is camera-to-world in OpenGL axes, like every camera's."""
+
+    def __init__(self, fx, fy, cx, cy, znear=0.05, zfar=100.0, name=None):
+        if not (fx > 0.0 and fy > 0.0):
+            raise ValueError(f"fx, fy: must be positive, got {fx}, {fy}")
+        if not (math.isfinite(cx) and math.isfinite(cy)):
+            raise ValueError("cx, cy: must be finite")
+        _check_planes(znear, zfar)
+        self.fx, self.fy, self.cx, self.cy, self.znear, self.zfar, self.name = fx, fy, cx, cy, znear, zfar, name
+
+    def get_projection_matrix(self, width, height, zfar=None):
+        far = self.zfar if self.zfar is not None else zfar
+        p = np.zeros((4, 4))
+        p[0, 0] = 2.0 * self.fx / width
+        p[0, 2] = 1.0 - 2.0 * (self.cx + 0.5) / width
+        p[1, 1] = 2.0 * self.fy / height
+        p[1, 2] = 2.0 * (self.cy + 0.5) / height - 1.0
+        _depth_rows(p, self.znear, far)
+        return p
+
+
+class OrthographicCamera:
+    """A parallel projection showing xmag and ymag either side of the view's centre."""
+
+    def __init__(self, xmag, ymag, znear=0.05, zfar=100.0, name=None):
+        if not (xmag > 0.0 and ymag > 0.0):
+            raise ValueError(f"xmag, ymag: must be positive, got {xmag}, {ymag}")
+        if not (math.isfinite(znear) and zfar is not None and math.isfinite(zfar) and zfar > znear):
+            raise ValueError(f"znear, zfar: need finite znear < zfar, got {znear}, {zfar}")
+        self.xmag, self.ymag, self.znear, self.zfar, self.name = xmag, ymag, znear, zfar, name
+
+    def get_projection_matrix(self, width=None, height=None, zfar=None):
+        n, f = self.znear, self.zfar
+        p = np.zeros((4, 4))
+        p[0, 0] = 1.0 / self.xmag
+        p[1, 1] = 1.0 / self.ymag
+        p[2, 2] = 2.0 / (n - f)
+        p[2, 3] = (f + n) / (n - f)
+        p[3, 3] = 1.0
+        return p
+
+
+def _check_planes(znear, zfar):
+    if not (math.isfinite(znear) and znear > 0.0):
+        raise ValueError(f"znear: must be positive, got {znear}")
+    if zfar is not None and not (math.isfinite(zfar) and zfar > znear):
+        raise ValueError(f"zfar: must lie beyond znear, got {zfar}")
+
+
+def _depth_rows(p, n, f):
+    p[2, 2] = -(f + n) / (f - n)
+    p[2, 3] = -2.0 * f * n / (f - n)
+    p[3, 2] = -1.0
+
+
+class DirectionalLight:
+    """Light from the direction its node's +z axis points to (it shines along -z), colour times intensity."""
+
+    kind = "directional"
+
+    def __init__(self, color=None, intensity=1.0, name=None):
+        self.color, self.intensity, self.name = _color(color, (1.0, 1.0, 1.0), "color")[:3], float(intensity), name
+
+
+class PointLight:
+    """Light from its node's position, colour times intensity, not attenuated with distance."""
+
+    kind = "point"
+
+    def __init__(self, color=None, intensity=1.0, name=None):
+        self.color, self.intensity, self.name = _color(color, (1.0, 1.0, 1.0), "color")[:3], float(intensity), name
+
+
+class Node:
+    """A mesh, camera or light placed in a scene; `id` is the node's number in the id buffer."""
+
+    def __init__(self, obj, pose, node_id, name=None):
+        self.obj, self.pose, self.id, self.name = obj, pose, node_id, name
+
+    @property
+    def mesh(self):
+        return self.obj if isinstance(self.obj, Mesh) else None
+
+    @property
+    def camera(self):
+        return self.obj if isinstance(self.obj, (PerspectiveCamera, IntrinsicsCamera, OrthographicCamera)) else None
+
+    @property
+    def light(self):
+        return self.obj if isinstance(self.obj, (DirectionalLight, PointLight)) else None
+
+
+class Scene:
+    """Meshes, cameras and lights, each placed by a 4x4 pose (object-to-world; camera-to-world in OpenGL axes).
+
+    With no light, a scene is lit by a headlight from the camera, above left, as `facet render` lights models.
+    """
+
+    def __init__(self, nodes=None, bg_color=None, ambient_light=None, name=None):
+        self.bg_color = _color(bg_color, (0.0, 0.0, 0.0, 0.0), "bg_color")
+        self.ambient_light = _color(ambient_light, (0.15, 0.15, 0.15), "ambient_light")[:3]
+        self.name = name
+        self._core = _facet.SceneCore()
+        self._nodes = []
+        self._mesh_nodes = []  # in the order of the core scene's instances
+        self._next_id = 0
+        self.main_camera_node = None
+        for node in nodes or []:
+            self.add_node(node)
+
+    @classmethod
+    def from_file(cls, path, bg_color=None, ambient_light=None):
+        """Every mesh of a model file, placed by the file's nodes (node ids as the file numbers them), and the
+        file's cameras. Raises as Mesh.from_file does."""
+        meshes, instances, cameras = _facet.read_model(str(path))
+        scene = cls(bg_color=bg_color, ambient_light=ambient_light)
+        wrapped = []
+        for core in meshes:
+            mesh = Mesh.__new__(Mesh)
+            mesh._core = core
+            wrapped.append(mesh)
+        for mesh_index, pose, node_id in instances:
+            scene.add(wrapped[mesh_index], pose=pose, node_id=node_id)
+        for c in cameras:
+            if c["perspective"]:
+                camera = PerspectiveCamera(c["yfov"], znear=c["znear"], zfar=c["zfar"], name=c["name"])
+            else:
+                camera = OrthographicCamera(c["xmag"], c["ymag"], znear=c["znear"], zfar=c["zfar"], name=c["name"])
+            scene.add(camera, pose=c["pose"])
+        return scene
+
+    @property
+    def nodes(self):
+        return list(self._nodes)
+
+    @property
+    def mesh_nodes(self):
+        return [n for n in self._nodes if n.mesh is not None]
+
+    @property
+    def camera_nodes(self):
+        return [n for n in self._nodes if n.camera is not None]
+
+    @property
+    def light_nodes(self):
+        return [n for n in self._nodes if n.light is not None]
+
+    @property
+    def bounds(self):
+        """2 x 3: the corners of the box around every placed mesh, or None when there is none."""
+        return self._core.bounds()
+
+    def add(self, obj, pose=None, name=None, node_id=None):
+        """Places a Mesh, camera or light and returns its Node; the first camera becomes the main camera."""
+        if node_id is None:
+            node_id = self._next_id
+        if not isinstance(node_id, int) or not 0 <= node_id < 0xFFFFFFFF:
+            raise ValueError(f"node_id: expected an integer in 0..2^32-2, got {node_id!r}")
+        node = Node(obj, _pose(pose), node_id, name)
+        return self.add_node(node)
+
+    def add_node(self, node):
+        if not isinstance(node.obj, (Mesh, PerspectiveCamera, IntrinsicsCamera, OrthographicCamera,
+                                     DirectionalLight, PointLight)):
+            raise ValueError(f"cannot add a {type(node.obj).__name__} to a scene")
+        if node in self._nodes:
+            raise ValueError("the node is already in the scene")
+        node.pose = _pose(node.pose)
+        if node.mesh is not None:
+            self._core.add(node.mesh._core, node.pose, node.id)
+            self._mesh_nodes.append(node)
+        if node.camera is not None and self.main_camera_node is None:
+            self.main_camera_node = node
+        self._nodes.append(node)
+        self._next_id = max(self._next_id, node.id + 1)
+        return node
+
+    def has_node(self, node):
+        return node in self._nodes
+
+    def set_pose(self, node, pose):
+        if node not in self._nodes:
+            raise ValueError("the node is not in this scene")
+        node.pose = _pose(pose)
+        if node.mesh is not None:
+            self._core.set_pose(self._mesh_nodes.index(node), node.pose)
+
+    def get_pose(self, node):
+        return node.pose.copy()
+
+    def remove_node(self, node):
+        if node not in self._nodes:
+            raise ValueError("the node is not in this scene")
+        if node.mesh is not None:
+            index = self._mesh_nodes.index(node)
+            self._core.remove(index)
+            del self._mesh_nodes[index]
+        self._nodes.remove(node)
+        if node is self.main_camera_node:
+            cameras = self.camera_nodes
+            self.main_camera_node = cameras[0] if cameras else None

@@ -1,0 +1,187 @@
+// meshes.cpp - the Python module's meshes (from arrays or files) and scenes of placed meshes.
+#include "meshes.hpp"
+
+#include <string>
+#include <utility>
+
+#include "facet/error.hpp"
+#include "facet/model_io.hpp"
+#include "facet/texture.hpp"
+
+namespace facet::python {
+
+namespace {
+
+// Texture images come top row first, as image files and numpy images do; texture row 0 is v = 0, the bottom.
+std::shared_ptr<const Texture> texture_of(py::handle image) {
+  const py::array a = py::array::ensure(image);
+  if (!a) value_error("texture: expected an image array");
+  const bool bytes = a.dtype().kind() == 'u' && a.dtype().itemsize() == 1;
+  const int dims = static_cast<int>(a.ndim());
+  if (dims != 2 && dims != 3) value_error("texture: expected H x W, H x W x 3 or H x W x 4");
+  const auto f = checked_array<float>(a, "texture", "fiu", dims, {});
+  const py::ssize_t h = f.shape(0), w = f.shape(1), c = dims == 3 ? f.shape(2) : 1;
+  if (c != 1 && c != 3 && c != 4) value_error("texture: expected 1, 3 or 4 channels, got " + std::to_string(c));
+  if (h < 1 || w < 1 || h > kMaxTextureSize || w > kMaxTextureSize)
+    value_error("texture: " + std::to_string(w) + "x" + std::to_string(h) + " is outside 1.." +
+                std::to_string(kMaxTextureSize) + " per side");
+  const float scale = bytes ? 1.0f : 255.0f;
+  const float* v = f.data();
+  std::vector<std::uint32_t> texels(static_cast<std::size_t>(w * h));
+  for (py::ssize_t y = 0; y < h; ++y)
+    for (py::ssize_t x = 0; x < w; ++x) {
+      const float* p = v + (y * w + x) * c;
+      std::uint32_t rgba[4] = {0, 0, 0, 255};
+      for (py::ssize_t k = 0; k < 4; ++k) {
+        const float value = k < 3 ? p[c >= 3 ? k : 0] : (c == 4 ? p[3] : (bytes ? 255.0f : 1.0f));
+        if (!(value >= 0.0f && value * scale <= 255.5f))
+          value_error(bytes ? "texture: bad value" : "texture: float values must lie in 0..1");
+        rgba[k] = static_cast<std::uint32_t>(value * scale + 0.5f);
+      }
+      texels[static_cast<std::size_t>((h - 1 - y) * w + x)] = rgba[0] | rgba[1] << 8 | rgba[2] << 16 | rgba[3] << 24;
+    }
+  auto texture =
+      std::make_shared<Texture>(static_cast<int>(w), static_cast<int>(h), std::move(texels), TexelEncoding::srgb);
+  texture->generate_mipmaps();
+  return texture;
+}
+
+}  // namespace
+
+MeshCore MeshCore::from_arrays(py::handle positions, py::handle faces, py::handle normals, py::handle uvs,
+                               py::handle colors, py::handle texture) {
+  Mesh mesh;
+  mesh.positions = finite_rows<3>(positions, "positions");
+  if (mesh.positions.empty()) value_error("positions: the mesh has no vertices");
+  if (mesh.positions.size() > kMaxModelVertices) value_error("positions: more than 2^27 vertices");
+  const auto f = checked_array<std::int64_t>(faces, "faces", "iu", 2, {3});
+  if (f.shape(0) == 0) value_error("faces: the mesh has no triangles");
+  const auto n = static_cast<std::int64_t>(mesh.positions.size());
+  mesh.indices.reserve(static_cast<std::size_t>(f.size()));
+  for (py::ssize_t i = 0; i < f.size(); ++i) {
+    const std::int64_t index = f.data()[i];
+    if (index < 0 || index >= n)
+      value_error("faces: row " + std::to_string(i / 3) + " refers to vertex " + std::to_string(index) + " of " +
+                  std::to_string(n));
+    mesh.indices.push_back(static_cast<std::uint32_t>(index));
+  }
+  const auto per_vertex = [&](std::size_t size, const char* name) {
+    if (size != mesh.positions.size())
+      value_error(std::string(name) + ": " + std::to_string(size) + " rows for " +
+                  std::to_string(mesh.positions.size()) + " vertices");
+  };
+  if (!normals.is_none()) {
+    mesh.normals = finite_rows<3>(normals, "normals");
+    per_vertex(mesh.normals.size(), "normals");
+  }
+  if (!uvs.is_none()) {
+    mesh.uvs = finite_rows<2>(uvs, "uvs");
+    per_vertex(mesh.uvs.size(), "uvs");
+  }
+  if (!colors.is_none()) {
+    const py::array a = py::array::ensure(colors);
+    const bool bytes = a && a.dtype().kind() == 'u' && a.dtype().itemsize() == 1;
+    const auto c = checked_array<float>(colors, "colors", "fiu", 2, {3, 4});
+    per_vertex(static_cast<std::size_t>(c.shape(0)), "colors");
+    const py::ssize_t k = c.shape(1);
+    for (py::ssize_t i = 0; i < c.shape(0); ++i) {
+      glm::vec4 rgba(1.0f);
+      for (py::ssize_t j = 0; j < k; ++j) {
+        const float v = c.at(i, j) / (bytes ? 255.0f : 1.0f);
+        if (!(v >= 0.0f && v <= 1.0f)) value_error("colors: row " + std::to_string(i) + " is outside 0..1");
+        rgba[static_cast<int>(j)] = v;
+      }
+      mesh.colors.push_back(rgba);
+    }
+  }
+  if (!texture.is_none()) {
+    if (mesh.uvs.empty()) value_error("texture: a textured mesh needs uvs");
+    Material material;
+    material.name = "texture";
+    material.diffuse_map = texture_of(texture);
+    mesh.materials.push_back(std::move(material));
+    mesh.face_materials.assign(mesh.triangle_count(), 0);
+  }
+  try {
+    validate(mesh, "mesh");
+  } catch (const InputError& e) {
+    value_error(e.what());
+  }
+  return MeshCore{std::make_shared<const Mesh>(std::move(mesh))};
+}
+
+py::array MeshCore::bounds() const {
+  const Bounds b = facet::bounds(*mesh);
+  return py::array_t<double>({2, 3}, std::vector<double>{b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z}.data());
+}
+
+std::size_t SceneCore::add(const MeshCore& mesh, py::handle pose, std::uint32_t node_id) {
+  const glm::mat4 world = matrix4(pose, "pose");
+  std::unique_lock lock(mutex);
+  scene.add(Instance{mesh.mesh, world});
+  node_ids.push_back(node_id);
+  return scene.size() - 1;
+}
+
+void SceneCore::set_pose(std::size_t index, py::handle pose) {
+  const glm::mat4 world = matrix4(pose, "pose");
+  std::unique_lock lock(mutex);
+  if (index >= scene.size()) throw py::index_error("no mesh node at " + std::to_string(index));
+  scene.set_transform(index, world);
+}
+
+void SceneCore::remove(std::size_t index) {
+  std::unique_lock lock(mutex);
+  if (index >= scene.size()) throw py::index_error("no mesh node at " + std::to_string(index));
+  scene.remove(index);
+  node_ids.erase(node_ids.begin() + static_cast<std::ptrdiff_t>(index));
+}
+
+Bounds SceneCore::world_bounds() const {
+  Bounds out;
+  for (const Instance& instance : scene.instances()) {
+    const Bounds b = facet::bounds(*instance.mesh);
+    if (b.empty()) continue;
+    for (int corner = 0; corner < 8; ++corner) {
+      const glm::vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
+                        (corner & 4) ? b.max.z : b.min.z);
+      const glm::vec3 w = glm::vec3(instance.world_from_object * glm::vec4(p, 1.0f));
+      out.min = glm::min(out.min, w);
+      out.max = glm::max(out.max, w);
+    }
+  }
+  return out;
+}
+
+py::tuple read_model_file(const std::string& path) {
+  Model model;
+  {
+    py::gil_scoped_release released;
+    model = read_model(path);
+  }
+  py::list meshes, instances, cameras;
+  for (Mesh& mesh : model.meshes) meshes.append(MeshCore{std::make_shared<const Mesh>(std::move(mesh))});
+  const auto matrix = [](const glm::mat4& m) {
+    py::array_t<double> out({4, 4});
+    for (int r = 0; r < 4; ++r)
+      for (int c = 0; c < 4; ++c) out.mutable_at(r, c) = m[c][r];
+    return out;
+  };
+  for (const ModelInstance& i : model.instances)
+    instances.append(py::make_tuple(i.mesh, matrix(i.world_from_object), i.id));
+  for (const ModelCamera& c : model.cameras) {
+    py::dict camera;
+    camera["name"] = c.name;
+    camera["perspective"] = c.perspective;
+    camera["yfov"] = c.yfov_radians;
+    camera["xmag"] = c.magnification.x;
+    camera["ymag"] = c.magnification.y;
+    camera["znear"] = c.znear;
+    camera["zfar"] = c.zfar ? py::cast(*c.zfar) : py::none();
+    camera["pose"] = matrix(c.world_from_camera);
+    cameras.append(camera);
+  }
+  return py::make_tuple(meshes, instances, cameras);
+}
+
+}  // namespace facet::python

@@ -1,0 +1,45 @@
+// meshes.hpp - the Python module's meshes and scenes: facet meshes shared between Python objects and scenes.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <mutex>
+#include <shared_mutex>
+#include <string>
+#include <vector>
+
+#include "arrays.hpp"
+#include "facet/mesh.hpp"
+#include "facet/scene.hpp"
+
+namespace facet::python {
+
+// A mesh as Python holds it: immutable once made, so scenes and renderers share it without copies.
+struct MeshCore {
+  std::shared_ptr<const Mesh> mesh;
+
+  // From numpy arrays: positions N x 3, faces F x 3 (integers), and optionally normals N x 3, uvs N x 2, colours
+  // N x 3 or N x 4 (floats in 0..1 or uint8), texture H x W (x 3 or 4), top row first (uint8, or floats in 0..1).
+  // Raises ValueError for a wrong shape or dtype, a non-finite value or an index out of range.
+  static MeshCore from_arrays(py::handle positions, py::handle faces, py::handle normals, py::handle uvs,
+                              py::handle colors, py::handle texture);
+  py::array bounds() const;  // 2 x 3: min and max corner
+};
+
+// The meshes a Python scene places, as a facet::Scene, with each instance's node id for the id buffer. Renders
+// share it (a shared lock); changes take it alone.
+struct SceneCore {
+  Scene scene;
+  std::vector<std::uint32_t> node_ids;
+  mutable std::shared_mutex mutex;
+
+  std::size_t add(const MeshCore& mesh, py::handle pose, std::uint32_t node_id);
+  void set_pose(std::size_t index, py::handle pose);
+  void remove(std::size_t index);
+  Bounds world_bounds() const;  // over every placed mesh's transformed box; empty when there is none
+};
+
+// read_model for Python: (meshes, [(mesh index, 4x4 pose, node id)], [camera dicts]).
+py::tuple read_model_file(const std::string& path);
+
+}  // namespace facet::python

@@ -1,0 +1,256 @@
+// module.cpp - facet._facet, the compiled core of the Python package: renderers that return frames as numpy arrays.
+#include <pybind11/stl.h>
+
+#include <memory>
+#include <mutex>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "arrays.hpp"
+#include "facet/error.hpp"
+#include "facet/framebuffer.hpp"
+#include "facet/model_io.hpp"
+#include "facet/render_job.hpp"
+#include "facet/renderer.hpp"
+#include "facet/view_spec.hpp"
+#include "meshes.hpp"
+
+namespace facet::python {
+
+namespace {
+
+Shading shading_named(const std::string& name) {
+  static const std::pair<const char*, Shading> names[] = {
+      {"automatic", Shading::automatic}, {"unlit", Shading::unlit}, {"flat", Shading::flat},
+      {"gouraud", Shading::gouraud},     {"phong", Shading::phong}, {"blinn_phong", Shading::blinn_phong},
+      {"normals", Shading::normals},     {"depth", Shading::depth}};
+  for (const auto& [n, s] : names)
+    if (name == n) return s;
+  value_error("shading: unknown shading '" + name + "'");
+}
+
+// The buffers a list of names asks for; raises ValueError for an unknown name.
+BufferRequest request_of(const std::vector<std::string>& names) {
+  BufferRequest r{.color = false};
+  for (const std::string& n : names) {
+    if (n == "color") r.color = true;
+    else if (n == "depth") r.depth = true;
+    else if (n == "normal") r.normal = true;
+    else if (n == "ids") r.ids = true;
+    else if (n == "mask") r.mask = true;
+    else value_error("buffers: unknown buffer '" + n + "' (color, depth, normal, ids, mask)");
+  }
+  return r;
+}
+
+// The frame's buffers as numpy arrays, keyed by name; vectors are handed over, not copied (RGB drops alpha).
+py::dict arrays_of(FrameBuffers&& b, const BufferRequest& request, bool rgba, std::vector<std::uint32_t>&& ids) {
+  const py::ssize_t h = b.height, w = b.width;
+  py::dict out;
+  if (request.color) {
+    if (rgba) {
+      out["color"] = to_numpy(std::move(b.color), {h, w, 4});
+    } else {
+      std::vector<std::uint8_t> rgb(static_cast<std::size_t>(w * h * 3));
+      for (std::size_t i = 0, n = static_cast<std::size_t>(w * h); i < n; ++i)
+        for (int c = 0; c < 3; ++c) rgb[3 * i + c] = b.color[4 * i + c];
+      out["color"] = to_numpy(std::move(rgb), {h, w, 3});
+    }
+  }
+  if (request.depth) out["depth"] = to_numpy(std::move(b.depth), {h, w});
+  if (request.normal) {
+    std::vector<float> n(3 * b.normal.size());
+    for (std::size_t i = 0; i < b.normal.size(); ++i)
+      for (int c = 0; c < 3; ++c) n[3 * i + c] = b.normal[i][c];
+    out["normal"] = to_numpy(std::move(n), {h, w, 3});
+  }
+  if (request.ids) out["ids"] = to_numpy(std::move(ids), {h, w, 2});
+  if (request.mask) out["mask"] = to_numpy(std::move(b.mask), {h, w});
+  return out;
+}
+
+// One renderer per Python OffscreenRenderer: its threads and framebuffer, used by one render at a time.
+class RendererCore {
+ public:
+  RendererCore(int width, int height, int threads) : renderer_(threads), target_(width, height) {}
+
+  int width() const { return target_.width(); }
+  int height() const { return target_.height(); }
+
+  // Draws scene through the view and returns the buffers named, with the GIL released while drawing.
+  py::dict render(SceneCore& scene, py::handle view_from_world, py::handle clip_from_view, float near, float far,
+                  const std::string& shading, bool cull_back, bool wireframe, py::list lights, py::handle ambient,
+                  py::handle background, bool rgba, const std::vector<std::string>& buffers) {
+    const View view = view_of(view_from_world, clip_from_view, near, far);
+    SceneOptions options;
+    options.shading = shading_named(shading);
+    options.cull = cull_back ? CullMode::back : CullMode::none;
+    options.cull_single_sided = !cull_back;
+    options.wireframe = wireframe;
+    options.lights.clear();
+    for (const py::handle light : lights) {
+      const auto t = light.cast<py::tuple>();
+      const bool point = t[0].cast<std::string>() == "point";
+      const glm::vec3 vector = finite_rows<3>(py::array::ensure(t[1]).reshape({1, 3}), "light")[0];
+      const glm::vec3 color = finite_rows<3>(py::array::ensure(t[2]).reshape({1, 3}), "light colour")[0];
+      options.lights.push_back(
+          Light{point ? Light::Kind::point : Light::Kind::directional, vector, color, t[3].cast<float>()});
+    }
+    options.ambient = finite_rows<3>(py::array::ensure(ambient).reshape({1, 3}), "ambient_light")[0];
+    const glm::vec4 clear = finite_rows<4>(py::array::ensure(background).reshape({1, 4}), "bg_color")[0];
+    const BufferRequest request = request_of(buffers);
+    FrameBuffers frame;
+    std::vector<std::uint32_t> ids;
+    {
+      py::gil_scoped_release released;
+      std::scoped_lock own(mutex_);
+      std::shared_lock shared(scene.mutex);
+      frame = draw_buffers(renderer_, target_, scene.scene, view, options, clear, request);
+      // Python numbers instances by their nodes, not by the file's ids that draw_buffers gives.
+      if (request.ids) ids = node_ids(scene, frame.surfaces);
+    }
+    return arrays_of(std::move(frame), request, rgba, std::move(ids));
+  }
+
+  std::string camera(py::handle view_from_world, py::handle clip_from_view, float near, float far) const {
+    return camera_json(view_of(view_from_world, clip_from_view, near, far), width(), height());
+  }
+
+ private:
+  static View view_of(py::handle view_from_world, py::handle clip_from_view, float near, float far) {
+    return View{matrix4(view_from_world, "view"), matrix4(clip_from_view, "projection"), near, far};
+  }
+
+  // Per pixel: the node id of the instance seen and the face id of its triangle.
+  static std::vector<std::uint32_t> node_ids(const SceneCore& scene, const SurfaceIds& s) {
+    std::vector<std::uint32_t> out(2 * s.instance.size(), kNoSurface);
+    for (std::size_t p = 0; p < s.instance.size(); ++p) {
+      if (s.instance[p] == kNoSurface) continue;
+      out[2 * p] = scene.node_ids[s.instance[p]];
+      out[2 * p + 1] = scene.scene.instances()[s.instance[p]].mesh->face_id(s.triangle[p]);
+    }
+    return out;
+  }
+
+  Renderer renderer_;
+  Framebuffer target_;
+  std::mutex mutex_;
+};
+
+// facet.render()'s work: a RenderJob, as `facet render` builds it, drawn into buffers.
+py::dict render_file(const std::string& model, int width, int height, int threads, const std::string& shading,
+                     float azimuth, float elevation, const std::string& projection, const std::string& up,
+                     std::optional<int> camera_index, py::handle background, const std::vector<std::string>& buffers,
+                     bool rgba) {
+  if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
+    value_error("width and height must lie in 1.." + std::to_string(kMaxDimension));
+  RenderJob job;
+  job.model = model;
+  job.width = width;
+  job.height = height;
+  job.camera.azimuth_degrees = azimuth;
+  job.camera.elevation_degrees = elevation;
+  job.camera.file_camera = camera_index;
+  static const std::pair<const char*, Projection> projections[] = {{"perspective", Projection::perspective},
+                                                                   {"orthographic", Projection::orthographic},
+                                                                   {"isometric", Projection::isometric},
+                                                                   {"dimetric", Projection::dimetric},
+                                                                   {"trimetric", Projection::trimetric},
+                                                                   {"oblique", Projection::oblique},
+                                                                   {"front", Projection::front},
+                                                                   {"top", Projection::top},
+                                                                   {"side", Projection::side}};
+  bool known = false;
+  for (const auto& [name, p] : projections)
+    if (projection == name) {
+      job.camera.projection = p;
+      known = true;
+    }
+  if (!known) value_error("projection: unknown projection '" + projection + "'");
+  const std::optional<UpAxis> axis = parse_up_axis(up);
+  if (!axis) value_error("up: expected +X, -X, +Y, -Y, +Z or -Z, got '" + up + "'");
+  job.camera.up = *axis;
+  if (shading != "automatic") job.look.shading = shading_named(shading);
+  if (!background.is_none()) {
+    const glm::vec4 bg = finite_rows<4>(py::array::ensure(background).reshape({1, 4}), "background")[0];
+    job.look.background = glm::vec3(bg);
+    job.look.transparent_background = bg.a < 1.0f;
+  }
+  const BufferRequest request = request_of(buffers);
+  FrameBuffers frame;
+  std::string camera;
+  {
+    py::gil_scoped_release released;
+    Renderer renderer(threads);
+    frame = render_buffers(job, renderer, request, &camera);
+  }
+  std::vector<std::uint32_t> ids = std::move(frame.ids);
+  py::dict out = arrays_of(std::move(frame), request, rgba, std::move(ids));
+  out["camera"] = py::module_::import("json").attr("loads")(camera);
+  return out;
+}
+
+}  // namespace
+
+}  // namespace facet::python
+
+PYBIND11_MODULE(_facet, m) {
+  namespace py = pybind11;
+  using namespace facet::python;
+  m.doc() = "facet's compiled core: meshes, scenes and renderers; use the facet package, not this module.";
+
+  static py::exception<facet::InputError> load_error(
+      m, "LoadError", py::make_tuple(py::handle(PyExc_OSError), py::handle(PyExc_ValueError)));
+  py::register_exception_translator([](std::exception_ptr p) {
+    try {
+      if (p) std::rethrow_exception(p);
+    } catch (const facet::InputError& e) {
+      const bool missing = e.problem() == "no such file";
+      PyErr_SetString(missing ? PyExc_FileNotFoundError : load_error.ptr(), e.what());
+    } catch (const std::invalid_argument& e) {
+      PyErr_SetString(PyExc_ValueError, e.what());
+    }
+  });
+
+  py::class_<MeshCore>(m, "MeshCore")
+      .def(py::init(&MeshCore::from_arrays), py::arg("positions"), py::arg("faces"), py::arg("normals"), py::arg("uvs"),
+           py::arg("colors"), py::arg("texture"))
+      .def_static(
+          "from_file",
+          [](const std::string& path) {
+            facet::Mesh mesh;
+            {
+              py::gil_scoped_release released;
+              mesh = facet::load_model(path);
+            }
+            return MeshCore{std::make_shared<const facet::Mesh>(std::move(mesh))};
+          },
+          py::arg("path"))
+      .def_property_readonly("vertex_count", [](const MeshCore& c) { return c.mesh->vertex_count(); })
+      .def_property_readonly("triangle_count", [](const MeshCore& c) { return c.mesh->triangle_count(); })
+      .def_property_readonly("bounds", &MeshCore::bounds);
+
+  py::class_<SceneCore>(m, "SceneCore")
+      .def(py::init<>())
+      .def("add", &SceneCore::add, py::arg("mesh"), py::arg("pose"), py::arg("node_id"))
+      .def("set_pose", &SceneCore::set_pose)
+      .def("remove", &SceneCore::remove)
+      .def("bounds", [](const SceneCore& s) -> py::object {
+        std::shared_lock lock(s.mutex);
+        const facet::Bounds b = s.world_bounds();
+        if (b.empty()) return py::none();
+        return py::array_t<double>({2, 3},
+                                   std::vector<double>{b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z}.data());
+      });
+
+  py::class_<RendererCore>(m, "RendererCore")
+      .def(py::init<int, int, int>(), py::arg("width"), py::arg("height"), py::arg("threads"))
+      .def_property_readonly("width", &RendererCore::width)
+      .def_property_readonly("height", &RendererCore::height)
+      .def("render", &RendererCore::render)
+      .def("camera_json", &RendererCore::camera);
+
+  m.def("read_model", &read_model_file, py::arg("path"));
+  m.def("render_file", &render_file);
+}
