@@ -40,3 +40,6 @@ build/bench/facet_loader_bench --benchmark_repetitions=3 --benchmark_report_aggr
 
 echo "## PNG writing, facet against stb_image_write"
 build/bench/facet_image_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+
+echo "## Python against the C++ library"
+PYTHONPATH=build/python /usr/bin/python3 bench/python_bench.py build 5

@@ -41,4 +41,16 @@ ${CXX:-c++} -std=c++20 -O1 -o "$scratch/pc-consumer" "$source/examples/consumer/
 "$scratch/pc-consumer" "$scratch/pc.png"
 check_png "$scratch/pc.png"
 cmp -s "$scratch/cmake.png" "$scratch/pc.png" || { echo "FAIL: the two consumers' images differ"; exit 1; }
+
+# The Python package, where the build made one: the installed copy imports and renders, with no build tree in sight.
+if [ -d "$build/python/facet" ]; then
+  (cd "$scratch" && PYTHONPATH="$prefix/lib/python3/dist-packages" /usr/bin/python3 - "$prefix" <<'PY'
+import sys
+import facet
+assert facet.__file__.startswith(sys.argv[1]), facet.__file__
+out = facet.render("/usr/share/assimp/models/OBJ/box.obj", width=32, height=24, buffers=["mask"])
+assert out["mask"].shape == (24, 32) and out["mask"].any()
+PY
+  ) || { echo "FAIL: the installed Python package does not import and render"; exit 1; }
+fi
 echo "1 passed, 0 failed"
