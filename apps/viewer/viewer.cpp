@@ -1,0 +1,223 @@
+// viewer.cpp - the viewer's window: SDL2 events in, facet's frames out; SDL only presents the pixels facet drew.
+#include "viewer.hpp"
+
+#include <SDL.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "facet/error.hpp"
+#include "facet/framebuffer.hpp"
+#include "facet/image_io.hpp"
+#include "facet/renderer.hpp"
+#include "facet/text.hpp"
+#include "keys.hpp"
+#include "viewer_state.hpp"
+
+namespace facet::viewer {
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+// SDL's video subsystem and the window, released in the right order whatever ends the run.
+class Window {
+ public:
+  Window(const std::string& title, int width, int height) {
+    if (SDL_Init(SDL_INIT_VIDEO) != 0) throw std::runtime_error(std::string("cannot open a window: ") + SDL_GetError());
+    window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, width, height,
+                               SDL_WINDOW_RESIZABLE);
+    if (!window_) {
+      const std::string error = SDL_GetError();
+      SDL_Quit();
+      throw std::runtime_error("cannot open a window: " + error);
+    }
+    SDL_EventState(SDL_DROPFILE, SDL_ENABLE);
+  }
+  ~Window() {
+    SDL_DestroyWindow(window_);
+    SDL_Quit();
+  }
+  Window(const Window&) = delete;
+  Window& operator=(const Window&) = delete;
+
+  SDL_Window* get() const { return window_; }
+
+  // Copies an RGBA image of the surface's size into the window. The surface is asked for anew each time: a resize
+  // replaces it.
+  void present(const std::vector<std::uint8_t>& rgba, int width, int height) {
+    SDL_Surface* surface = SDL_GetWindowSurface(window_);
+    if (!surface || surface->w != width || surface->h != height) return;  // resized meanwhile: the next frame fits
+    if (SDL_MUSTLOCK(surface)) SDL_LockSurface(surface);
+    SDL_ConvertPixels(width, height, SDL_PIXELFORMAT_RGBA32, rgba.data(), width * 4, surface->format->format,
+                      surface->pixels, surface->pitch);
+    if (SDL_MUSTLOCK(surface)) SDL_UnlockSurface(surface);
+    SDL_UpdateWindowSurface(window_);
+  }
+
+  // The size frames are drawn at: the window surface's, in pixels.
+  void size(int& width, int& height) const {
+    SDL_Surface* surface = SDL_GetWindowSurface(window_);
+    if (surface) {
+      width = surface->w;
+      height = surface->h;
+    } else {
+      SDL_GetWindowSize(window_, &width, &height);
+    }
+  }
+
+ private:
+  SDL_Window* window_ = nullptr;
+};
+
+// Averages each 2x2 block of a (2w x 2h) RGBA image into one pixel of a w x h one.
+void downsample_2x2(const std::vector<std::uint8_t>& big, int width, int height, std::vector<std::uint8_t>& out) {
+  out.resize(static_cast<std::size_t>(width) * height * 4);
+  const std::size_t row = static_cast<std::size_t>(width) * 2 * 4;
+  for (int y = 0; y < height; ++y)
+    for (int x = 0; x < width; ++x)
+      for (int c = 0; c < 4; ++c) {
+        const std::size_t p = static_cast<std::size_t>(2 * y) * row + static_cast<std::size_t>(2 * x) * 4 + c;
+        const unsigned sum = big[p] + big[p + 4] + big[p + row] + big[p + row + 4];
+        out[(static_cast<std::size_t>(y) * width + x) * 4 + c] = static_cast<std::uint8_t>((sum + 2) / 4);
+      }
+}
+
+// A block of text on a dark box at the top left.
+void overlay(std::vector<std::uint8_t>& rgba, int width, int height, const std::string& text, glm::vec4 color) {
+  const int scale = width >= 900 ? 2 : 1;
+  const TextSize size = text_size(text, scale);
+  fill_rect(rgba, width, height, 8, 8, size.width + 16, size.height + 12, glm::vec4(0.0f, 0.0f, 0.0f, 0.7f));
+  draw_text(rgba, width, height, 16, 14, text, color, scale);
+}
+
+// The key an SDL key event means to the viewer, as a character; 0 for keys it has no use for.
+char key_of(const SDL_KeyboardEvent& key) {
+  const SDL_Keycode k = key.keysym.sym;
+  if (k == SDLK_ESCAPE) return '\x1b';
+  if (k == SDLK_SPACE) return ' ';
+  if ((k >= SDLK_a && k <= SDLK_z) || (k >= SDLK_0 && k <= SDLK_9)) return static_cast<char>(k);
+  return 0;
+}
+
+}  // namespace
+
+int run_viewer(const ViewerOptions& options) {
+  Showing showing = options.demo ? Showing::demo(*options.demo) : Showing::model(options.model);
+  Toggles toggles;
+  Orbit orbit;
+  for (const char key : options.keys)
+    if (apply_key(key, toggles, orbit) == KeyAction::unknown)
+      throw std::invalid_argument(std::string("--keys: '") + key + "' is not a viewer key (facet view --help)");
+
+  Window window("facet view - " + showing.title(), options.width, options.height);
+  Renderer renderer(options.threads);
+  std::optional<Framebuffer> target;
+  std::vector<std::uint8_t> shown;
+  int width = options.width, height = options.height;
+  std::string error;  // the last model that failed to load, shown until the next one loads
+  double animation = 0.0, fps = 0.0;
+  int frames = 0, frames_since_title = 0;
+  const Clock::time_point start = Clock::now();
+  Clock::time_point last = start, title_time = start;
+  bool running = true, dirty = true;
+
+  while (running) {
+    SDL_Event event;
+    const bool animating = showing.animated() && !toggles.paused;
+    // Nothing moves and nothing was asked: sleep until something happens rather than redraw the same frame.
+    bool have_event = (!animating && !dirty && options.frames == 0) ? SDL_WaitEventTimeout(&event, 500) != 0
+                                                                    : SDL_PollEvent(&event) != 0;
+    for (; have_event; have_event = SDL_PollEvent(&event) != 0) {
+      dirty = true;
+      switch (event.type) {
+        case SDL_QUIT: running = false; break;
+        case SDL_KEYDOWN:
+          if (const char key = key_of(event.key); key && apply_key(key, toggles, orbit) == KeyAction::quit)
+            running = false;
+          break;
+        case SDL_MOUSEMOTION: {
+          const bool shift = (SDL_GetModState() & KMOD_SHIFT) != 0;
+          const Uint32 buttons = event.motion.state;
+          if ((buttons & SDL_BUTTON_RMASK) || ((buttons & SDL_BUTTON_LMASK) && shift)) {
+            orbit.pan +=
+                glm::vec2(event.motion.xrel, -event.motion.yrel) * (2.0f / static_cast<float>(height)) / orbit.zoom;
+          } else if (buttons & SDL_BUTTON_LMASK) {
+            orbit.azimuth_degrees -= 0.4f * static_cast<float>(event.motion.xrel);
+            orbit.elevation_degrees =
+                std::clamp(orbit.elevation_degrees + 0.4f * static_cast<float>(event.motion.yrel), -89.0f, 89.0f);
+          }
+          break;
+        }
+        case SDL_MOUSEWHEEL:
+          orbit.zoom = std::clamp(orbit.zoom * std::pow(1.1f, static_cast<float>(event.wheel.y)), 0.05f, 50.0f);
+          break;
+        case SDL_DROPFILE: {
+          const std::string path = event.drop.file;
+          SDL_free(event.drop.file);
+          try {
+            showing = Showing::model(path);
+            orbit = Orbit{};
+            error.clear();
+            SDL_SetWindowTitle(window.get(), ("facet view - " + showing.title()).c_str());
+          } catch (const std::exception& e) {
+            error = e.what();
+          }
+          break;
+        }
+        default: break;
+      }
+    }
+    if (!running) break;
+
+    const Clock::time_point now = Clock::now();
+    if (!toggles.paused)
+      animation = options.frames ? frames / 60.0 : animation + std::chrono::duration<double>(now - last).count();
+    last = now;
+    window.size(width, height);
+    const int factor = toggles.antialias ? 2 : 1;
+    if (!target || target->width() != width * factor || target->height() != height * factor)
+      target.emplace(width * factor, height * factor);
+
+    const Showing::Frame frame =
+        showing.frame(animation, static_cast<float>(width) / static_cast<float>(height), toggles, orbit);
+    renderer.clear(*target, frame.clear, 1.0f);
+    frame.scene->render(renderer, *target, frame.view, frame.options);
+    renderer.finish(*target);
+    if (factor == 2) downsample_2x2(target->rgba8(), width, height, shown);
+    else shown = target->rgba8();
+    if (toggles.help) overlay(shown, width, height, kHelpText, glm::vec4(1.0f));
+    if (!error.empty()) overlay(shown, width, height, "cannot open: " + error, glm::vec4(1.0f, 0.5f, 0.4f, 1.0f));
+    window.present(shown, width, height);
+    ++frames;
+    ++frames_since_title;
+    dirty = false;
+
+    const double since_title = std::chrono::duration<double>(now - title_time).count();
+    if (since_title >= 0.5) {
+      fps = frames_since_title / since_title;
+      frames_since_title = 0;
+      title_time = now;
+      char rate[32];
+      std::snprintf(rate, sizeof rate, "%.1f fps", fps);
+      const std::string title = "facet view - " + showing.title() + " - " + describe(toggles) + " - " + rate;
+      SDL_SetWindowTitle(window.get(), title.c_str());
+    }
+    if (options.frames && frames >= options.frames) running = false;
+  }
+
+  if (!options.screenshot.empty() && !shown.empty()) write_png(options.screenshot, width, height, shown, false);
+  if (options.frames) {
+    const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
+    std::fprintf(stderr, "facet: view: %d frames in %.3f s (%.1f fps)\n", frames, seconds, frames / seconds);
+  }
+  return 0;
+}
+
+}  // namespace facet::viewer

@@ -1,0 +1,76 @@
+// viewer_state.hpp - what `facet view` shows: the model or demo, the toggles the keys flip, and the orbit camera.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <glm/glm.hpp>
+
+#include "facet/demo_scenes.hpp"
+#include "facet/render_job.hpp"
+#include "facet/scene.hpp"
+#include "facet/view_spec.hpp"
+
+namespace facet::viewer {
+
+// The switches of the source documents' demos, flipped by keys (keys.cpp says which).
+struct Toggles {
+  bool wireframe = false;
+  bool edges = false;
+  std::optional<CullMode> cull;  // unset: the model's own, as `facet render` starts (open meshes show both sides)
+  bool depth_test = true;
+  bool painter = false;
+  int shuffles = 0;                // times the triangle order was shuffled (0: the file's order)
+  std::optional<Shading> shading;  // unset: the model's own look
+  bool orthographic = false;
+  bool antialias = false;  // 2x2 supersampling
+  bool paused = false;
+  bool help = false;
+};
+
+// The orbit camera: turns and moves applied to the view `facet render` would start with.
+struct Orbit {
+  float azimuth_degrees = 0.0f;    // about the view's up axis, dragging left and right
+  float elevation_degrees = 0.0f;  // dragging up and down, kept within +-89
+  glm::vec2 pan{0.0f};             // in units of the model's framing radius, across the view
+  float zoom = 1.0f;               // magnification of the view
+};
+
+// What is shown: a model file or a demo, its meshes prepared in a Scene.
+class Showing {
+ public:
+  // Loads a model (throws InputError as load_model does) or makes a demo.
+  static Showing model(const std::string& path);
+  static Showing demo(Demo demo);
+
+  const std::string& title() const { return title_; }
+  bool animated() const { return demo_.has_value(); }
+
+  // The frame at `seconds` of the animation for an aspect (width / height) with the toggles and orbit applied:
+  // the scene to draw (its instances moved, its triangles shuffled as the toggles say), the view, the options and
+  // the clear colour.
+  struct Frame {
+    Scene* scene;
+    View view;
+    SceneOptions options;
+    glm::vec4 clear;
+  };
+  Frame frame(double seconds, float aspect, const Toggles& toggles, const Orbit& orbit);
+
+ private:
+  void rebuild_scene(int shuffles);
+
+  std::string title_;
+  std::optional<DemoModel> demo_;
+  std::shared_ptr<const Mesh> mesh_;  // the model, or the demo's mesh, in the file's triangle order
+  Framing framing_;
+  Scene scene_;
+  int scene_shuffles_ = -1;  // the shuffle the scene was built with
+};
+
+// A copy of mesh with its triangles in a pseudo-random order fixed by `seed` (every per-triangle array moved
+// with them), for showing what drawing order does without a depth test.
+Mesh shuffled(const Mesh& mesh, int seed);
+
+}  // namespace facet::viewer

@@ -1,0 +1,117 @@
+#!/usr/bin/env bash
+# viewer_cli.sh - `facet view` in a real X server (Xvfb): scripted runs, screenshots, what each toggle key changes.
+# Usage: viewer_cli.sh FACET SCRATCH. Starts its own Xvfb through xvfb-run. Prints one line per case and a closing
+# "N passed, M failed".
+set -uo pipefail
+# shellcheck source=SCRIPTDIR/lib/common.bash
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.bash"
+facet=$1
+scratch=$2
+mkdir -p "$scratch"
+rm -rf "${scratch:?}"/*
+
+if ! "$facet" view --help | grep -q "Keys:"; then
+  bad "facet view" "this facet was built without SDL2"
+  finish
+  exit
+fi
+command -v xvfb-run >/dev/null || { bad "xvfb-run" "not installed (scripts/deps.sh installs xvfb)"; finish; exit; }
+
+# shot NAME ARGS...: a scripted run at 320x240 writing $scratch/NAME.png; its exit status is the run's.
+shot() {
+  local name=$1
+  shift
+  xvfb-run -a -s "-screen 0 1280x1024x24" "$facet" view --resolution 320,240 --threads 2 \
+    --screenshot "$scratch/$name.png" "$@" 2>"$scratch/$name.err"
+}
+
+# The torus a third of a second in (30 frames at 1/60 s), turned enough that it hides parts of itself.
+torus=(--demo torus --frames 20)
+for case in "default:" "wire:w" "edges:e" "nodepth:z" "cullback:c" "painter:p" "painter_shuffled:ps" \
+  "nodepth_shuffled:zs" "flat:2" "normals:6" "ortho:o" "antialias:a" "paused: " "help:h"; do
+  name=${case%%:*}
+  keys=${case#*:}
+  if shot "$name" "${torus[@]}" --keys "$keys"; then
+    ok "--keys '$keys' ($name): exit 0, $(cat "$scratch/$name.err")"
+  else
+    bad "--keys '$keys' ($name)" "exit $?: $(cat "$scratch/$name.err")"
+  fi
+done
+
+cat "$e2e_lib/png.py" - >"$scratch/check.py" <<'PY'
+import sys
+folder = sys.argv[1]
+images = {}
+def image(name):
+    if name not in images:
+        w, h, ch, rows = read_png(f'{folder}/{name}.png')
+        images[name] = [tuple(row[i:i + 3]) for row in rows for i in range(0, w * ch, ch)]
+    return images[name]
+def covered(name):
+    """Pixels that are not the demo's white background."""
+    return sum(1 for p in image(name) if p != (255, 255, 255))
+def changed(a, b):
+    return sum(1 for p, q in zip(image(a), image(b)) if p != q)
+results = []
+def check(what, ok, detail):
+    results.append(ok)
+    print(('ok   ' if ok else 'FAIL ') + what + ': ' + detail)
+total = 320 * 240
+c = covered('default')
+check('the torus draws', 0.1 * total < c < 0.9 * total and len(set(image('default'))) > 50,
+      f'{c} of {total} pixels covered, {len(set(image("default")))} colours')
+w = covered('wire')
+check('w: wireframe covers fewer pixels', 0 < w < c, f'{w} against {c}')
+for name, key in [('edges', 'e'), ('nodepth', 'z'), ('flat', '2'), ('normals', '6'), ('ortho', 'o'),
+                  ('antialias', 'a'), ('help', 'h')]:
+    n = changed('default', name)
+    check(f'{key}: changes the picture', n > 100, f'{n} pixels differ')
+n = changed('default', 'nodepth')
+check('culling off, depth test off: the closed torus shows hidden faces', n > 100, f'{n} pixels differ')
+n = changed('default', 'cullback')
+check('c: culling back faces of a closed mesh under the depth test changes nothing', n == 0, f'{n} pixels differ')
+n = changed('painter', 'painter_shuffled')
+check('p + s: the painter\'s algorithm sorts a shuffled order back into the same picture', n == 0, f'{n} pixels differ')
+n = changed('nodepth', 'nodepth_shuffled')
+check('z + s: without a depth test the order shows', n > 100, f'{n} pixels differ')
+n = changed('default', 'paused')
+check('space: paused at the start shows another moment', n > 100, f'{n} pixels differ')
+print(f'{sum(results)} passed, {len(results) - sum(results)} failed')
+sys.exit(0 if all(results) else 1)
+PY
+if python3 "$scratch/check.py" "$scratch" >"$scratch/check.out"; then
+  while read -r line; do [[ $line == ok* ]] && ok "${line#ok   }"; done <"$scratch/check.out"
+else
+  while read -r line; do
+    [[ $line == ok* ]] && ok "${line#ok   }"
+    [[ $line == FAIL* ]] && bad "${line#FAIL }"
+  done <"$scratch/check.out"
+fi
+
+# A model file, and the errors of a scripted run.
+model=/usr/share/assimp/models/OBJ/WusonOBJ.obj
+if shot wuson "$model" --frames 2 --keys 4; then ok "a model file: $(cat "$scratch/wuson.err")"; else bad "model" "$(cat "$scratch/wuson.err")"; fi
+expect_error() {
+  local name=$1 status=$2
+  shift 2
+  xvfb-run -a -s "-screen 0 1280x1024x24" "$facet" view --frames 1 "$@" >/dev/null 2>"$scratch/$name.err"
+  local got=$?
+  if [ "$got" -eq "$status" ] && [ "$(wc -l <"$scratch/$name.err")" -eq 1 ] && grep -q "^facet: error: " "$scratch/$name.err"; then
+    ok "$name: $(cat "$scratch/$name.err")"
+  else
+    bad "$name" "exit $got: $(cat "$scratch/$name.err")"
+  fi
+}
+expect_error missing_model 1 "$scratch/none.obj"
+expect_error model_and_demo 2 "$model" --demo cube
+expect_error unknown_key 2 --demo cube --keys "wx"
+expect_error screenshot_format 2 --demo cube --screenshot "$scratch/x.jpg"
+# No display at all: a clean error, not a crash.
+env -u DISPLAY -u WAYLAND_DISPLAY SDL_VIDEODRIVER=x11 "$facet" view --demo cube --frames 1 2>"$scratch/nodisplay.err"
+status=$?
+if [ "$status" -eq 1 ] && grep -q "^facet: error: cannot open a window" "$scratch/nodisplay.err"; then
+  ok "no display: $(cat "$scratch/nodisplay.err")"
+else
+  bad "no display" "exit $status: $(cat "$scratch/nodisplay.err")"
+fi
+finish
