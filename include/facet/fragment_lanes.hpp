@@ -48,6 +48,26 @@ struct alignas(simd::kLaneAlign) FragmentLanes {
     const std::size_t i = float_index(member);
     return {varyings[i], varyings[i + 1], varyings[i + 2]};
   }
+  FACET_LANES_INLINE simd::Color get(glm::vec4 V::*member) const {
+    const std::size_t i = float_index(member);
+    return {varyings[i], varyings[i + 1], varyings[i + 2], varyings[i + 3]};
+  }
+  // Lane k as a scalar Fragment, for shaders that leave their rare cases to fragment().
+  Fragment<V> lane(int k) const {
+    Fragment<V> f;
+    float* values = reinterpret_cast<float*>(&f.varyings);
+    float* dx = reinterpret_cast<float*>(&f.ddx);
+    float* dy = reinterpret_cast<float*>(&f.ddy);
+    for (std::size_t i = 0; i < kFloats; ++i) {
+      values[i] = varyings[i][k];
+      dx[i] = ddx[i][k];
+      dy[i] = ddy[i][k];
+    }
+    f.screen = glm::vec3(screen_x[k], screen_y[k], depth[k]);
+    f.primitive = primitive[k];
+    f.front_facing = front_facing[k] != 0;
+    return f;
+  }
 };
 
 // A LaneShader is a Shader that also has

@@ -1,0 +1,136 @@
+// test_surface_lanes.cpp - the stock surface shader's lane path draws exactly what its scalar fragment() draws.
+#include <gtest/gtest.h>
+
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <cmath>
+#include <cstdint>
+#include <random>
+#include <span>
+#include <vector>
+
+#include "facet/draw.hpp"
+#include "facet/shaders/surface.hpp"
+#include "facet/texture.hpp"
+#include "support/image_asserts.hpp"
+
+namespace facet::test {
+namespace {
+
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wpsabi"
+
+// SurfaceShader without its lane function: the scalar definition of the same picture.
+struct ScalarSurfaceShader {
+  using Vertex = SurfaceShader::Vertex;
+  using Varyings = SurfaceShader::Varyings;
+  static constexpr bool may_discard = false;
+  static constexpr bool needs_derivatives = true;
+  SurfaceShader inner;
+  VertexOut<Varyings> vertex(const Vertex& v) const { return inner.vertex(v); }
+  glm::vec4 fragment(const Fragment<Varyings>& f) const { return inner.fragment(f); }
+};
+static_assert(LaneShader<SurfaceShader>);
+static_assert(!LaneShader<ScalarSurfaceShader>);
+
+// An open hemisphere-and-a-bit, so back faces show through the opening, with varied vertex colours and uvs.
+struct Geometry {
+  std::vector<MeshVertex> vertices;
+  std::vector<std::uint32_t> indices;
+  std::vector<glm::vec4> face_colors;
+};
+
+Geometry open_sphere() {
+  Geometry g;
+  const int n = 40;
+  for (int i = 0; i <= n; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const float theta = 2.2f * static_cast<float>(i) / n, phi = 6.2831853f * static_cast<float>(j) / n;
+      const glm::vec3 p(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+      g.vertices.push_back({p, p, {3.0f * j / n, 2.0f * i / n}, {0.5f + 0.5f * p.x, 0.7f, 0.5f - 0.4f * p.z, 1.0f}});
+    }
+  std::mt19937 rng(3);
+  std::uniform_real_distribution<float> unit(0.2f, 1.0f);
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const auto at = [&](int a, int b) { return static_cast<std::uint32_t>(a * (n + 1) + b); };
+      g.indices.insert(g.indices.end(),
+                       {at(i, j), at(i, j + 1), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)});
+      for (int t = 0; t < 2; ++t) g.face_colors.emplace_back(unit(rng), unit(rng), unit(rng), unit(rng));
+    }
+  return g;
+}
+
+Framebuffer draw_with(const auto& shader, const Geometry& g) {
+  Framebuffer fb(203, 151);
+  Renderer renderer(2);
+  renderer.clear(fb, glm::vec4(0.1f, 0.2f, 0.3f, 1.0f));
+  RenderState state;
+  state.cull = CullMode::none;
+  state.defer_shading = true;
+  renderer.draw(fb, shader, std::span<const MeshVertex>(g.vertices), g.indices, state);
+  renderer.finish(fb);
+  return fb;
+}
+
+TEST(SurfaceLanes, EveryMaterialAndLightMatchesTheScalarFragment) {
+  const Geometry g = open_sphere();
+  std::mt19937 rng(9);
+  std::vector<std::uint32_t> texels(32 * 32);
+  for (std::uint32_t& t : texels) t = static_cast<std::uint32_t>(rng()) | 0xff000000u;
+  Texture texture(32, 32, texels, TexelEncoding::srgb);
+  texture.generate_mipmaps();
+  const Texture npot(5, 3, std::vector<std::uint32_t>(texels.begin(), texels.begin() + 15));
+
+  const glm::vec3 eye(0.4f, 1.8f, 2.6f);
+  const glm::mat4 clip_from_world = glm::perspective(glm::radians(50.0f), 203.0f / 151.0f, 0.1f, 10.0f) *
+                                    glm::lookAt(eye, glm::vec3(0.0f), {0, 1, 0});
+  struct Case {
+    const char* name;
+    glm::mat4 world_from_object;
+    SpecularModel model;
+    glm::vec3 specular;
+    bool face_colors;
+    const Texture* texture;
+    Sampler sampler;
+    bool opaque;
+  };
+  const Case cases[] = {
+      {"blinn-phong, vertex colours", glm::mat4(1.0f), SpecularModel::blinn_phong, glm::vec3(0.5f), false, nullptr,
+       Sampler{}, false},
+      {"phong, face colours, no specular", glm::rotate(glm::mat4(1.0f), 0.6f, glm::vec3(1, 0.2f, 0)),
+       SpecularModel::phong, glm::vec3(0.0f), true, nullptr, Sampler{}, true},
+      {"mirrored, sRGB texture, trilinear", glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f)),
+       SpecularModel::phong, glm::vec3(0.3f, 0.6f, 0.9f), false, &texture, Sampler{}, false},
+      {"non-power-of-two texture, clamp, nearest", glm::scale(glm::mat4(1.0f), glm::vec3(1.2f, 0.8f, 1.0f)),
+       SpecularModel::blinn_phong, glm::vec3(0.4f), true, &npot, Sampler{Filter::nearest, Wrap::clamp, Wrap::mirror},
+       false},
+  };
+  for (const Case& c : cases) {
+    SurfaceShader lanes;
+    lanes.transforms = ObjectTransforms::make(clip_from_world, c.world_from_object);
+    lanes.surface.diffuse = glm::vec4(0.9f, 0.8f, 1.0f, 0.75f);
+    lanes.surface.face_colors = c.face_colors ? g.face_colors.data() : nullptr;
+    lanes.surface.texture = c.texture;
+    lanes.surface.sampler = c.sampler;
+    lanes.surface.opaque = c.opaque;
+    lanes.lights.add_directional(glm::vec3(-0.3f, 0.5f, 0.8f), glm::vec3(0.8f, 0.9f, 1.0f));
+    lanes.lights.add_point(glm::vec3(1.5f, 2.0f, 1.0f), glm::vec3(0.6f, 0.3f, 0.2f));
+    lanes.lights.ambient = glm::vec3(0.12f);
+    lanes.specular = c.specular;
+    lanes.shininess = 24.0f;
+    lanes.specular_model = c.model;
+    lanes.eye = eye;
+    const ScalarSurfaceShader scalar{lanes};
+    const Framebuffer expected = draw_with(scalar, g);
+    const auto drawn =
+        std::count_if(expected.depth().begin(), expected.depth().end(), [](float z) { return z < 1.0f; });
+    ASSERT_GT(drawn, 203 * 151 / 5) << c.name;
+    expect_same(expected, draw_with(lanes, g), c.name);
+  }
+}
+
+#pragma GCC diagnostic pop
+
+}  // namespace
+}  // namespace facet::test
