@@ -8,6 +8,7 @@
 #include <cmath>
 #include <cstdio>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -49,14 +50,15 @@ class Window {
 
   SDL_Window* get() const { return window_; }
 
-  // Copies an RGBA image of the surface's size into the window. The surface is asked for anew each time: a resize
+  // Copies an image of the surface's size into the window: RGBA bytes, or facet's packed pixels (red in the low
+  // byte: SDL's ABGR8888 whatever the machine's byte order). The surface is asked for anew each time: a resize
   // replaces it.
-  void present(const std::vector<std::uint8_t>& rgba, int width, int height) {
+  void present(const void* pixels, bool packed, int width, int height) {
     SDL_Surface* surface = SDL_GetWindowSurface(window_);
     if (!surface || surface->w != width || surface->h != height) return;  // resized meanwhile: the next frame fits
     if (SDL_MUSTLOCK(surface)) SDL_LockSurface(surface);
-    SDL_ConvertPixels(width, height, SDL_PIXELFORMAT_RGBA32, rgba.data(), width * 4, surface->format->format,
-                      surface->pixels, surface->pitch);
+    SDL_ConvertPixels(width, height, packed ? SDL_PIXELFORMAT_ABGR8888 : SDL_PIXELFORMAT_RGBA32, pixels, width * 4,
+                      surface->format->format, surface->pixels, surface->pitch);
     if (SDL_MUSTLOCK(surface)) SDL_UnlockSurface(surface);
     SDL_UpdateWindowSurface(window_);
   }
@@ -76,16 +78,24 @@ class Window {
   SDL_Window* window_ = nullptr;
 };
 
-// Averages each 2x2 block of a (2w x 2h) RGBA image into one pixel of a w x h one.
-void downsample_2x2(const std::vector<std::uint8_t>& big, int width, int height, std::vector<std::uint8_t>& out) {
+// The framebuffer as RGBA bytes in `out`, at its size, or averaged 2x2 block by block to half its size.
+void compose(const Framebuffer& fb, bool halve, std::vector<std::uint8_t>& out) {
+  const std::span<const std::uint32_t> color = fb.color();
+  const int width = halve ? fb.width() / 2 : fb.width(), height = halve ? fb.height() / 2 : fb.height();
   out.resize(static_cast<std::size_t>(width) * height * 4);
-  const std::size_t row = static_cast<std::size_t>(width) * 2 * 4;
+  const auto row = static_cast<std::size_t>(fb.width());
   for (int y = 0; y < height; ++y)
     for (int x = 0; x < width; ++x)
       for (int c = 0; c < 4; ++c) {
-        const std::size_t p = static_cast<std::size_t>(2 * y) * row + static_cast<std::size_t>(2 * x) * 4 + c;
-        const unsigned sum = big[p] + big[p + 4] + big[p + row] + big[p + row + 4];
-        out[(static_cast<std::size_t>(y) * width + x) * 4 + c] = static_cast<std::uint8_t>((sum + 2) / 4);
+        const auto channel = [&](std::size_t i) { return (color[i] >> (8 * c)) & 0xffu; };
+        std::uint32_t value;
+        if (halve) {
+          const std::size_t p = static_cast<std::size_t>(2 * y) * row + static_cast<std::size_t>(2 * x);
+          value = (channel(p) + channel(p + 1) + channel(p + row) + channel(p + row + 1) + 2) / 4;
+        } else {
+          value = channel(static_cast<std::size_t>(y) * row + static_cast<std::size_t>(x));
+        }
+        out[(static_cast<std::size_t>(y) * width + x) * 4 + c] = static_cast<std::uint8_t>(value);
       }
 }
 
@@ -119,7 +129,8 @@ int run_viewer(const ViewerOptions& options) {
   Window window("facet view - " + showing.title(), options.width, options.height);
   Renderer renderer(options.threads);
   std::optional<Framebuffer> target;
-  std::vector<std::uint8_t> shown;
+  std::vector<std::uint8_t> shown;  // the frame as shown, when it is not the framebuffer itself
+  bool composed = false;
   int width = options.width, height = options.height;
   std::string error;  // the last model that failed to load, shown until the next one loads
   double animation = 0.0, fps = 0.0;
@@ -190,11 +201,16 @@ int run_viewer(const ViewerOptions& options) {
     renderer.clear(*target, frame.clear, 1.0f);
     frame.scene->render(renderer, *target, frame.view, frame.options);
     renderer.finish(*target);
-    if (factor == 2) downsample_2x2(target->rgba8(), width, height, shown);
-    else shown = target->rgba8();
-    if (toggles.help) overlay(shown, width, height, kHelpText, glm::vec4(1.0f));
-    if (!error.empty()) overlay(shown, width, height, "cannot open: " + error, glm::vec4(1.0f, 0.5f, 0.4f, 1.0f));
-    window.present(shown, width, height);
+    // The framebuffer goes to the window as it is, unless it is halved or written over.
+    composed = factor == 2 || toggles.help || !error.empty();
+    if (composed) {
+      compose(*target, factor == 2, shown);
+      if (toggles.help) overlay(shown, width, height, kHelpText, glm::vec4(1.0f));
+      if (!error.empty()) overlay(shown, width, height, "cannot open: " + error, glm::vec4(1.0f, 0.5f, 0.4f, 1.0f));
+      window.present(shown.data(), false, width, height);
+    } else {
+      window.present(target->color().data(), true, width, height);
+    }
     ++frames;
     ++frames_since_title;
     dirty = false;
@@ -212,7 +228,12 @@ int run_viewer(const ViewerOptions& options) {
     if (options.frames && frames >= options.frames) running = false;
   }
 
-  if (!options.screenshot.empty() && !shown.empty()) write_png(options.screenshot, width, height, shown, false);
+  if (!options.screenshot.empty() && target) {
+    if (composed)
+      write_png(options.screenshot, width, height, shown, false);
+    else
+      write_png(options.screenshot, *target, false);
+  }
   if (options.frames) {
     const double seconds = std::chrono::duration<double>(Clock::now() - start).count();
     std::fprintf(stderr, "facet: view: %d frames in %.3f s (%.1f fps)\n", frames, seconds, frames / seconds);
