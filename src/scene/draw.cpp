@@ -54,6 +54,8 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
         Masked<SurfaceShader> cut{shader};
         cut.alpha_cutoff = material.alpha_cutoff;
         draw(cut);
+      } else if (!shader.surface.texture && !shader.normal_map) {
+        draw(UntexturedSurfaceShader{shader});
       } else {
         draw(shader);
       }

@@ -17,6 +17,7 @@
 
 // The library compiles the pipeline for each stock shader once (src/shaders/); programs link those instances.
 FACET_EXTERN_SHADER(facet::SurfaceShader);
+FACET_EXTERN_SHADER(facet::UntexturedSurfaceShader);
 FACET_EXTERN_SHADER(facet::GouraudShader);
 FACET_EXTERN_SHADER(facet::FlatShader);
 FACET_EXTERN_SHADER(facet::UnlitShader);

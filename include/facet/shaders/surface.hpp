@@ -128,4 +128,11 @@ struct SurfaceShader : LitUniforms {
   }
 };
 
+// SurfaceShader for a material with neither texture nor normal map: the same picture without the screen-space
+// derivatives, which only texture level of detail and the normal map's frame read. Interpolating them triples
+// the work per varying in the tile loop.
+struct UntexturedSurfaceShader : SurfaceShader {
+  static constexpr bool needs_derivatives = false;
+};
+
 }  // namespace facet
