@@ -35,6 +35,21 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
       ->add_option("--output-camera", args.output.output_camera,
                    "Also write the camera as JSON: intrinsics K (OpenCV), poses, near, far")
       ->type_name("FILE.json");
+  render
+      ->add_option("--views", args.views,
+                   "A contact sheet of these views instead of one, e.g. front,top,side,iso (also dimetric, "
+                   "trimetric, oblique, one-point, two-point, three-point); --resolution is each view's size")
+      ->check(CLI::Validator(
+          [](std::string& value) -> std::string {
+            try {
+              parse_sheet_views(value);
+            } catch (const std::invalid_argument& e) {
+              return std::string(e.what()).substr(std::string("views: ").size());
+            }
+            return {};
+          },
+          "VIEWS"))
+      ->type_name("VIEW,...");
   render->add_flag("--timings", args.timings, "Print the time of each stage (load, prepare, draw, write) on stderr");
   add_camera_options(*render, args.camera);
   add_look_options(*render, args.look);
@@ -48,6 +63,7 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
   base.height = size.y;
   base.camera = camera_spec(args.camera);
   base.look = look_spec(args.look);
+  if (!args.views.empty()) base.views = parse_sheet_views(args.views);
   const std::pair<const char*, const std::string*> outputs[] = {{"--output", &args.output.output},
                                                                 {"--output-depth", &args.output.output_depth},
                                                                 {"--output-normal", &args.output.output_normal},

@@ -13,6 +13,7 @@ namespace facet::cli {
 struct RenderArgs {
   std::vector<std::string> models;
   bool timings = false;  // print each render's stage times on stderr
+  std::string views;     // a contact sheet: comma-separated view names
   CameraArgs camera;
   LookArgs look;
   OutputArgs output;

@@ -13,6 +13,7 @@
 #include "facet/framebuffer.hpp"
 #include "facet/renderer.hpp"
 #include "facet/scene.hpp"
+#include "facet/sheet_views.hpp"
 #include "facet/view_spec.hpp"
 
 namespace facet {
@@ -67,6 +68,9 @@ struct RenderJob {
   CameraSpec camera;
   LookSpec look;
   OutputSpec outputs;
+  // A contact sheet instead of one view: the model drawn once per view, each width x height, in a labelled grid
+  // of ceil(sqrt(n)) columns, written as the colour output alone.
+  std::vector<SheetView> views;
 };
 
 // Where a render's time went, in seconds, when the caller asks (facet render --timings).
@@ -136,7 +140,9 @@ void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const
 FrameBuffers render_buffers(const RenderJob& job, Renderer& renderer, const BufferRequest& request,
                             std::string* camera = nullptr);
 
-// Loads the model, frames it, draws it and writes the outputs. Throws InputError for a bad model file or an
+// Loads the model, frames it, draws it and writes the outputs; with job.views, draws the contact sheet. Throws
+// std::invalid_argument for a sheet asked for depth, normals, ids, a mask, the camera or a file camera, or one
+// larger than kMaxDimension a side. Throws InputError for a bad model file or an
 // output that cannot be written, std::invalid_argument for a bad job (size, camera, two outputs on one path).
 void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings = nullptr);
 

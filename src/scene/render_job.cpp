@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cctype>
 #include <chrono>
+#include <cmath>
 #include <cstdint>
 #include <initializer_list>
 #include <iterator>
@@ -17,6 +18,7 @@
 #include "facet/error.hpp"
 #include "facet/image_io.hpp"
 #include "facet/model_io.hpp"
+#include "facet/text.hpp"
 #include "io/output_file.hpp"
 
 namespace facet {
@@ -236,6 +238,57 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
   return frame;
 }
 
+// The contact sheet: each view drawn into a cell framebuffer, copied into its place in the grid and labelled.
+void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
+  const OutputSpec& o = job.outputs;
+  if (!o.depth.empty() || !o.normal.empty() || !o.ids.empty() || !o.mask.empty() || !o.camera.empty())
+    throw std::invalid_argument(
+        "views: a contact sheet is one colour image; it has no depth, normal, ids, mask or "
+        "camera output");
+  if (job.camera.file_camera) throw std::invalid_argument("views: each view places its own camera, not the file's");
+  const int n = static_cast<int>(job.views.size());
+  const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  const int rows = (n + columns - 1) / columns;
+  if (static_cast<long>(job.width) * columns > kMaxDimension || static_cast<long>(job.height) * rows > kMaxDimension)
+    throw std::invalid_argument("views: a sheet of " + std::to_string(columns) + "x" + std::to_string(rows) +
+                                " views of " + std::to_string(job.width) + "x" + std::to_string(job.height) +
+                                " is over " + std::to_string(kMaxDimension) + " pixels a side");
+  if (o.color.empty()) throw std::invalid_argument("views: a contact sheet needs a colour output to write");
+  JobFrame frame = prepare_job(job, timings);  // the model is prepared once, as for any render; each view reuses it
+  Stopwatch clock;
+  const Framing framing = framing_of(*frame.scene.instances()[0].mesh, job.model.string());
+  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
+  const int sheet_width = job.width * columns, sheet_height = job.height * rows;
+  std::vector<std::uint8_t> sheet(static_cast<std::size_t>(sheet_width) * sheet_height * 4);
+  for (std::size_t p = 0; p < sheet.size(); p += 4)  // empty cells show the background
+    for (int c = 0; c < 4; ++c)
+      sheet[p + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(std::lround(frame.clear[c] * 255.0f));
+  Framebuffer cell(job.width, job.height);
+  const int scale = job.width >= 480 ? 2 : 1;
+  for (int k = 0; k < n; ++k) {
+    const SheetView view = job.views[static_cast<std::size_t>(k)];
+    const View v = make_view(sheet_camera(view, job.camera, framing, aspect), framing, aspect);
+    const SceneOptions options = scene_options(job.look, v.view_from_world, Shading::automatic, glm::vec3(frame.clear));
+    renderer.clear(cell, frame.clear, 1.0f);
+    frame.scene.render(renderer, cell, v, options);
+    renderer.finish(cell);
+    // The label goes on the cell before it joins the sheet, so a label wider than its cell is cut at the cell's edge.
+    std::vector<std::uint8_t> rgba = cell.rgba8();
+    const std::string label = sheet_view_label(view);
+    const TextSize size = text_size(label, scale);
+    fill_rect(rgba, job.width, job.height, 0, 0, size.width + 8 * scale, size.height + 6 * scale,
+              glm::vec4(0.0f, 0.0f, 0.0f, 0.55f));
+    draw_text(rgba, job.width, job.height, 4 * scale, 4 * scale, label, glm::vec4(1.0f), scale);
+    const int x0 = (k % columns) * job.width, y0 = (k / columns) * job.height;
+    for (int y = 0; y < job.height; ++y)
+      std::copy_n(rgba.begin() + static_cast<std::ptrdiff_t>(y) * job.width * 4, job.width * 4,
+                  sheet.begin() + (static_cast<std::ptrdiff_t>(y0 + y) * sheet_width + x0) * 4);
+  }
+  if (timings) timings->draw = clock.lap();
+  write_png(o.color, sheet_width, sheet_height, sheet, frame.clear.a < 1.0f);
+  if (timings) timings->write = clock.lap();
+}
+
 }  // namespace
 
 void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
@@ -245,6 +298,7 @@ void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
       if (paths[i].lexically_normal() == paths[k].lexically_normal())
         throw std::invalid_argument("outputs: " + paths[k].string() + " is named twice");
   check_output_formats(job.outputs);
+  if (!job.views.empty()) return render_sheet(job, renderer, timings);
   JobFrame frame = prepare_job(job, timings);
   Framebuffer target(job.width, job.height);
   draw_and_write(renderer, target, frame.scene, frame.view, frame.options, frame.clear, job.outputs, timings);

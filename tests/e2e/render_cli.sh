@@ -262,4 +262,43 @@ cameras=/usr/share/assimp/models/glTF2/cameras/Cameras.gltf
 run camera_index_0 image 160 120 -- render "$cameras" --camera-index 0 --resolution 160,120
 run camera_index_1 image 160 120 -- render "$cameras" --camera-index 1 --resolution 160,120
 
+# A contact sheet: 5 views of 120x90 in 3 columns and 2 rows; each view's cell holds the model and its label, the
+# views differ from each other, and the sixth cell is empty background.
+engine=/usr/share/assimp/models/glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb
+if "$facet" render "$engine" --views front,top,iso,oblique,one-point --resolution 120,90 \
+  --output "$scratch/sheet.png" 2>"$scratch/sheet.err"; then
+  cat "$e2e_lib/png.py" - >"$scratch/sheet.py" <<'PY'
+w, h, ch, rows = read_png(sys.argv[1])
+assert (w, h) == (360, 180), (w, h)
+background = tuple(rows[h - 1][(w - 1) * ch:(w - 1) * ch + 3])
+def cell(k):
+    x0, y0 = (k % 3) * 120, (k // 3) * 90
+    return [tuple(rows[y][x * ch:x * ch + 3]) for y in range(y0, y0 + 90) for x in range(x0, x0 + 120)]
+def drawn(pixels):
+    return sum(1 for p in pixels[120 * 20:] if p != background)  # below the label strip
+cells = [cell(k) for k in range(6)]
+for k in range(5):
+    assert drawn(cells[k]) > 500, f'view {k} shows {drawn(cells[k])} model pixels'
+    label = cells[k][2 * 120:12 * 120]
+    assert any(p == (255, 255, 255) for p in label), f'view {k} has no white label text'
+for a in range(5):
+    for b in range(a + 1, 5):
+        assert cells[a] != cells[b], f'views {a} and {b} are the same picture'
+assert all(p == background for p in cells[5]), 'the sixth cell is not empty'
+PY
+  if msg=$(python3 "$scratch/sheet.py" "$scratch/sheet.png" 2>&1); then ok "contact sheet of 5 views"; else bad "contact sheet" "$msg"; fi
+else
+  bad "contact sheet" "$(cat "$scratch/sheet.err")"
+fi
+for args in "--views front,bottom" "--views front --output-depth $scratch/d.npy" "--views front --camera-index 0"; do
+  # shellcheck disable=SC2086  # the cases are word lists
+  "$facet" render "$engine" $args --output "$scratch/bad_sheet.png" 2>"$scratch/bad_sheet.err"
+  status=$?
+  if [ "$status" -eq 2 ] && [ ! -e "$scratch/bad_sheet.png" ] && [ "$(wc -l <"$scratch/bad_sheet.err")" -eq 1 ]; then
+    ok "refused: $args: $(cat "$scratch/bad_sheet.err")"
+  else
+    bad "refused: $args" "exit $status: $(cat "$scratch/bad_sheet.err")"
+  fi
+done
+
 finish
