@@ -27,6 +27,6 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/facet.pc DESTINATION ${CMAKE_INSTALL_L
 set(CPACK_PACKAGE_NAME facet)
 set(CPACK_PACKAGE_CONTACT "facet developers")
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
-    "libtinyobjloader-dev, libtinygltf-dev, libassimp-dev, libglm-dev, libopenexr-dev, libdraco-dev, libdeflate-dev")
+    "libtinyobjloader-dev, libtinygltf-dev, libassimp-dev, libglm-dev, libopenexr-dev, libdraco-dev, libdeflate-dev, libgif-dev")
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 include(CPack)

@@ -50,6 +50,11 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
           },
           "VIEWS"))
       ->type_name("VIEW,...");
+  render
+      ->add_option("--turntable", args.turntable,
+                   "Render N frames round the model's up axis as an animated GIF (--output NAME.gif), 3 s a turn")
+      ->check(number_in(1, kMaxTurntableFrames, true))
+      ->type_name("N");
   render->add_flag("--timings", args.timings, "Print the time of each stage (load, prepare, draw, write) on stderr");
   add_camera_options(*render, args.camera);
   add_look_options(*render, args.look);
@@ -64,6 +69,7 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
   base.camera = camera_spec(args.camera);
   base.look = look_spec(args.look);
   if (!args.views.empty()) base.views = parse_sheet_views(args.views);
+  base.turntable = args.turntable;
   const std::pair<const char*, const std::string*> outputs[] = {{"--output", &args.output.output},
                                                                 {"--output-depth", &args.output.output_depth},
                                                                 {"--output-normal", &args.output.output_normal},
@@ -90,7 +96,7 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
                    .ids = expand(args.output.output_ids),
                    .mask = expand(args.output.output_mask),
                    .camera = expand(args.output.output_camera)};
-    check_output_formats(job.outputs);
+    check_output_formats(job.outputs, job.turntable > 0);
     jobs.push_back(std::move(job));
   }
   std::vector<OutputSpec> specs;

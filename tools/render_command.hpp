@@ -14,6 +14,7 @@ struct RenderArgs {
   std::vector<std::string> models;
   bool timings = false;  // print each render's stage times on stderr
   std::string views;     // a contact sheet: comma-separated view names
+  int turntable = 0;     // a turntable GIF of this many frames
   CameraArgs camera;
   LookArgs look;
   OutputArgs output;

@@ -14,8 +14,8 @@ class Framebuffer;
 // Writes an 8-bit PNG from rgba (R, G, B, A bytes per pixel, top row first); RGB only when keep_alpha is false.
 // A regular file (or the one a symlink points to) is written under a temporary name in the same folder and renamed
 // into place, so a failure never leaves a partial file at path. "-" is standard output; a device, a FIFO or a link
-// into /proc/self/fd (such as /dev/stdout) is opened and written in place, never replaced. Throws std::invalid_argument for a bad size, std::runtime_error("<path>: <reason>") when
-// the file cannot be written.
+// into /proc/self/fd (such as /dev/stdout) is opened and written in place, never replaced. Throws std::invalid_argument
+// for a bad size, std::runtime_error("<path>: <reason>") when the file cannot be written.
 void write_png(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba,
                bool keep_alpha = true);
 void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha = true);
@@ -25,6 +25,11 @@ void write_png_gray(const std::filesystem::path& path, int width, int height, st
 
 // A text file, written like write_png (a temporary file renamed into place).
 void write_text(const std::filesystem::path& path, const std::string& text);
+
+// An animated GIF of `frames` (each width * height RGBA bytes, top row first; alpha ignored), looping forever, each
+// frame shown delay_centiseconds, with one 256-colour palette chosen over all frames. Written like write_png.
+void write_gif(const std::filesystem::path& path, int width, int height,
+               std::span<const std::vector<std::uint8_t>> frames, int delay_centiseconds);
 
 // Reads a PNG (or any format load_texture accepts) as RGBA bytes, top row first. Throws InputError naming the file.
 std::vector<std::uint8_t> read_png(const std::filesystem::path& path, int& width, int& height);

@@ -49,9 +49,10 @@ std::vector<std::filesystem::path> output_paths(const OutputSpec& outputs);
 
 // Refuses, before anything renders, an output whose extension names a format facet does not write for it: the
 // colour image and the mask are PNG (.png), depth and normals NumPy (.npy) or OpenEXR (.exr), ids .npy and the
-// camera JSON (.json), in any case. A name with no extension (such as /dev/null, or "-" for standard output) takes
-// the output's first format. Throws std::invalid_argument("<path>: ...") naming what is written there.
-void check_output_formats(const OutputSpec& outputs);
+// camera JSON (.json), in any case; an animation's colour output is an animated GIF (.gif). A name with no
+// extension (such as /dev/null, or "-" for standard output) takes the output's first format. Throws
+// std::invalid_argument("<path>: ...") naming what is written there.
+void check_output_formats(const OutputSpec& outputs, bool animation = false);
 
 // Two of several renders that would write one file: their indices in the list and the path.
 struct OutputClash {
@@ -71,7 +72,12 @@ struct RenderJob {
   // A contact sheet instead of one view: the model drawn once per view, each width x height, in a labelled grid
   // of ceil(sqrt(n)) columns, written as the colour output alone.
   std::vector<SheetView> views;
+  // A turntable instead of one view: this many frames with the camera turned round the model's up axis by
+  // 360 / turntable degrees each, written as the colour output, an animated GIF looping forever (3 s a turn).
+  int turntable = 0;
 };
+
+inline constexpr int kMaxTurntableFrames = 3600;
 
 // Where a render's time went, in seconds, when the caller asks (facet render --timings).
 struct RenderTimings {
@@ -140,9 +146,10 @@ void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const
 FrameBuffers render_buffers(const RenderJob& job, Renderer& renderer, const BufferRequest& request,
                             std::string* camera = nullptr);
 
-// Loads the model, frames it, draws it and writes the outputs; with job.views, draws the contact sheet. Throws
-// std::invalid_argument for a sheet asked for depth, normals, ids, a mask, the camera or a file camera, or one
-// larger than kMaxDimension a side. Throws InputError for a bad model file or an
+// Loads the model, frames it, draws it and writes the outputs; with job.views, draws the contact sheet; with
+// job.turntable, the turntable. Throws std::invalid_argument for a sheet or turntable asked for depth, normals,
+// ids, a mask, the camera or a file camera, for both at once, a sheet larger than kMaxDimension a side, or a
+// turntable of more than kMaxTurntableFrames frames or 2^30 pixels in all. Throws InputError for a bad model file or an
 // output that cannot be written, std::invalid_argument for a bad job (size, camera, two outputs on one path).
 void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings = nullptr);
 

@@ -1,4 +1,4 @@
-// image_io.cpp - PNG (libdeflate), .npy and OpenEXR writers over write_output, and a PNG reader for tests.
+// image_io.cpp - PNG (libdeflate), GIF, .npy and OpenEXR writers over write_output, and a PNG reader for tests.
 #include "facet/image_io.hpp"
 
 #include <bit>
@@ -12,6 +12,7 @@
 #include "facet/framebuffer.hpp"
 #include "io/exr.hpp"
 #include "io/file_util.hpp"
+#include "io/gif.hpp"
 #include "io/output_file.hpp"
 #include "io/png.hpp"
 
@@ -52,6 +53,12 @@ void write_png(const std::filesystem::path& path, int width, int height, std::sp
 void write_png_gray(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> gray) {
   check_size(width, height, gray.size(), 1, "PNG");
   write_output(path, encode_png(width, height, 1, gray));
+}
+
+void write_gif(const std::filesystem::path& path, int width, int height,
+               std::span<const std::vector<std::uint8_t>> frames, int delay_centiseconds) {
+  for (const std::vector<std::uint8_t>& frame : frames) check_size(width, height, frame.size(), 4, "GIF");
+  write_output(path, encode_gif(width, height, frames, delay_centiseconds));
 }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {

@@ -6,7 +6,6 @@
 #include <chrono>
 #include <cmath>
 #include <cstdint>
-#include <initializer_list>
 #include <iterator>
 #include <map>
 #include <memory>
@@ -85,13 +84,14 @@ std::vector<std::filesystem::path> output_paths(const OutputSpec& o) {
   return paths;
 }
 
-void check_output_formats(const OutputSpec& o) {
+void check_output_formats(const OutputSpec& o, bool animation) {
   struct Rule {
     const std::filesystem::path* path;
     const char* what;
-    std::initializer_list<std::string_view> extensions;
+    std::vector<std::string_view> extensions;
   };
-  const Rule rules[] = {{&o.color, "the colour image as PNG (.png)", {".png"}},
+  const Rule rules[] = {animation ? Rule{&o.color, "an animation as a GIF (.gif)", {".gif"}}
+                                  : Rule{&o.color, "the colour image as PNG (.png)", {".png"}},
                         {&o.depth, "depth as .npy or .exr", {".npy", ".exr"}},
                         {&o.normal, "normals as .npy or .exr", {".npy", ".exr"}},
                         {&o.ids, "ids as .npy", {".npy"}},
@@ -238,14 +238,21 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
   return frame;
 }
 
+// A contact sheet or turntable is a colour output alone, seen through cameras of its own.
+void check_colour_only(const RenderJob& job, const char* what, const char* flag) {
+  const OutputSpec& o = job.outputs;
+  if (!o.depth.empty() || !o.normal.empty() || !o.ids.empty() || !o.mask.empty() || !o.camera.empty())
+    throw std::invalid_argument(std::string(flag) + ": " + what +
+                                " is a colour output alone; it has no depth, normal, ids, mask or camera output");
+  if (job.camera.file_camera)
+    throw std::invalid_argument(std::string(flag) + ": " + what + " places its own cameras, not the file's");
+  if (o.color.empty()) throw std::invalid_argument(std::string(flag) + ": " + what + " needs a colour output to write");
+}
+
 // The contact sheet: each view drawn into a cell framebuffer, copied into its place in the grid and labelled.
 void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
   const OutputSpec& o = job.outputs;
-  if (!o.depth.empty() || !o.normal.empty() || !o.ids.empty() || !o.mask.empty() || !o.camera.empty())
-    throw std::invalid_argument(
-        "views: a contact sheet is one colour image; it has no depth, normal, ids, mask or "
-        "camera output");
-  if (job.camera.file_camera) throw std::invalid_argument("views: each view places its own camera, not the file's");
+  check_colour_only(job, "a contact sheet", "views");
   const int n = static_cast<int>(job.views.size());
   const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   const int rows = (n + columns - 1) / columns;
@@ -253,7 +260,6 @@ void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timin
     throw std::invalid_argument("views: a sheet of " + std::to_string(columns) + "x" + std::to_string(rows) +
                                 " views of " + std::to_string(job.width) + "x" + std::to_string(job.height) +
                                 " is over " + std::to_string(kMaxDimension) + " pixels a side");
-  if (o.color.empty()) throw std::invalid_argument("views: a contact sheet needs a colour output to write");
   JobFrame frame = prepare_job(job, timings);  // the model is prepared once, as for any render; each view reuses it
   Stopwatch clock;
   const Framing framing = framing_of(*frame.scene.instances()[0].mesh, job.model.string());
@@ -289,6 +295,40 @@ void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timin
   if (timings) timings->write = clock.lap();
 }
 
+// The turntable: the camera turned round the up axis frame by frame, the frames encoded as one looping GIF.
+void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
+  check_colour_only(job, "a turntable", "turntable");
+  if (job.turntable > kMaxTurntableFrames)
+    throw std::invalid_argument("turntable: at most " + std::to_string(kMaxTurntableFrames) + " frames");
+  const std::uint64_t pixels = static_cast<std::uint64_t>(job.width) * job.height * job.turntable;
+  if (pixels > (std::uint64_t{1} << 30))
+    throw std::invalid_argument("turntable: " + std::to_string(job.turntable) + " frames of " +
+                                std::to_string(job.width) + "x" + std::to_string(job.height) +
+                                " are over 2^30 pixels; use fewer frames or a smaller resolution");
+  JobFrame frame = prepare_job(job, timings);
+  Stopwatch clock;
+  const Framing framing = framing_of(*frame.scene.instances()[0].mesh, job.model.string());
+  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
+  Framebuffer target(job.width, job.height);
+  std::vector<std::vector<std::uint8_t>> frames;
+  for (int k = 0; k < job.turntable; ++k) {
+    CameraSpec camera = job.camera;
+    camera.azimuth_degrees += 360.0f * static_cast<float>(k) / static_cast<float>(job.turntable);
+    const View view = make_view(camera, framing, aspect);
+    const SceneOptions options =
+        scene_options(job.look, view.view_from_world, Shading::automatic, glm::vec3(frame.clear));
+    renderer.clear(target, frame.clear, 1.0f);
+    frame.scene.render(renderer, target, view, options);
+    renderer.finish(target);
+    frames.push_back(target.rgba8());
+  }
+  if (timings) timings->draw = clock.lap();
+  // A whole turn in about 3 s, at no more than 50 frames a second (GIF delays are whole centiseconds).
+  const int delay = std::max(2, static_cast<int>(std::lround(300.0 / job.turntable)));
+  write_gif(job.outputs.color, job.width, job.height, frames, delay);
+  if (timings) timings->write = clock.lap();
+}
+
 }  // namespace
 
 void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
@@ -297,8 +337,11 @@ void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
     for (std::size_t k = i + 1; k < paths.size(); ++k)
       if (paths[i].lexically_normal() == paths[k].lexically_normal())
         throw std::invalid_argument("outputs: " + paths[k].string() + " is named twice");
-  check_output_formats(job.outputs);
+  check_output_formats(job.outputs, job.turntable > 0);
+  if (!job.views.empty() && job.turntable > 0)
+    throw std::invalid_argument("views: a contact sheet is one image, not a turntable");
   if (!job.views.empty()) return render_sheet(job, renderer, timings);
+  if (job.turntable > 0) return render_turntable(job, renderer, timings);
   JobFrame frame = prepare_job(job, timings);
   Framebuffer target(job.width, job.height);
   draw_and_write(renderer, target, frame.scene, frame.view, frame.options, frame.clear, job.outputs, timings);
