@@ -84,7 +84,11 @@ for n in range(200): print(sys.argv[1])' "$models/OBJ/WusonOBJ.obj" >many.txt
 mkdir -p stopped whole
 (cd stopped && exec "$facet" batch ../many.txt --output 'out/{n}.png' --quiet 2>err.log) &
 pid=$!
-sleep 1
+# Stop it once it has made its first output (a fixed sleep is too short on a loaded machine under the sanitizers).
+for _ in $(seq 600); do
+  compgen -G "stopped/out/*.png" >/dev/null && break
+  sleep 0.1
+done
 kill -TERM "$pid"
 wait "$pid"
 stopped_status=$?
