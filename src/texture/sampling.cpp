@@ -29,6 +29,23 @@ inline int wrap_index(int i, int n, Wrap wrap) {
   return 0;
 }
 
+// The four texels of a level's bilinear footprint around uv, wrapped, and their weights (split_floor's).
+struct Footprint {
+  std::uint32_t t00, t10, t01, t11;  // bottom-left, bottom-right, top-left, top-right
+  float alpha, beta;
+};
+
+// Takes the level by deduced type: Texture::Level is private, and only its members call this.
+template <class Level>
+Footprint bilinear_footprint(const Level& l, const std::uint32_t* texels, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) {
+  const detail::Split p = detail::split_floor(uv.x * l.fwidth - 0.5f, uv.y * l.fheight - 0.5f);
+  const int i0 = wrap_index(p.i, l.width, wrap_u), i1 = wrap_index(p.i + 1, l.width, wrap_u);
+  const int j0 = wrap_index(p.j, l.height, wrap_v), j1 = wrap_index(p.j + 1, l.height, wrap_v);
+  const std::uint32_t* row0 = texels + l.offset + static_cast<std::size_t>(j0) * l.stride;
+  const std::uint32_t* row1 = texels + l.offset + static_cast<std::size_t>(j1) * l.stride;
+  return {row0[i0], row0[i1], row1[i0], row1[i1], p.alpha, p.beta};
+}
+
 }  // namespace
 
 glm::vec4 Texture::sample_level0(glm::vec2 uv, const Sampler& sampler) const {
@@ -46,23 +63,13 @@ glm::vec4 Texture::sample_nearest(int level, glm::vec2 uv, Wrap wrap_u, Wrap wra
 
 // The same arithmetic as bilinear_repeat_pow2 (BENCHMARK.md section 7), with general wrapping.
 glm::vec4 Texture::sample_bilinear(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const {
-  const Level& l = levels_[static_cast<std::size_t>(level)];
-  const detail::Split p = detail::split_floor(uv.x * l.fwidth - 0.5f, uv.y * l.fheight - 0.5f);
-  const int i0 = wrap_index(p.i, l.width, wrap_u), i1 = wrap_index(p.i + 1, l.width, wrap_u);
-  const int j0 = wrap_index(p.j, l.height, wrap_v), j1 = wrap_index(p.j + 1, l.height, wrap_v);
-  const std::uint32_t* row0 = texels_.data() + l.offset + static_cast<std::size_t>(j0) * l.stride;
-  const std::uint32_t* row1 = texels_.data() + l.offset + static_cast<std::size_t>(j1) * l.stride;
-  const std::uint64_t bottom = row0[i0] | std::uint64_t{row0[i1]} << 32, top = row1[i0] | std::uint64_t{row1[i1]} << 32;
-  return srgb_ ? detail::blend_srgb(bottom, top, p.alpha, p.beta) : detail::blend(bottom, top, p.alpha, p.beta);
+  const Footprint f = bilinear_footprint(levels_[static_cast<std::size_t>(level)], texels_.data(), uv, wrap_u, wrap_v);
+  const std::uint64_t bottom = f.t00 | std::uint64_t{f.t10} << 32, top = f.t01 | std::uint64_t{f.t11} << 32;
+  return srgb_ ? detail::blend_srgb(bottom, top, f.alpha, f.beta) : detail::blend(bottom, top, f.alpha, f.beta);
 }
 
 glm::vec4 Texture::sample_bilinear_linear(int level, glm::vec2 uv, Wrap wrap_u, Wrap wrap_v) const {
-  const Level& l = levels_[static_cast<std::size_t>(level)];
-  const detail::Split p = detail::split_floor(uv.x * l.fwidth - 0.5f, uv.y * l.fheight - 0.5f);
-  const int i0 = wrap_index(p.i, l.width, wrap_u), i1 = wrap_index(p.i + 1, l.width, wrap_u);
-  const int j0 = wrap_index(p.j, l.height, wrap_v), j1 = wrap_index(p.j + 1, l.height, wrap_v);
-  const std::uint32_t* row0 = texels_.data() + l.offset + static_cast<std::size_t>(j0) * l.stride;
-  const std::uint32_t* row1 = texels_.data() + l.offset + static_cast<std::size_t>(j1) * l.stride;
+  const Footprint f = bilinear_footprint(levels_[static_cast<std::size_t>(level)], texels_.data(), uv, wrap_u, wrap_v);
   const float* decode = detail::srgb_decode_table();
   const auto value = [&](std::uint32_t texel) {
     const glm::vec4 v = detail::unpack_bytes(texel) / 255.0f;
@@ -70,9 +77,9 @@ glm::vec4 Texture::sample_bilinear_linear(int level, glm::vec2 uv, Wrap wrap_u, 
     const auto byte = [&](int c) { return decode[(texel >> (8 * c)) & 0xffu]; };
     return glm::vec4(byte(0), byte(1), byte(2), v.a);
   };
-  const glm::vec4 bottom = glm::mix(value(row0[i0]), value(row0[i1]), p.alpha);
-  const glm::vec4 top = glm::mix(value(row1[i0]), value(row1[i1]), p.alpha);
-  return glm::mix(bottom, top, p.beta);
+  const glm::vec4 bottom = glm::mix(value(f.t00), value(f.t10), f.alpha);
+  const glm::vec4 top = glm::mix(value(f.t01), value(f.t11), f.alpha);
+  return glm::mix(bottom, top, f.beta);
 }
 
 glm::vec4 Texture::sample(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, const Sampler& sampler) const {
