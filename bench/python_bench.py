@@ -18,7 +18,7 @@ import numpy as np
 
 import facet
 
-WIDTH, HEIGHT, FRAMES, THREADS = 640, 480, 40, 2
+WIDTH, HEIGHT, FRAMES, THREADS = 640, 480, 200, 2
 
 
 def write_sphere(path, rings=160, segments=320):

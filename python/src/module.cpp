@@ -4,6 +4,7 @@
 #include <memory>
 #include <mutex>
 #include <optional>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -44,19 +45,29 @@ BufferRequest request_of(const std::vector<std::string>& names) {
   return r;
 }
 
-// The frame's buffers as numpy arrays, keyed by name; vectors are handed over, not copied (RGB drops alpha).
+// The colour of packed RGBA pixels as bytes, with alpha or without: what the colour array holds.
+std::vector<std::uint8_t> color_bytes(std::span<const std::uint32_t> pixels, bool rgba) {
+  const std::size_t channels = rgba ? 4 : 3;
+  std::vector<std::uint8_t> out(pixels.size() * channels);
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    for (std::size_t c = 0; c < channels; ++c) out[channels * i + c] = static_cast<std::uint8_t>(pixels[i] >> (8 * c));
+  return out;
+}
+
+// The frame's buffers as numpy arrays, keyed by name; vectors are handed over, not copied. b.color holds RGBA bytes,
+// or, when its size says so, the RGB bytes already.
 py::dict arrays_of(FrameBuffers&& b, const BufferRequest& request, bool rgba, std::vector<std::uint32_t>&& ids) {
   const py::ssize_t h = b.height, w = b.width;
   py::dict out;
   if (request.color) {
-    if (rgba) {
-      out["color"] = to_numpy(std::move(b.color), {h, w, 4});
-    } else {
-      std::vector<std::uint8_t> rgb(static_cast<std::size_t>(w * h * 3));
-      for (std::size_t i = 0, n = static_cast<std::size_t>(w * h); i < n; ++i)
+    const auto pixels = static_cast<std::size_t>(w * h);
+    if (!rgba && b.color.size() == 4 * pixels) {
+      std::vector<std::uint8_t> rgb(3 * pixels);
+      for (std::size_t i = 0; i < pixels; ++i)
         for (int c = 0; c < 3; ++c) rgb[3 * i + c] = b.color[4 * i + c];
-      out["color"] = to_numpy(std::move(rgb), {h, w, 3});
+      b.color = std::move(rgb);
     }
+    out["color"] = to_numpy(std::move(b.color), {h, w, rgba ? 4 : 3});
   }
   if (request.depth) out["depth"] = to_numpy(std::move(b.depth), {h, w});
   if (request.normal) {
@@ -106,7 +117,10 @@ class RendererCore {
       py::gil_scoped_release released;
       std::scoped_lock own(mutex_);
       std::shared_lock shared(scene.mutex);
-      frame = draw_buffers(renderer_, target_, scene.scene, view, options, clear, request);
+      BufferRequest drawn = request;
+      drawn.color = false;  // read below straight from the framebuffer, in the array's own layout
+      frame = draw_buffers(renderer_, target_, scene.scene, view, options, clear, drawn);
+      if (request.color) frame.color = color_bytes(target_.color(), rgba);
       // Python numbers instances by their nodes, not by the file's ids that draw_buffers gives.
       if (request.ids) ids = node_ids(scene, frame.surfaces);
     }
