@@ -1,10 +1,12 @@
 // demo_command.cpp - `facet demo`: the rotating cube and torus, the two cubes and the pentagon fan of the tutorials.
 #include "demo_command.hpp"
 
+#include <filesystem>
 #include <memory>
 #include <string>
 
 #include "facet/demo_scenes.hpp"
+#include "facet/image_io.hpp"
 #include "facet/output_template.hpp"
 #include "facet/render_job.hpp"
 #include "render_command.hpp"
@@ -22,7 +24,8 @@ CLI::App* add_demo_command(CLI::App& app, DemoArgs& args) {
   demo->add_option("--time", args.time, "Moment of the animation in seconds (1)")
       ->check(number_in(-1e6, 1e6))
       ->type_name("SECONDS");
-  demo->add_option("--frames", args.frames, "Write N frames 1/30 s apart; the output name needs {frame:04}")
+  demo->add_option("--frames", args.frames,
+                   "Write N frames 1/30 s apart: an animated GIF (NAME.gif) or PNG frames named with {frame:04}")
       ->check(number_in(1, 100000, true))
       ->type_name("N");
   add_look_options(*demo, args.look);
@@ -31,8 +34,11 @@ CLI::App* add_demo_command(CLI::App& app, DemoArgs& args) {
 
 int run_demo(const DemoArgs& args) {
   const glm::ivec2 size = parse_resolution(args.output.resolution, "--resolution");
-  if (!template_has(args.output.output, "frame") && args.frames > 1)
-    throw UsageError("--output: --frames needs {frame} or {frame:04} in the file name");
+  const bool gif = std::filesystem::path(args.output.output).extension() == ".gif";
+  if (!gif && !template_has(args.output.output, "frame") && args.frames > 1)
+    throw UsageError("--output: --frames needs a .gif name, or {frame} or {frame:04} in the file name");
+  if (gif && !args.output.output_depth.empty()) throw UsageError("--output-depth: an animated GIF has no depth output");
+  check_output_formats(OutputSpec{.color = args.output.output}, gif);
   if (!args.output.output_depth.empty() && !template_has(args.output.output_depth, "frame") && args.frames > 1)
     throw UsageError("--output-depth: --frames needs {frame} or {frame:04} in the file name");
 
@@ -48,17 +54,24 @@ int run_demo(const DemoArgs& args) {
   const glm::vec4 clear = clear_color(look, demo.background);
   Renderer renderer(args.look.threads);
   Framebuffer target(size.x, size.y);
+  std::vector<std::vector<std::uint8_t>> frames;  // a GIF's, written together at the end
   for (int i = 0; i < args.frames; ++i) {
     DemoFrame frame = demo_frame(demo, args.time + i / 30.0, aspect);
     Scene scene;
     for (Instance& instance : frame.instances) scene.add(std::move(instance));
     const SceneOptions options = scene_options(look, frame.view.view_from_world, demo.shading, glm::vec3(clear));
+    if (gif) {
+      FrameBuffers buffers = draw_buffers(renderer, target, scene, frame.view, options, clear, BufferRequest{});
+      frames.push_back(std::move(buffers.color));
+      continue;
+    }
     const TemplateValues values{.frame = i};
     const std::string depth_path =
         args.output.output_depth.empty() ? std::string() : expand_template(args.output.output_depth, values);
     draw_and_write(renderer, target, scene, frame.view, options, clear,
                    {.color = expand_template(args.output.output, values), .depth = depth_path});
   }
+  if (gif) write_gif(args.output.output, size.x, size.y, frames, 3);  // 1/30 s a frame, as the frames are spaced
   return 0;
 }
 

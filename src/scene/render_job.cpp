@@ -17,6 +17,7 @@
 #include "facet/error.hpp"
 #include "facet/image_io.hpp"
 #include "facet/model_io.hpp"
+#include "facet/output_template.hpp"
 #include "facet/text.hpp"
 #include "io/output_file.hpp"
 
@@ -90,13 +91,17 @@ void check_output_formats(const OutputSpec& o, bool animation) {
     const char* what;
     std::vector<std::string_view> extensions;
   };
-  const Rule rules[] = {animation ? Rule{&o.color, "an animation as a GIF (.gif)", {".gif"}}
-                                  : Rule{&o.color, "the colour image as PNG (.png)", {".png"}},
-                        {&o.depth, "depth as .npy or .exr", {".npy", ".exr"}},
-                        {&o.normal, "normals as .npy or .exr", {".npy", ".exr"}},
-                        {&o.ids, "ids as .npy", {".npy"}},
-                        {&o.mask, "the mask as PNG (.png)", {".png"}},
-                        {&o.camera, "the camera as JSON (.json)", {".json"}}};
+  // An animation is one GIF, or PNG frames when its name numbers them ({frame}).
+  const bool sequence = animation && template_has(o.color.string(), "frame");
+  const Rule rules[] = {
+      animation && !sequence
+          ? Rule{&o.color, "an animation as a GIF (.gif), or as PNG frames named with {frame}", {".gif"}}
+          : Rule{&o.color, "the colour image as PNG (.png)", {".png"}},
+      {&o.depth, "depth as .npy or .exr", {".npy", ".exr"}},
+      {&o.normal, "normals as .npy or .exr", {".npy", ".exr"}},
+      {&o.ids, "ids as .npy", {".npy"}},
+      {&o.mask, "the mask as PNG (.png)", {".png"}},
+      {&o.camera, "the camera as JSON (.json)", {".json"}}};
   for (const Rule& rule : rules) {
     std::string extension = rule.path->extension().string();
     if (extension.empty()) continue;
@@ -323,9 +328,16 @@ void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* t
     frames.push_back(target.rgba8());
   }
   if (timings) timings->draw = clock.lap();
-  // A whole turn in about 3 s, at no more than 50 frames a second (GIF delays are whole centiseconds).
-  const int delay = std::max(2, static_cast<int>(std::lround(300.0 / job.turntable)));
-  write_gif(job.outputs.color, job.width, job.height, frames, delay);
+  if (template_has(job.outputs.color.string(), "frame")) {
+    // PNG frames, each complete before the next: a failure leaves the ones already written, which a rerun replaces.
+    for (int k = 0; k < job.turntable; ++k)
+      write_png(expand_template(job.outputs.color.string(), TemplateValues{.frame = k}), job.width, job.height,
+                frames[static_cast<std::size_t>(k)], frame.clear.a < 1.0f);
+  } else {
+    // A whole turn in about 3 s, at no more than 50 frames a second (GIF delays are whole centiseconds).
+    const int delay = std::max(2, static_cast<int>(std::lround(300.0 / job.turntable)));
+    write_gif(job.outputs.color, job.width, job.height, frames, delay);
+  }
   if (timings) timings->write = clock.lap();
 }
 

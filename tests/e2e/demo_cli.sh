@@ -117,5 +117,12 @@ rm -f "$scratch/frames.png"
 status=$?
 if [ "$status" -eq 2 ] && [ ! -e "$scratch/frames.png" ]; then ok "frames without a pattern: exit 2, nothing written"
 else bad frames_without_pattern "exit $status$([ -e "$scratch/frames.png" ] && echo ', wrote frames.png')"; fi
+# An animation written as one GIF: 30 frames 1/30 s apart, looping, one palette.
+if "$facet" demo torus --frames 30 --resolution 80,80 --output "$scratch/torus.gif" 2>"$scratch/gif.log" &&
+  msg=$(python3 "$e2e_lib/gif.py" "$scratch/torus.gif" 80 80 30 3 2>&1); then
+  ok "demo as a GIF: $msg"
+else
+  bad "demo as a GIF" "$(head -n 2 "$scratch/gif.log") ${msg:-}"
+fi
 
 finish

@@ -290,45 +290,22 @@ PY
 else
   bad "contact sheet" "$(cat "$scratch/sheet.err")"
 fi
-# A turntable: an animated GIF of 36 frames that loops, with one palette of many colours.
+# A turntable: an animated GIF of 36 frames that loops, with one palette of many colours; or numbered PNG frames.
 if "$facet" render "$engine" --turntable 36 --resolution 96,72 --output "$scratch/turn.gif" 2>"$scratch/turn.err"; then
-  if msg=$(python3 - "$scratch/turn.gif" 2>&1 <<'PY'
-import sys
-data = open(sys.argv[1], 'rb').read()
-assert data[:6] == b'GIF89a', data[:6]
-w, h, flags = int.from_bytes(data[6:8], 'little'), int.from_bytes(data[8:10], 'little'), data[10]
-assert (w, h) == (96, 72), (w, h)
-assert flags & 0x80, 'no global palette'
-colours = 2 ** ((flags & 7) + 1)
-palette = {data[13 + 3 * i:16 + 3 * i] for i in range(colours)}
-assert len(palette) > 16, f'{len(palette)} distinct colours'
-pos, frames, loops, delays = 13 + 3 * colours, 0, False, set()
-def skip_blocks(pos):
-    while data[pos]:
-        pos += data[pos] + 1
-    return pos + 1
-while data[pos] != 0x3B:
-    if data[pos] == 0x21:
-        label = data[pos + 1]
-        if label == 0xFF and data[pos + 3:pos + 14] == b'NETSCAPE2.0':
-            loops = True
-        if label == 0xF9:
-            delays.add(int.from_bytes(data[pos + 4:pos + 6], 'little'))
-        pos = skip_blocks(pos + 2)
-    elif data[pos] == 0x2C:
-        frames += 1
-        local = data[pos + 9]
-        pos += 10 + (3 * 2 ** ((local & 7) + 1) if local & 0x80 else 0)
-        pos = skip_blocks(pos + 1)
-    else:
-        raise AssertionError(f'unexpected block {data[pos]:#x} at {pos}')
-assert frames == 36, f'{frames} frames'
-assert loops, 'no NETSCAPE2.0 loop'
-assert delays == {8}, delays  # 300 cs / 36 frames, rounded
-PY
-  ); then ok "turntable GIF: 36 frames, looping, one palette"; else bad "turntable GIF" "$msg"; fi
+  if msg=$(python3 "$e2e_lib/gif.py" "$scratch/turn.gif" 96 72 36 8 2>&1); then  # 300 cs / 36 frames, rounded
+    ok "turntable GIF: $msg"
+  else
+    bad "turntable GIF" "$msg"
+  fi
 else
   bad "turntable GIF" "$(cat "$scratch/turn.err")"
+fi
+if "$facet" render "$engine" --turntable 4 --resolution 96,72 --output "$scratch/turn_{frame:02}.png" 2>/dev/null &&
+  [ "$(find "$scratch" -name 'turn_0[0-3].png' | wc -l)" = 4 ] && ! cmp -s "$scratch/turn_00.png" "$scratch/turn_01.png"
+then
+  ok "turntable PNG frames: turn_00.png to turn_03.png, each another view"
+else
+  bad "turntable PNG frames" "$(ls "$scratch" | grep turn_ | tr '\n' ' ')"
 fi
 for args in "--views front,bottom" "--views front --output-depth $scratch/d.npy" "--views front --camera-index 0" \
   "--turntable 8 --output-mask $scratch/m.png" "--turntable 4 --views front" "--turntable 0"; do
