@@ -43,3 +43,6 @@ build/bench/facet_image_bench --benchmark_repetitions=3 --benchmark_report_aggre
 
 echo "## Python against the C++ library"
 PYTHONPATH=build/python /usr/bin/python3 bench/python_bench.py build 5
+
+echo "## stock shaders against the benchmark shader, sphere:224"
+build/bench/facet_shader_rate_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
