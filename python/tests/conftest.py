@@ -40,6 +40,6 @@ def rss_bytes():
         return int(f.read().split()[1]) * 4096
 
 
-@pytest.fixture(scope="session")
+@pytest.fixture(scope="module")
 def sphere():
     return uv_sphere()
