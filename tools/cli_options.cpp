@@ -147,19 +147,10 @@ void add_camera_options(CLI::App& app, CameraArgs& args) {
   app.add_option("--far", args.far, "Far clipping distance (default: hug the model)")
       ->check(number_in(-1e30, 1e30))
       ->type_name("F");
+  std::vector<std::pair<std::string, Projection>> projections;
+  for (const ProjectionName& n : projection_names()) projections.emplace_back(n.name, n.projection);
   add_enum_option<Projection>(
-      app, "--projection",
-      {{"perspective", Projection::perspective},
-       {"orthographic", Projection::orthographic},
-       {"frustum", Projection::frustum},
-       {"oblique", Projection::oblique},
-       {"isometric", Projection::isometric},
-       {"dimetric", Projection::dimetric},
-       {"trimetric", Projection::trimetric},
-       {"front", Projection::front},
-       {"top", Projection::top},
-       {"side", Projection::side}},
-      [&args](Projection k) { args.projection = k; }, "Projection");
+      app, "--projection", projections, [&args](Projection k) { args.projection = k; }, "Projection");
   add_floats_option(app, "--frustum", args.frustum, 4, "Frustum near-plane window L,R,B,T (glFrustum)");
   add_floats_option(app, "--ortho", args.ortho, 4, "Orthographic window L,R,B,T (default: fit the model)");
   app.add_option("--oblique-angle", args.oblique_angle, "Oblique receding direction, degrees from +X (45)")

@@ -166,22 +166,9 @@ py::dict render_file(const std::string& model, int width, int height, int thread
   job.camera.azimuth_degrees = azimuth;
   job.camera.elevation_degrees = elevation;
   job.camera.file_camera = camera_index;
-  static const std::pair<const char*, Projection> projections[] = {{"perspective", Projection::perspective},
-                                                                   {"orthographic", Projection::orthographic},
-                                                                   {"isometric", Projection::isometric},
-                                                                   {"dimetric", Projection::dimetric},
-                                                                   {"trimetric", Projection::trimetric},
-                                                                   {"oblique", Projection::oblique},
-                                                                   {"front", Projection::front},
-                                                                   {"top", Projection::top},
-                                                                   {"side", Projection::side}};
-  bool known = false;
-  for (const auto& [name, p] : projections)
-    if (projection == name) {
-      job.camera.projection = p;
-      known = true;
-    }
-  if (!known) value_error("projection: unknown projection '" + projection + "'");
+  const std::optional<Projection> kind = parse_projection(projection);
+  if (!kind) value_error("projection: unknown projection '" + projection + "'");
+  job.camera.projection = *kind;
   const std::optional<UpAxis> axis = parse_up_axis(up);
   if (!axis) value_error("up: expected +X, -X, +Y, -Y, +Z or -Z, got '" + up + "'");
   job.camera.up = *axis;
