@@ -25,7 +25,7 @@ CLI::App* add_demo_command(CLI::App& app, DemoArgs& args) {
       ->check(number_in(-1e6, 1e6))
       ->type_name("SECONDS");
   demo->add_option("--frames", args.frames,
-                   "Write N frames 1/30 s apart: an animated GIF (NAME.gif) or PNG frames named with {frame:04}")
+                   "Write N frames 1/30 s apart: an animation (NAME.gif, .mp4, .webm) or PNG frames named with {frame:04}")
       ->check(number_in(1, 100000, true))
       ->type_name("N");
   add_look_options(*demo, args.look);
@@ -34,11 +34,12 @@ CLI::App* add_demo_command(CLI::App& app, DemoArgs& args) {
 
 int run_demo(const DemoArgs& args) {
   const glm::ivec2 size = parse_resolution(args.output.resolution, "--resolution");
-  const bool gif = std::filesystem::path(args.output.output).extension() == ".gif";
-  if (!gif && !template_has(args.output.output, "frame") && args.frames > 1)
-    throw UsageError("--output: --frames needs a .gif name, or {frame} or {frame:04} in the file name");
-  if (gif && !args.output.output_depth.empty()) throw UsageError("--output-depth: an animated GIF has no depth output");
-  check_output_formats(OutputSpec{.color = args.output.output}, gif);
+  const bool animation = is_animation_path(args.output.output);
+  if (!animation && !template_has(args.output.output, "frame") && args.frames > 1)
+    throw UsageError("--output: --frames needs a .gif, .mp4 or .webm name, or {frame} or {frame:04} in the file name");
+  if (animation && !args.output.output_depth.empty())
+    throw UsageError("--output-depth: an animation has no depth output");
+  check_output_formats(OutputSpec{.color = args.output.output}, animation);
   if (!args.output.output_depth.empty() && !template_has(args.output.output_depth, "frame") && args.frames > 1)
     throw UsageError("--output-depth: --frames needs {frame} or {frame:04} in the file name");
 
@@ -54,13 +55,13 @@ int run_demo(const DemoArgs& args) {
   const glm::vec4 clear = clear_color(look, demo.background);
   Renderer renderer(args.look.threads);
   Framebuffer target(size.x, size.y);
-  std::vector<std::vector<std::uint8_t>> frames;  // a GIF's, written together at the end
+  std::vector<std::vector<std::uint8_t>> frames;  // an animation's, encoded together at the end
   for (int i = 0; i < args.frames; ++i) {
     DemoFrame frame = demo_frame(demo, args.time + i / 30.0, aspect);
     Scene scene;
     for (Instance& instance : frame.instances) scene.add(std::move(instance));
     const SceneOptions options = scene_options(look, frame.view.view_from_world, demo.shading, glm::vec3(clear));
-    if (gif) {
+    if (animation) {
       FrameBuffers buffers = draw_buffers(renderer, target, scene, frame.view, options, clear, BufferRequest{});
       frames.push_back(std::move(buffers.color));
       continue;
@@ -71,7 +72,7 @@ int run_demo(const DemoArgs& args) {
     draw_and_write(renderer, target, scene, frame.view, options, clear,
                    {.color = expand_template(args.output.output, values), .depth = depth_path});
   }
-  if (gif) write_gif(args.output.output, size.x, size.y, frames, 3);  // 1/30 s a frame, as the frames are spaced
+  if (animation) write_animation(args.output.output, size.x, size.y, frames, 1.0 / 30.0);  // as the frames are spaced
   return 0;
 }
 

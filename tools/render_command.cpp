@@ -52,7 +52,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
       ->type_name("VIEW,...");
   render
       ->add_option("--turntable", args.turntable,
-                   "Render N frames round the model's up axis as an animated GIF (--output NAME.gif), 3 s a turn")
+                   "Render N frames round the model's up axis, 3 s a turn: --output NAME.gif, .mp4, .webm or {frame} PNGs")
       ->check(number_in(1, kMaxTurntableFrames, true))
       ->type_name("N");
   render->add_flag("--timings", args.timings, "Print the time of each stage (load, prepare, draw, write) on stderr");

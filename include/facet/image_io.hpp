@@ -31,6 +31,16 @@ void write_text(const std::filesystem::path& path, const std::string& text);
 void write_gif(const std::filesystem::path& path, int width, int height,
                std::span<const std::vector<std::uint8_t>> frames, int delay_centiseconds);
 
+// True when path names an animation container facet writes: .gif, .mp4 or .webm, in any case.
+bool is_animation_path(const std::filesystem::path& path);
+
+// An animation of `frames` (as write_gif's), frame_seconds apart, in the container the path's extension names: an
+// animated GIF (frame times rounded to whole centiseconds, at least 2), H.264 in MP4 or VP9 in WebM (4:2:0, so an
+// odd width or height gains a repeated edge column or row). Written like write_png. Throws std::invalid_argument
+// for another extension.
+void write_animation(const std::filesystem::path& path, int width, int height,
+                     std::span<const std::vector<std::uint8_t>> frames, double frame_seconds);
+
 // Reads a PNG (or any format load_texture accepts) as RGBA bytes, top row first. Throws InputError naming the file.
 std::vector<std::uint8_t> read_png(const std::filesystem::path& path, int& width, int& height);
 

@@ -49,9 +49,8 @@ std::vector<std::filesystem::path> output_paths(const OutputSpec& outputs);
 
 // Refuses, before anything renders, an output whose extension names a format facet does not write for it: the
 // colour image and the mask are PNG (.png), depth and normals NumPy (.npy) or OpenEXR (.exr), ids .npy and the
-// camera JSON (.json), in any case; an animation's colour output is an animated GIF (.gif), or PNG when its name
-// holds {frame}. A name with no
-// extension (such as /dev/null, or "-" for standard output) takes the output's first format. Throws
+// camera JSON (.json), in any case; an animation's colour output is .gif, .mp4 or .webm, or PNG when its name
+// holds {frame}. A name with no extension (such as /dev/null, or "-" for standard output) takes the output's first format. Throws
 // std::invalid_argument("<path>: ...") naming what is written there.
 void check_output_formats(const OutputSpec& outputs, bool animation = false);
 
@@ -74,8 +73,9 @@ struct RenderJob {
   // of ceil(sqrt(n)) columns, written as the colour output alone.
   std::vector<SheetView> views;
   // A turntable instead of one view: this many frames with the camera turned round the model's up axis by
-  // 360 / turntable degrees each, written as the colour output: an animated GIF looping forever (3 s a turn), or
-  // numbered PNG frames when its name holds {frame} (output_template.hpp).
+  // 360 / turntable degrees each, written as the colour output (3 s a turn, at most 50 frames a second): an
+  // animated GIF looping forever, H.264 in MP4 or VP9 in WebM, by the name's extension, or numbered PNG frames
+  // when its name holds {frame} (output_template.hpp).
   int turntable = 0;
 };
 

@@ -16,6 +16,7 @@
 
 #include "facet/error.hpp"
 #include "facet/model.hpp"
+#include "io/file_util.hpp"
 #include "io/loaders.hpp"
 
 namespace facet {
@@ -136,9 +137,7 @@ glm::mat4 matrix_of(const aiMatrix4x4& m) {
 }  // namespace
 
 Model load_with_assimp(const std::filesystem::path& path, std::string_view bytes, const std::string& source) {
-  std::string extension = path.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  if (extension == ".off") check_off_counts(bytes, source);
+  if (lower_extension(path) == ".off") check_off_counts(bytes, source);
   Assimp::Importer importer;
   // Lines and points are dropped by the sort; the node tree is walked below, as the glTF reader walks its nodes.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);

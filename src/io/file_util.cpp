@@ -1,6 +1,7 @@
 // file_util.cpp - whole-file reading for the image decoders (PNG reader and texture loader).
 #include "io/file_util.hpp"
 
+#include <cctype>
 #include <cerrno>
 #include <climits>
 #include <cstdio>
@@ -19,6 +20,12 @@ namespace {
 }  // namespace
 
 std::string errno_text(int err) { return std::generic_category().message(err); }
+
+std::string lower_extension(const std::filesystem::path& path) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  return extension;
+}
 
 std::vector<unsigned char> read_image_file(const std::filesystem::path& path) {
   std::error_code ec;

@@ -1,8 +1,9 @@
 // image_io.cpp - PNG (libdeflate), GIF, .npy and OpenEXR writers over write_output, and a PNG reader for tests.
 #include "facet/image_io.hpp"
 
+#include <algorithm>
 #include <bit>
-#include <cctype>
+#include <cmath>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
@@ -15,6 +16,7 @@
 #include "io/gif.hpp"
 #include "io/output_file.hpp"
 #include "io/png.hpp"
+#include "io/video.hpp"
 
 // stb_image's implementation lives in src/texture/texture.cpp; here only its declarations are needed.
 #include "io/stb.hpp"
@@ -59,6 +61,23 @@ void write_gif(const std::filesystem::path& path, int width, int height,
                std::span<const std::vector<std::uint8_t>> frames, int delay_centiseconds) {
   for (const std::vector<std::uint8_t>& frame : frames) check_size(width, height, frame.size(), 4, "GIF");
   write_output(path, encode_gif(width, height, frames, delay_centiseconds));
+}
+
+bool is_animation_path(const std::filesystem::path& path) {
+  const std::string extension = lower_extension(path);
+  return extension == ".gif" || extension == ".mp4" || extension == ".webm";
+}
+
+void write_animation(const std::filesystem::path& path, int width, int height,
+                     std::span<const std::vector<std::uint8_t>> frames, double frame_seconds) {
+  const std::string extension = lower_extension(path);
+  if (extension == ".gif")
+    return write_gif(path, width, height, frames, std::max(2, static_cast<int>(std::lround(frame_seconds * 100.0))));
+  if (extension != ".mp4" && extension != ".webm")
+    throw std::invalid_argument(path.string() + ": facet writes animations as .gif, .mp4 or .webm");
+  for (const std::vector<std::uint8_t>& frame : frames) check_size(width, height, frame.size(), 4, "video");
+  const VideoFormat format = extension == ".mp4" ? VideoFormat::mp4 : VideoFormat::webm;
+  write_output(path, encode_video(format, width, height, frames, frame_seconds));
 }
 
 void write_text(const std::filesystem::path& path, const std::string& text) {
@@ -113,9 +132,7 @@ void write_npy_words(const std::filesystem::path& path, const char* descr, int w
 }
 
 bool is_exr(const std::filesystem::path& path) {
-  std::string extension = path.extension().string();
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  return extension == ".exr";
+  return lower_extension(path) == ".exr";
 }
 
 }  // namespace

@@ -19,6 +19,7 @@
 #include "facet/model_io.hpp"
 #include "facet/output_template.hpp"
 #include "facet/text.hpp"
+#include "io/file_util.hpp"
 #include "io/output_file.hpp"
 
 namespace facet {
@@ -91,11 +92,12 @@ void check_output_formats(const OutputSpec& o, bool animation) {
     const char* what;
     std::vector<std::string_view> extensions;
   };
-  // An animation is one GIF, or PNG frames when its name numbers them ({frame}).
+  // An animation is one GIF or video, or PNG frames when its name numbers them ({frame}).
   const bool sequence = animation && template_has(o.color.string(), "frame");
   const Rule rules[] = {
       animation && !sequence
-          ? Rule{&o.color, "an animation as a GIF (.gif), or as PNG frames named with {frame}", {".gif"}}
+          ? Rule{&o.color, "an animation as .gif, .mp4 or .webm, or as PNG frames named with {frame}",
+                 {".gif", ".mp4", ".webm"}}
           : Rule{&o.color, "the colour image as PNG (.png)", {".png"}},
       {&o.depth, "depth as .npy or .exr", {".npy", ".exr"}},
       {&o.normal, "normals as .npy or .exr", {".npy", ".exr"}},
@@ -103,9 +105,8 @@ void check_output_formats(const OutputSpec& o, bool animation) {
       {&o.mask, "the mask as PNG (.png)", {".png"}},
       {&o.camera, "the camera as JSON (.json)", {".json"}}};
   for (const Rule& rule : rules) {
-    std::string extension = rule.path->extension().string();
+    const std::string extension = lower_extension(*rule.path);
     if (extension.empty()) continue;
-    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
     if (std::find(rule.extensions.begin(), rule.extensions.end(), extension) == rule.extensions.end())
       throw std::invalid_argument(rule.path->string() + ": facet writes " + rule.what + ", not " + extension);
   }
@@ -300,7 +301,7 @@ void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timin
   if (timings) timings->write = clock.lap();
 }
 
-// The turntable: the camera turned round the up axis frame by frame, the frames encoded as one looping GIF.
+// The turntable: the camera turned round the up axis frame by frame, the frames encoded as one GIF or video.
 void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
   check_colour_only(job, "a turntable", "turntable");
   if (job.turntable > kMaxTurntableFrames)
@@ -335,8 +336,7 @@ void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* t
                 frames[static_cast<std::size_t>(k)], frame.clear.a < 1.0f);
   } else {
     // A whole turn in about 3 s, at no more than 50 frames a second (GIF delays are whole centiseconds).
-    const int delay = std::max(2, static_cast<int>(std::lround(300.0 / job.turntable)));
-    write_gif(job.outputs.color, job.width, job.height, frames, delay);
+    write_animation(job.outputs.color, job.width, job.height, frames, std::max(0.02, 3.0 / job.turntable));
   }
   if (timings) timings->write = clock.lap();
 }

@@ -124,5 +124,13 @@ if "$facet" demo torus --frames 30 --resolution 80,80 --output "$scratch/torus.g
 else
   bad "demo as a GIF" "$(head -n 2 "$scratch/gif.log") ${msg:-}"
 fi
+# And as a video: 30 frames at 30 a second, the first one the demo's still at the same moment.
+if "$facet" demo torus --resolution 80,80 --output "$scratch/torus_still.png" 2>"$scratch/video.log" &&
+  "$facet" demo torus --frames 30 --resolution 80,80 --output "$scratch/torus.webm" 2>>"$scratch/video.log" &&
+  msg=$(python3 "$e2e_lib/video.py" "$scratch/torus.webm" vp9 80 80 30 30/1 "$scratch/torus_still.png" 2>&1); then
+  ok "demo as WebM: $msg"
+else
+  bad "demo as WebM" "$(head -n 2 "$scratch/video.log") ${msg:-}"
+fi
 
 finish

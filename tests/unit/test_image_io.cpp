@@ -186,5 +186,30 @@ TEST(ImageIoNpy, LargeShapeAndErrors) {
   EXPECT_EQ(names_in(dir), std::vector<std::string>{"big.npy"});
 }
 
+// Animations: the container follows the extension, the bytes depend only on the frames, and bad input is refused
+// before anything is written.
+TEST(ImageIoAnimation, ContainersFollowTheExtension) {
+  const std::filesystem::path dir = scratch_dir();
+  std::vector<std::vector<std::uint8_t>> frames;
+  for (unsigned k = 0; k < 5; ++k) frames.push_back(random_bytes(33 * 17 * 4, k));
+  write_animation(dir / "a.mp4", 33, 17, frames, 0.1);
+  write_animation(dir / "b.MP4", 33, 17, frames, 0.1);
+  write_animation(dir / "c.webm", 33, 17, frames, 0.1);
+  write_animation(dir / "d.gif", 33, 17, frames, 0.1);
+  const std::string mp4 = read_bytes(dir / "a.mp4"), webm = read_bytes(dir / "c.webm"), gif = read_bytes(dir / "d.gif");
+  ASSERT_GT(mp4.size(), 16u);
+  EXPECT_EQ(mp4.substr(4, 4), "ftyp");                 // an ISO base media file
+  EXPECT_EQ(webm.substr(0, 4), "\x1a\x45\xdf\xa3");     // EBML, as Matroska and WebM begin
+  EXPECT_EQ(gif.substr(0, 6), "GIF89a");
+  EXPECT_EQ(read_bytes(dir / "b.MP4"), mp4);           // the same frames, the same bytes
+  EXPECT_TRUE(is_animation_path("x.WebM"));
+  EXPECT_FALSE(is_animation_path("x.png"));
+
+  EXPECT_THROW(write_animation(dir / "e.mkv", 33, 17, frames, 0.1), std::invalid_argument);
+  EXPECT_THROW(write_animation(dir / "f.mp4", 32, 17, frames, 0.1), std::invalid_argument);  // wrong frame size
+  EXPECT_THROW(write_animation(dir / "g.webm", 33, 17, {}, 0.1), std::invalid_argument);
+  EXPECT_EQ(names_in(dir), (std::vector<std::string>{"a.mp4", "b.MP4", "c.webm", "d.gif"}));
+}
+
 }  // namespace
 }  // namespace facet
