@@ -247,6 +247,11 @@ int run_batch(const BatchArgs& args) {
     report.open(args.report, std::ios::trunc);
     if (!report) throw std::runtime_error(args.report + ": cannot create file");
   }
+  // A run killed outright (SIGKILL, power loss) may have left a temporary file beside an output; this run
+  // renders that output again, so the leftover goes.
+  std::vector<OutputSpec> my_outputs;
+  for (const std::size_t k : mine) my_outputs.push_back(jobs[k].job.outputs);
+  remove_stale_temporaries(my_outputs);
   const bool terminal = ::isatty(2) != 0;
   Progress progress(mine.size(), args.quiet);
   std::mutex lock;  // guards the report, the progress and the counts

@@ -63,6 +63,11 @@ struct OutputClash {
 // named twice within one entry is render()'s to refuse.
 std::optional<OutputClash> find_output_clash(std::span<const OutputSpec> outputs);
 
+// Removes the hidden temporary files (".NAME.PID.N.tmp") that a writer killed outright (SIGKILL, power loss) left
+// beside these outputs, when process PID no longer runs on this machine; returns how many. A rerun calls this
+// before rendering again. Errors are ignored: the sweep only tidies.
+std::size_t remove_stale_temporaries(std::span<const OutputSpec> outputs);
+
 struct RenderJob {
   std::filesystem::path model;
   int width = 1024, height = 768;

@@ -3,11 +3,16 @@
 
 #include <atomic>
 #include <cerrno>
+#include <csignal>
+#include <map>
+#include <optional>
+#include <set>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <string_view>
 #include <system_error>
+#include <utility>
 
 #include <fcntl.h>
 #include <sys/stat.h>
@@ -127,6 +132,60 @@ OutputTarget write_output(const std::filesystem::path& path, std::span<const std
   if (target.kind == OutputTarget::Kind::stream) write_stream(target.path, bytes);
   else write_file_atomically(target.path, bytes);
   return target;
+}
+
+namespace {
+
+// What temporary_name() made this name from: the output's file name and the writer's PID, if name is
+// ".<output>.<pid>.<n>.tmp"; nothing otherwise. Output names may hold dots, so the fields are taken from the end.
+std::optional<std::pair<std::string, pid_t>> parse_temporary(std::string_view name) {
+  if (!name.starts_with('.') || !name.ends_with(".tmp")) return std::nullopt;
+  const std::size_t counter_dot = name.rfind('.', name.size() - 5);
+  if (counter_dot == std::string_view::npos || counter_dot < 2) return std::nullopt;
+  const std::size_t pid_dot = name.rfind('.', counter_dot - 1);
+  if (pid_dot == std::string_view::npos || pid_dot < 2) return std::nullopt;
+  const auto all_digits = [](std::string_view digits) {
+    return !digits.empty() && digits.size() <= 9 &&
+           digits.find_first_not_of("0123456789") == std::string_view::npos;
+  };
+  const std::string_view pid = name.substr(pid_dot + 1, counter_dot - pid_dot - 1);
+  if (!all_digits(pid) || !all_digits(name.substr(counter_dot + 1, name.size() - 4 - counter_dot - 1)))
+    return std::nullopt;
+  return std::pair{std::string(name.substr(1, pid_dot - 1)), static_cast<pid_t>(std::stol(std::string(pid)))};
+}
+
+bool process_running(pid_t pid) { return ::kill(pid, 0) == 0 || errno == EPERM; }
+
+}  // namespace
+
+std::size_t remove_stale_temporaries(std::span<const std::filesystem::path> outputs) {
+  std::map<std::filesystem::path, std::set<std::string>> names_by_folder;
+  for (const std::filesystem::path& path : outputs) {
+    try {
+      const OutputTarget target = output_target(path);
+      if (target.kind != OutputTarget::Kind::file) continue;
+      const std::filesystem::path folder = target.path.parent_path();
+      names_by_folder[folder.empty() ? "." : folder].insert(target.path.filename().string());
+    } catch (const std::exception&) {
+      // Not a place write_output could have written: nothing to tidy.
+    }
+  }
+  std::size_t removed = 0;
+  for (const auto& [folder, names] : names_by_folder) {
+    std::error_code ec;
+    for (auto it = std::filesystem::directory_iterator(folder, ec); !ec && it != std::filesystem::directory_iterator();
+         it.increment(ec)) {
+      const std::string name = it->path().filename().string();
+      std::error_code kind_error;
+      if (!name.starts_with('.') || !it->is_regular_file(kind_error)) continue;
+      const auto temporary = parse_temporary(name);
+      if (!temporary || !names.contains(temporary->first)) continue;
+      if (temporary->second <= 0 || process_running(temporary->second)) continue;
+      std::error_code ignored;
+      if (std::filesystem::remove(it->path(), ignored)) ++removed;
+    }
+  }
+  return removed;
 }
 
 void discard_output(const std::filesystem::path& path) {

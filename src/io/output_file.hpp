@@ -1,6 +1,7 @@
 // output_file.hpp - writing an output's bytes whole, without ever destroying what its name points at.
 #pragma once
 
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <span>
@@ -28,6 +29,12 @@ OutputTarget output_target(const std::filesystem::path& path);
 // old file (or none) and no temporary file. Throws std::runtime_error("<path>: <reason>") when the target cannot be
 // created, opened or written (a full disk or /dev/full included).
 OutputTarget write_output(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
+
+// Removes the temporary files that write_output left for these outputs when its process was killed outright
+// (SIGKILL, a crash, power loss) between creating and renaming one: hidden files named ".NAME.PID.N.tmp" next to an
+// output NAME whose process PID is no longer running on this machine. Each folder is listed once. Returns how many
+// were removed; errors are ignored, as the sweep only tidies.
+std::size_t remove_stale_temporaries(std::span<const std::filesystem::path> outputs);
 
 // Removes what write_output(path, ...) created when it made a regular file, after a later output failed; never a
 // device, FIFO or stream. Errors are ignored: this runs while another error is being reported.

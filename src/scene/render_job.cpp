@@ -112,6 +112,13 @@ void check_output_formats(const OutputSpec& o, bool animation) {
   }
 }
 
+std::size_t remove_stale_temporaries(std::span<const OutputSpec> outputs) {
+  std::vector<std::filesystem::path> paths;
+  for (const OutputSpec& spec : outputs)
+    for (std::filesystem::path& path : output_paths(spec)) paths.push_back(std::move(path));
+  return remove_stale_temporaries(std::span<const std::filesystem::path>(paths));
+}
+
 std::optional<OutputClash> find_output_clash(std::span<const OutputSpec> outputs) {
   std::map<std::filesystem::path, std::size_t> writer;  // each path and the first entry that writes it
   for (std::size_t k = 0; k < outputs.size(); ++k)

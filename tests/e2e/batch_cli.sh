@@ -105,6 +105,31 @@ else
   bad "SIGTERM" "exit $stopped_status, $made made, $temporaries temporaries, $complete incomplete, rerun $resumed_status"
 fi
 
+# SIGKILL (as power loss) cannot be caught: whatever temporaries it leaves, the rerun removes those of its own
+# outputs whose writer is dead, keeps a live writer's and other files', and finishes with the uninterrupted bytes.
+mkdir -p killed/out
+(cd killed && exec "$facet" batch ../many.txt --output 'out/{n}.png' --quiet 2>err.log) &
+pid=$!
+for _ in $(seq 600); do
+  compgen -G "killed/out/*.png" >/dev/null && break
+  sleep 0.1
+done
+kill -KILL "$pid"
+wait "$pid"
+killed_status=$?
+rm -f killed/out/199.png
+touch killed/out/.199.png.999999999.0.tmp killed/out/.199.png.$$.3.tmp killed/out/.other.png.999999999.0.tmp
+(cd killed && "$facet" batch ../many.txt --output 'out/{n}.png' --quiet)
+resumed_status=$?
+left=$(cd killed/out && find . -name '.*' -type f | sort | tr '\n' ' ')
+rm -f killed/out/.199.png.$$.3.tmp killed/out/.other.png.999999999.0.tmp
+if [ "$killed_status" = 137 ] && [ "$resumed_status" = 0 ] && [ "$(sums killed)" = "$(sums whole)" ] &&
+  [ "$left" = "./.199.png.$$.3.tmp ./.other.png.999999999.0.tmp " ]; then
+  ok "SIGKILL: the rerun removes dead writers' temporaries and matches an uninterrupted run"
+else
+  bad "SIGKILL" "exit $killed_status, rerun $resumed_status, hidden files left: $left"
+fi
+
 # A plain list of models with an output template.
 printf '# thumbnails\n%s\n\n%s\n' "$models/OBJ/box.obj" "$models/PLY/cube_binary.ply" >list.txt
 mkdir -p list
