@@ -1,8 +1,6 @@
 // viewer.cpp - the viewer's window: SDL2 events in, facet's frames out; SDL only presents the pixels facet drew.
 #include "viewer.hpp"
 
-#include <SDL.h>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -19,6 +17,7 @@
 #include "facet/renderer.hpp"
 #include "facet/text.hpp"
 #include "keys.hpp"
+#include "sdl.hpp"
 #include "viewer_state.hpp"
 
 namespace facet::viewer {
@@ -34,20 +33,21 @@ class Window {
     // The window surface is written by facet and copied to the screen (XShm on X11). Without this hint SDL backs
     // it with an OpenGL texture, which on a machine without a GPU means Mesa's software rasterizer redrawing each
     // frame: a fifth of the CPU time at 1280x720.
-    SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
-    if (SDL_Init(SDL_INIT_VIDEO) != 0) throw std::runtime_error(std::string("cannot open a window: ") + SDL_GetError());
-    window_ = SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, width, height,
-                               SDL_WINDOW_RESIZABLE);
+    sdl().SDL_SetHint(SDL_HINT_FRAMEBUFFER_ACCELERATION, "0");
+    if (sdl().SDL_Init(SDL_INIT_VIDEO) != 0)
+      throw std::runtime_error(std::string("cannot open a window: ") + sdl().SDL_GetError());
+    window_ = sdl().SDL_CreateWindow(title.c_str(), SDL_WINDOWPOS_UNDEFINED, SDL_WINDOWPOS_UNDEFINED, width, height,
+                                     SDL_WINDOW_RESIZABLE);
     if (!window_) {
-      const std::string error = SDL_GetError();
-      SDL_Quit();
+      const std::string error = sdl().SDL_GetError();
+      sdl().SDL_Quit();
       throw std::runtime_error("cannot open a window: " + error);
     }
-    SDL_EventState(SDL_DROPFILE, SDL_ENABLE);
+    sdl().SDL_EventState(SDL_DROPFILE, SDL_ENABLE);
   }
   ~Window() {
-    SDL_DestroyWindow(window_);
-    SDL_Quit();
+    sdl().SDL_DestroyWindow(window_);
+    sdl().SDL_Quit();
   }
   Window(const Window&) = delete;
   Window& operator=(const Window&) = delete;
@@ -58,23 +58,23 @@ class Window {
   // byte: SDL's ABGR8888 whatever the machine's byte order). The surface is asked for anew each time: a resize
   // replaces it.
   void present(const void* pixels, bool packed, int width, int height) {
-    SDL_Surface* surface = SDL_GetWindowSurface(window_);
+    SDL_Surface* surface = sdl().SDL_GetWindowSurface(window_);
     if (!surface || surface->w != width || surface->h != height) return;  // resized meanwhile: the next frame fits
-    if (SDL_MUSTLOCK(surface)) SDL_LockSurface(surface);
-    SDL_ConvertPixels(width, height, packed ? SDL_PIXELFORMAT_ABGR8888 : SDL_PIXELFORMAT_RGBA32, pixels, width * 4,
-                      surface->format->format, surface->pixels, surface->pitch);
-    if (SDL_MUSTLOCK(surface)) SDL_UnlockSurface(surface);
-    SDL_UpdateWindowSurface(window_);
+    if (SDL_MUSTLOCK(surface)) sdl().SDL_LockSurface(surface);
+    sdl().SDL_ConvertPixels(width, height, packed ? SDL_PIXELFORMAT_ABGR8888 : SDL_PIXELFORMAT_RGBA32, pixels,
+                            width * 4, surface->format->format, surface->pixels, surface->pitch);
+    if (SDL_MUSTLOCK(surface)) sdl().SDL_UnlockSurface(surface);
+    sdl().SDL_UpdateWindowSurface(window_);
   }
 
   // The size frames are drawn at: the window surface's, in pixels.
   void size(int& width, int& height) const {
-    SDL_Surface* surface = SDL_GetWindowSurface(window_);
+    SDL_Surface* surface = sdl().SDL_GetWindowSurface(window_);
     if (surface) {
       width = surface->w;
       height = surface->h;
     } else {
-      SDL_GetWindowSize(window_, &width, &height);
+      sdl().SDL_GetWindowSize(window_, &width, &height);
     }
   }
 
@@ -147,9 +147,9 @@ int run_viewer(const ViewerOptions& options) {
     SDL_Event event;
     const bool animating = showing.animated() && !toggles.paused;
     // Nothing moves and nothing was asked: sleep until something happens rather than redraw the same frame.
-    bool have_event = (!animating && !dirty && options.frames == 0) ? SDL_WaitEventTimeout(&event, 500) != 0
-                                                                    : SDL_PollEvent(&event) != 0;
-    for (; have_event; have_event = SDL_PollEvent(&event) != 0) {
+    bool have_event = (!animating && !dirty && options.frames == 0) ? sdl().SDL_WaitEventTimeout(&event, 500) != 0
+                                                                    : sdl().SDL_PollEvent(&event) != 0;
+    for (; have_event; have_event = sdl().SDL_PollEvent(&event) != 0) {
       dirty = true;
       switch (event.type) {
         case SDL_QUIT: running = false; break;
@@ -158,7 +158,7 @@ int run_viewer(const ViewerOptions& options) {
             running = false;
           break;
         case SDL_MOUSEMOTION: {
-          const bool shift = (SDL_GetModState() & KMOD_SHIFT) != 0;
+          const bool shift = (sdl().SDL_GetModState() & KMOD_SHIFT) != 0;
           const Uint32 buttons = event.motion.state;
           if ((buttons & SDL_BUTTON_RMASK) || ((buttons & SDL_BUTTON_LMASK) && shift)) {
             orbit.pan +=
@@ -175,12 +175,12 @@ int run_viewer(const ViewerOptions& options) {
           break;
         case SDL_DROPFILE: {
           const std::string path = event.drop.file;
-          SDL_free(event.drop.file);
+          sdl().SDL_free(event.drop.file);
           try {
             showing = Showing::model(path);
             orbit = Orbit{};
             error.clear();
-            SDL_SetWindowTitle(window.get(), ("facet view - " + showing.title()).c_str());
+            sdl().SDL_SetWindowTitle(window.get(), ("facet view - " + showing.title()).c_str());
           } catch (const std::exception& e) {
             error = e.what();
           }
@@ -227,7 +227,7 @@ int run_viewer(const ViewerOptions& options) {
       char rate[32];
       std::snprintf(rate, sizeof rate, "%.1f fps", fps);
       const std::string title = "facet view - " + showing.title() + " - " + describe(toggles) + " - " + rate;
-      SDL_SetWindowTitle(window.get(), title.c_str());
+      sdl().SDL_SetWindowTitle(window.get(), title.c_str());
     }
     if (options.frames && frames >= options.frames) running = false;
   }

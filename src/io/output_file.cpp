@@ -4,10 +4,10 @@
 #include <atomic>
 #include <cerrno>
 #include <csignal>
+#include <cstdio>
 #include <map>
 #include <optional>
 #include <set>
-#include <cstdio>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -145,8 +145,7 @@ std::optional<std::pair<std::string, pid_t>> parse_temporary(std::string_view na
   const std::size_t pid_dot = name.rfind('.', counter_dot - 1);
   if (pid_dot == std::string_view::npos || pid_dot < 2) return std::nullopt;
   const auto all_digits = [](std::string_view digits) {
-    return !digits.empty() && digits.size() <= 9 &&
-           digits.find_first_not_of("0123456789") == std::string_view::npos;
+    return !digits.empty() && digits.size() <= 9 && digits.find_first_not_of("0123456789") == std::string_view::npos;
   };
   const std::string_view pid = name.substr(pid_dot + 1, counter_dot - pid_dot - 1);
   if (!all_digits(pid) || !all_digits(name.substr(counter_dot + 1, name.size() - 4 - counter_dot - 1)))
