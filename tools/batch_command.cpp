@@ -20,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "facet/error.hpp"
+#include "facet/warnings.hpp"
 #include "render_command.hpp"
 
 namespace facet::cli {
@@ -268,6 +269,7 @@ int run_batch(const BatchArgs& args) {
       Json entry = {{"line", job.line}, {"model", job.job.model.string()}};
       const auto start = std::chrono::steady_clock::now();
       std::string error;
+      WarningCapture warnings;  // kept for the report, and printed below unless --quiet
       if (!args.force && outputs_exist(job.job.outputs)) {
         entry["status"] = "skipped";
       } else {
@@ -284,10 +286,15 @@ int run_batch(const BatchArgs& args) {
         }
       }
       entry["seconds"] = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+      if (!warnings.messages().empty()) entry["warnings"] = warnings.messages();
       const std::lock_guard<std::mutex> hold(lock);
+      // On a terminal the progress line is open: a message starts a line of its own.
+      const char* newline = !args.quiet && terminal ? "\n" : "";
+      if (!args.quiet)
+        for (const std::string& warning : warnings.messages())
+          std::fprintf(stderr, "%sfacet: warning: %s\n", newline, warning.c_str());
       if (!error.empty()) {
-        // On a terminal the progress line is open: the error starts a line of its own.
-        std::fprintf(stderr, "%sfacet: error: %s\n", !args.quiet && terminal ? "\n" : "", error.c_str());
+        std::fprintf(stderr, "%sfacet: error: %s\n", newline, error.c_str());
         ++failed;
       }
       if (report.is_open()) report << entry.dump() << '\n' << std::flush;

@@ -1,4 +1,6 @@
 // main.cpp - entry point of the facet command-line tool: subcommand dispatch and the one-line error contract.
+#include <malloc.h>
+
 #include <cstdio>
 #include <exception>
 #include <new>
@@ -36,6 +38,12 @@ int fail(std::string message, int status) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  // Each render allocates textures, mipmaps, framebuffers and model arrays of a few hundred kilobytes to some
+  // megabytes. glibc serves blocks over 128 KiB with fresh pages from mmap and unmaps them on free, so the next job
+  // of a batch faults and zeroes them all again: 100 thumbnails of a textured OBJ took 3.2 s that way, 1.35 s with
+  // freed memory kept for reuse (up to 512 MiB free at the top of the heap; only blocks over 256 MiB are mapped).
+  mallopt(M_MMAP_THRESHOLD, 256 << 20);
+  mallopt(M_TRIM_THRESHOLD, 512 << 20);
   CLI::App app{"facet: a CPU 3D rendering pipeline", "facet"};
   app.set_version_flag("--version", std::string("facet ") + facet::kVersion);
   facet::cli::RenderArgs render_args;

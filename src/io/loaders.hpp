@@ -8,6 +8,7 @@
 
 #include "facet/mesh.hpp"
 #include "facet/model.hpp"
+#include "facet/warnings.hpp"
 
 namespace facet {
 
@@ -60,7 +61,7 @@ class FaceNumbering {
 // Text from the file shortened to 200 characters, control characters replaced, fit for a one-line message.
 std::string printable(std::string_view s);
 
-// One line "facet: warning: <source>: <message>" on stderr.
+// The warning "<source>: <message>" (facet/warnings.hpp).
 void warn(const std::string& source, const std::string& message);
 
 }  // namespace facet

@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cctype>
 #include <fstream>
-#include <iostream>
 #include <new>
 #include <string>
 #include <string_view>
@@ -25,9 +24,7 @@ std::string printable(std::string_view s) {
   return out;
 }
 
-void warn(const std::string& source, const std::string& message) {
-  std::cerr << "facet: warning: " << source << ": " << message << '\n';
-}
+void warn(const std::string& source, const std::string& message) { warn(source + ": " + message); }
 
 namespace {
 

@@ -1,9 +1,9 @@
 // prepare.cpp - turns a Mesh into what the stock shaders draw: complete vertices, material groups, edges, textures.
 #include <exception>
-#include <iostream>
 #include <optional>
 
 #include "facet/error.hpp"
+#include "facet/warnings.hpp"
 #include "scene/prepared_mesh.hpp"
 
 namespace facet::detail {
@@ -14,9 +14,9 @@ const Texture* TextureCache::get(const std::string& path) {
     try {
       it->second = std::make_unique<Texture>(load_texture(path));
     } catch (const InputError& e) {
-      std::cerr << "facet: warning: " << e.what() << '\n';
+      warn(e.what());
     } catch (const std::exception& e) {
-      std::cerr << "facet: warning: " << path << ": " << e.what() << '\n';
+      warn(path + ": " + e.what());
     }
   }
   const Texture* texture = it->second.get();

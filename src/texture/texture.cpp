@@ -148,21 +148,46 @@ void Texture::generate_mipmaps() {
 
   std::vector<glm::vec4> row_sums;  // one source level reduced horizontally, for one destination row
   // Texels are averaged in linear light, 0..255: an sRGB texture's colour decoded, and the average encoded again
-  // (exactly, not by table: this runs once per texel).
+  // to the nearest byte, exactly: by the linear values where the encoded curve crosses each half step, starting
+  // from the byte at the start of the linear value's 1/16 bucket (the curve is never steeper than 0.8 bytes a
+  // bucket, so at most two steps follow).
   const float* decode = detail::srgb_decode_table();
+  struct SrgbRounding {
+    std::array<float, 256> half_step{};         // [b]: the lowest linear value that rounds above byte b
+    std::array<std::uint8_t, 4096> bucket_start{};  // [q]: the byte linear value q / 16 rounds to
+  };
+  static const SrgbRounding rounding = [] {
+    SrgbRounding r;
+    for (int b = 0; b < 256; ++b) {
+      const double c = (b + 0.5) / 255.0;
+      r.half_step[static_cast<std::size_t>(b)] =
+          b == 255 ? 3.0e38f
+                   : static_cast<float>(255.0 * (c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4)));
+    }
+    std::size_t b = 0;
+    for (std::size_t q = 0; q < r.bucket_start.size(); ++q) {
+      while (static_cast<float>(q) / 16.0f >= r.half_step[b]) ++b;
+      r.bucket_start[q] = static_cast<std::uint8_t>(b);
+    }
+    return r;
+  }();
+  const auto encode_byte = [&](float linear) {
+    const int q = std::clamp(static_cast<int>(linear * 16.0f), 0, 4095);
+    std::size_t b = rounding.bucket_start[static_cast<std::size_t>(q)];
+    while (linear >= rounding.half_step[b]) ++b;
+    return static_cast<float>(b);
+  };
   const auto unpack = [&](std::uint32_t texel) {
     const glm::vec4 v = detail::unpack_bytes(texel);
     if (!srgb_) return v;
     const auto c = [&](float byte) { return decode[static_cast<int>(byte)] * 255.0f; };
     return glm::vec4(c(v.r), c(v.g), c(v.b), v.a);
   };
+  // Rounded to the nearest byte; the clamp guards against weights summing a hair above 1.
   const auto pack = [&](glm::vec4 v) {
-    if (!srgb_) return v;
-    const auto c = [](float linear) {
-      const double x = std::clamp(linear / 255.0, 0.0, 1.0);
-      return static_cast<float>(255.0 * (x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055));
-    };
-    return glm::vec4(c(v.r), c(v.g), c(v.b), v.a);
+    const glm::vec4 rounded = glm::clamp(glm::floor(v + 0.5f), 0.0f, 255.0f);
+    if (!srgb_) return rounded;
+    return glm::vec4(encode_byte(v.r), encode_byte(v.g), encode_byte(v.b), rounded.a);
   };
   while (levels_[level_count_ - 1].width > 1 || levels_[level_count_ - 1].height > 1) {
     const Level& src = levels_[level_count_ - 1];
@@ -189,8 +214,7 @@ void Texture::generate_mipmaps() {
       }
       std::uint32_t* out = texels_.data() + dst.offset + static_cast<std::size_t>(y) * dst.stride;
       for (int x = 0; x < w; ++x) {
-        // Round to nearest; the clamp guards against weights summing a hair above 1.
-        const glm::vec4 c = glm::clamp(glm::floor(pack(row_sums[static_cast<std::size_t>(x)]) + 0.5f), 0.0f, 255.0f);
+        const glm::vec4 c = pack(row_sums[static_cast<std::size_t>(x)]);
         out[x] = static_cast<std::uint32_t>(c.x) | static_cast<std::uint32_t>(c.y) << 8 |
                  static_cast<std::uint32_t>(c.z) << 16 | static_cast<std::uint32_t>(c.w) << 24;
       }
