@@ -16,6 +16,7 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+#include <unordered_map>
 
 #include <nlohmann/json.hpp>
 
@@ -70,14 +71,24 @@ std::vector<std::string> render_arguments(const Json& object, const std::string&
 // The job the arguments describe, parsed by `facet render`'s own flags; CLI11's and the flags' errors become
 // std::invalid_argument.
 RenderJob job_of(const std::vector<std::string>& argv, std::size_t n) {
-  CLI::App app;
-  RenderArgs args;
-  add_render_command(app, args);
+  // Building the parser costs more than parsing one job, so each thread keeps one, its flags bound to `args`,
+  // which starts every parse from the defaults the flags set.
+  struct Parser {
+    CLI::App app;
+    RenderArgs args, defaults;
+    Parser() {
+      add_render_command(app, args);
+      defaults = args;
+    }
+  };
+  thread_local Parser parser;
+  parser.app.clear();
+  parser.args = parser.defaults;
   std::vector<const char*> pointers;
   for (const std::string& a : argv) pointers.push_back(a.c_str());
   try {
-    app.parse(static_cast<int>(pointers.size()), pointers.data());
-    return render_jobs(args, n).front();
+    parser.app.parse(static_cast<int>(pointers.size()), pointers.data());
+    return render_jobs(parser.args, n).front();
   } catch (const CLI::Error& e) {
     throw std::invalid_argument(e.what());
   } catch (const UsageError& e) {
@@ -161,6 +172,24 @@ CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
   return batch;
 }
 
+RenderJob parse_batch_job(const BatchJob& job, const BatchArgs& args) {
+  try {
+    std::vector<std::string> argv;
+    if (job.json) {
+      const Json object = Json::parse(job.text, nullptr, false);
+      if (object.is_discarded()) throw std::invalid_argument("not valid JSON");
+      argv = render_arguments(object, args.output);
+    } else {
+      std::string model = job.text.substr(job.text.find_first_not_of(" \t"));
+      while (!model.empty() && (model.back() == '\r' || model.back() == ' ' || model.back() == '\t')) model.pop_back();
+      argv = {"facet", "render", model, "--output", args.output};
+    }
+    return job_of(argv, job.index);
+  } catch (const std::invalid_argument& e) {
+    throw InputError(args.jobs, "line " + std::to_string(job.line) + ": " + e.what());
+  }
+}
+
 std::vector<BatchJob> read_batch_jobs(const BatchArgs& args) {
   const std::string source = args.jobs;
   std::error_code ec;
@@ -178,30 +207,27 @@ std::vector<BatchJob> read_batch_jobs(const BatchArgs& args) {
   if (!json && args.output.empty()) throw UsageError("--output: a list of models needs an output template");
 
   std::vector<BatchJob> jobs;
-  for (const auto& [number, line] : lines) {
-    const std::size_t n = jobs.size();
-    try {
-      std::vector<std::string> argv;
-      if (json) {
-        const Json object = Json::parse(line, nullptr, false);
-        if (object.is_discarded()) throw std::invalid_argument("not valid JSON");
-        argv = render_arguments(object, args.output);
-      } else {
-        std::string model = line.substr(line.find_first_not_of(" \t"));
-        while (!model.empty() && (model.back() == '\r' || model.back() == ' ' || model.back() == '\t'))
-          model.pop_back();
-        argv = {"facet", "render", model, "--output", args.output};
+  jobs.reserve(lines.size());
+  // Two jobs writing one file: found by the hashes of the outputs' normalised paths (a few bytes a job, where the
+  // paths themselves would take hundreds), each match confirmed against the earlier job's paths.
+  std::unordered_multimap<std::size_t, std::size_t> writers;
+  const auto normalised = [](const std::filesystem::path& path) { return path.lexically_normal().string(); };
+  for (auto& [number, line] : lines) {
+    jobs.push_back({number, jobs.size(), json, std::move(line)});
+    const RenderJob job = parse_batch_job(jobs.back(), args);
+    for (const std::filesystem::path& path : output_paths(job.outputs)) {
+      const std::string name = normalised(path);
+      const std::size_t key = std::hash<std::string>{}(name);
+      for (auto [it, end] = writers.equal_range(key); it != end; ++it) {
+        if (it->second == jobs.back().index) continue;  // one job naming a file twice is render()'s to refuse
+        for (const std::filesystem::path& earlier : output_paths(parse_batch_job(jobs[it->second], args).outputs))
+          if (normalised(earlier) == name)
+            throw UsageError("lines " + std::to_string(jobs[it->second].line) + " and " + std::to_string(number) +
+                             " would both write " + path.string());
       }
-      jobs.push_back({number, job_of(argv, n)});
-    } catch (const std::invalid_argument& e) {
-      throw InputError(source, "line " + std::to_string(number) + ": " + e.what());
+      writers.emplace(key, jobs.back().index);
     }
   }
-  std::vector<OutputSpec> outputs;
-  for (const BatchJob& job : jobs) outputs.push_back(job.job.outputs);
-  if (const std::optional<OutputClash> clash = find_output_clash(outputs))
-    throw UsageError("lines " + std::to_string(jobs[clash->first].line) + " and " +
-                     std::to_string(jobs[clash->second].line) + " would both write " + clash->path.string());
   return jobs;
 }
 
@@ -250,9 +276,13 @@ int run_batch(const BatchArgs& args) {
   }
   // A run killed outright (SIGKILL, power loss) may have left a temporary file beside an output; this run
   // renders that output again, so the leftover goes.
-  std::vector<OutputSpec> my_outputs;
-  for (const std::size_t k : mine) my_outputs.push_back(jobs[k].job.outputs);
-  remove_stale_temporaries(my_outputs);
+  // In groups, so that the outputs of a long batch are never all in memory at once.
+  for (std::size_t first = 0; first < mine.size(); first += 256) {
+    std::vector<OutputSpec> outputs;
+    for (std::size_t k = first; k < std::min(mine.size(), first + 256); ++k)
+      outputs.push_back(parse_batch_job(jobs[mine[k]], args).outputs);
+    remove_stale_temporaries(outputs);
+  }
   const bool terminal = ::isatty(2) != 0;
   Progress progress(mine.size(), args.quiet);
   std::mutex lock;  // guards the report, the progress and the counts
@@ -265,19 +295,19 @@ int run_batch(const BatchArgs& args) {
   const auto work = [&](int threads) {
     Renderer renderer(threads);
     for (std::size_t i = next++; i < mine.size() && stop_signal == 0; i = next++) {
-      const BatchJob& job = jobs[mine[i]];
-      Json entry = {{"line", job.line}, {"model", job.job.model.string()}};
+      const RenderJob job = parse_batch_job(jobs[mine[i]], args);
+      Json entry = {{"line", jobs[mine[i]].line}, {"model", job.model.string()}};
       const auto start = std::chrono::steady_clock::now();
       std::string error;
       WarningCapture warnings;  // kept for the report, and printed below unless --quiet
-      if (!args.force && outputs_exist(job.job.outputs)) {
+      if (!args.force && outputs_exist(job.outputs)) {
         entry["status"] = "skipped";
       } else {
         try {
           // Batches write into folder trees (thumbs/{stem}.png): the folders are made as needed.
-          for (const std::filesystem::path& path : output_paths(job.job.outputs))
+          for (const std::filesystem::path& path : output_paths(job.outputs))
             if (path.has_parent_path()) std::filesystem::create_directories(path.parent_path());
-          render(job.job, renderer);
+          render(job, renderer);
           entry["status"] = "ok";
         } catch (const std::exception& e) {
           error = e.what();

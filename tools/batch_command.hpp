@@ -25,11 +25,18 @@ struct BatchArgs {
 // Adds the `batch` subcommand, filling `args` when it is parsed.
 CLI::App* add_batch_command(CLI::App& app, BatchArgs& args);
 
-// One job of a jobs file, with the line it came from.
+// One job of a jobs file: the line it came from and its text. A parsed RenderJob takes about 2 KB, so a batch keeps
+// the text and parses a job again when it runs: memory stays flat however many jobs the file holds.
 struct BatchJob {
-  std::size_t line = 0;
-  RenderJob job;
+  std::size_t line = 0;   // 1-based line number in the jobs file
+  std::size_t index = 0;  // the job's index among the file's jobs: {n} in output names
+  bool json = false;      // a JSON object of flags, or a model path
+  std::string text;
 };
+
+// The RenderJob of one job of the jobs file, as read_batch_jobs checked it. Throws InputError(jobs file,
+// "line N: ...") as read_batch_jobs does.
+RenderJob parse_batch_job(const BatchJob& job, const BatchArgs& args);
 
 // Every job of the file, in order, checked before anything is rendered. Each JSON line is an object whose keys are
 // `facet render`'s long flag names ("model", "output", "resolution", "camera-azimuth-angle", "output-depth", ...):

@@ -37,6 +37,14 @@ else
 fi
 sums() { (cd "$1" && find out -type f | sort | xargs md5sum); }
 first=$(sums .)
+# Each job is its own render: the flags of one job (an azimuth, a resolution) never carry over to the next.
+"$facet" render "$models/STL/Spider_binary.stl" --resolution 48,48 --no-background --output alone.png 2>/dev/null
+"$facet" render "$models/OBJ/box.obj" --resolution 64,48 --output alone_box.png 2>/dev/null
+if cmp -s alone.png out/deep/Spider_binary.png && cmp -s alone_box.png out/box.png; then
+  ok "batch images are byte for byte those of facet render with the same flags"
+else
+  bad "batch vs render" "out/deep/Spider_binary.png or out/box.png differs from facet render's"
+fi
 
 # A rerun skips what exists; --force renders it again, byte for byte the same.
 "$facet" batch jobs.jsonl --report again.jsonl --quiet 2>/dev/null

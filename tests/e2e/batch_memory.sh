@@ -1,0 +1,42 @@
+#!/usr/bin/env bash
+# batch_memory.sh - a long batch keeps memory flat: 3,000 jobs peak within 10% of 300 jobs of the same models.
+# Usage: batch_memory.sh FACET SCRATCH. Runs in the plain build only: a sanitizer's allocator keeps freed memory
+# in quarantine on purpose, which says nothing about facet's.
+set -uo pipefail
+# shellcheck source=SCRIPTDIR/lib/common.bash
+source "$(dirname "${BASH_SOURCE[0]}")/lib/common.bash"
+facet=$1
+scratch=$2
+mkdir -p "$scratch"
+rm -rf "${scratch:?}"/*
+cd "$scratch" || exit 1
+
+# N jobs cycling through four small real models of four formats (one textured), each at its own camera angle.
+make_jobs() {
+  python3 - "$1" <<'PY'
+import json, sys
+root = '/usr/share/assimp/models'
+models = ['OBJ/WusonOBJ.obj', 'PLY/Wuson.ply', 'STL/Spider_binary.stl', 'glTF2/BoxTextured-glTF-Binary/BoxTextured.glb']
+for k in range(int(sys.argv[1])):
+    print(json.dumps({'model': f'{root}/{models[k % 4]}', 'output': f'out/{k:05}.png', 'resolution': [64, 64],
+                      'camera-azimuth-angle': (k * 37) % 360, 'camera-elevation-angle': (k * 13) % 60 - 20}))
+PY
+}
+# The peak resident memory of one batch, in KiB, after checking it made every image.
+peak() {
+  make_jobs "$1" >"jobs$1.jsonl"
+  rm -rf out
+  local kib
+  kib=$(/usr/bin/time -f %M "$facet" batch "jobs$1.jsonl" --quiet 2>&1 >/dev/null | tail -n 1)
+  [ "$(find out -name '*.png' | wc -l)" = "$1" ] || kib="missing images"
+  echo "$kib"
+}
+short=$(peak 300)
+long=$(peak 3000)
+if [[ $short =~ ^[0-9]+$ && $long =~ ^[0-9]+$ ]] && [ $((long * 10)) -le $((short * 11)) ]; then
+  ok "peak memory: 300 jobs $short KiB, 3000 jobs $long KiB"
+else
+  bad "peak memory" "300 jobs: $short KiB, 3000 jobs: $long KiB (more than 10% apart)"
+fi
+
+finish
