@@ -44,5 +44,8 @@ build/bench/facet_image_bench --benchmark_repetitions=3 --benchmark_report_aggre
 echo "## Python against the C++ library"
 PYTHONPATH=build/python /usr/bin/python3 bench/python_bench.py build 5
 
+echo "## thumbnails: one facet batch against one facet render process each"
+bash bench/batch_bench.sh build/tools/facet 3 600
+
 echo "## stock shaders against the benchmark shader, sphere:224"
 build/bench/facet_shader_rate_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
