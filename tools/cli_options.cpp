@@ -251,6 +251,24 @@ CameraSpec camera_spec(const CameraArgs& args) {
   return spec;
 }
 
+void add_input_options(CLI::App& app, InputArgs& args) {
+  app.add_flag("--allow-external-files", args.allow_external_files,
+               "Read the files a model names (materials, textures, buffers) outside its folder too");
+  app.add_option("--max-triangles", args.max_triangles, "Refuse models placing more triangles (100000000)")
+      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40))
+      ->type_name("N");
+  app.add_option("--max-texture-size", args.max_texture_size,
+                 "Draw untextured a material whose texture is wider or taller than N texels (16384)")
+      ->check(number_in(1, kMaxTextureSize, true))
+      ->type_name("N");
+}
+
+LoadOptions load_options(const InputArgs& args) {
+  return LoadOptions{.allow_external_files = args.allow_external_files,
+                     .max_triangles = args.max_triangles,
+                     .max_texture_size = args.max_texture_size};
+}
+
 LookSpec look_spec(const LookArgs& args) {
   LookSpec look;
   look.shading = args.shading;

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cstdint>
 #include <optional>
 #include <stdexcept>
 #include <string>
@@ -10,7 +11,9 @@
 #include <CLI/CLI.hpp>
 #include <glm/glm.hpp>
 
+#include "facet/model_io.hpp"
 #include "facet/render_job.hpp"
+#include "facet/texture.hpp"
 #include "facet/view_spec.hpp"
 
 namespace facet::cli {
@@ -86,6 +89,15 @@ struct LookArgs {
 };
 void add_look_options(CLI::App& app, LookArgs& args);
 LookSpec look_spec(const LookArgs& args);
+
+// What a model file may make facet read and allocate (LoadOptions), shared by render, batch, view and info.
+struct InputArgs {
+  bool allow_external_files = false;
+  std::uint64_t max_triangles = kDefaultMaxTriangles;
+  int max_texture_size = kMaxTextureSize;
+};
+void add_input_options(CLI::App& app, InputArgs& args);
+LoadOptions load_options(const InputArgs& args);
 
 // The output flags: --output, --output-depth, --resolution (and, for render, --output-mask, --output-camera).
 struct OutputArgs {

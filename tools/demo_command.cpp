@@ -24,8 +24,9 @@ CLI::App* add_demo_command(CLI::App& app, DemoArgs& args) {
   demo->add_option("--time", args.time, "Moment of the animation in seconds (1)")
       ->check(number_in(-1e6, 1e6))
       ->type_name("SECONDS");
-  demo->add_option("--frames", args.frames,
-                   "Write N frames 1/30 s apart: an animation (NAME.gif, .mp4, .webm) or PNG frames named with {frame:04}")
+  demo->add_option(
+          "--frames", args.frames,
+          "Write N frames 1/30 s apart: an animation (NAME.gif, .mp4, .webm) or PNG frames named with {frame:04}")
       ->check(number_in(1, 100000, true))
       ->type_name("N");
   add_look_options(*demo, args.look);

@@ -8,6 +8,7 @@
 #include <map>
 #include <utility>
 
+#include "cli_options.hpp"
 #include "facet/mesh.hpp"
 #include "facet/model.hpp"
 #include "facet/model_io.hpp"
@@ -52,12 +53,13 @@ std::size_t distinct(const std::vector<std::uint32_t>& indices) {
 CLI::App* add_info_command(CLI::App& app, InfoArgs& args) {
   CLI::App* info = app.add_subcommand("info", "Print a model's vertex, triangle, edge and material counts and bounds");
   info->add_option("model", args.model, "Model file (any format facet render reads)")->required()->type_name("MODEL");
+  add_input_options(*info, args.input);
   return info;
 }
 
 int run_info(const InfoArgs& args) {
   std::string format;
-  Model model = read_model(args.model, format);
+  Model model = read_model(args.model, format, load_options(args.input));
   const std::size_t meshes = model.meshes.size(), instances = model.instances.size();
   const Mesh mesh = flatten(std::move(model), args.model);
   const Bounds box = bounds(mesh);

@@ -5,10 +5,13 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli_options.hpp"
+
 namespace facet::cli {
 
 struct InfoArgs {
   std::string model;
+  InputArgs input;
 };
 
 // Adds the `info` subcommand, filling `args` when it is parsed.

@@ -51,13 +51,15 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
           "VIEWS"))
       ->type_name("VIEW,...");
   render
-      ->add_option("--turntable", args.turntable,
-                   "Render N frames round the model's up axis, 3 s a turn: --output NAME.gif, .mp4, .webm or {frame} PNGs")
+      ->add_option(
+          "--turntable", args.turntable,
+          "Render N frames round the model's up axis, 3 s a turn: --output NAME.gif, .mp4, .webm or {frame} PNGs")
       ->check(number_in(1, kMaxTurntableFrames, true))
       ->type_name("N");
   render->add_flag("--timings", args.timings, "Print the time of each stage (load, prepare, draw, write) on stderr");
   add_camera_options(*render, args.camera);
   add_look_options(*render, args.look);
+  add_input_options(*render, args.input);
   return render;
 }
 
@@ -70,6 +72,7 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
   base.look = look_spec(args.look);
   if (!args.views.empty()) base.views = parse_sheet_views(args.views);
   base.turntable = args.turntable;
+  base.load = load_options(args.input);
   const std::pair<const char*, const std::string*> outputs[] = {{"--output", &args.output.output},
                                                                 {"--output-depth", &args.output.output_depth},
                                                                 {"--output-normal", &args.output.output_normal},

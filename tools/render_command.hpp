@@ -18,6 +18,7 @@ struct RenderArgs {
   CameraArgs camera;
   LookArgs look;
   OutputArgs output;
+  InputArgs input;
 };
 
 // Adds the `render` subcommand, filling `args` when it is parsed.

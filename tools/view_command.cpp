@@ -36,6 +36,7 @@ CLI::App* add_view_command(CLI::App& app, ViewArgs& args) {
   view->add_option("--keys", args.keys, "Press these keys, in order, before the first frame (e.g. \"w3z\")")
       ->type_name("KEYS");
   view->add_option("--screenshot", args.screenshot, "Write the last frame shown as a PNG")->type_name("FILE.png");
+  add_input_options(*view, args.input);
   return view;
 }
 
@@ -53,6 +54,7 @@ int run_view(const ViewArgs& args) {
   options.frames = args.frames;
   options.keys = args.keys;
   options.screenshot = args.screenshot;
+  options.load = load_options(args.input);
   return viewer::run_viewer(options);
 #else
   throw std::runtime_error("view: this facet was built without SDL2 (install libsdl2-dev and rebuild)");

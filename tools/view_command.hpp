@@ -5,6 +5,8 @@
 
 #include <CLI/CLI.hpp>
 
+#include "cli_options.hpp"
+
 namespace facet::cli {
 
 struct ViewArgs {
@@ -15,6 +17,7 @@ struct ViewArgs {
   int frames = 0;
   std::string keys;
   std::string screenshot;
+  InputArgs input;
 };
 
 // Adds the `view` subcommand, filling `args` when it is parsed.

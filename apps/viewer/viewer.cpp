@@ -123,7 +123,7 @@ char key_of(const SDL_KeyboardEvent& key) {
 }  // namespace
 
 int run_viewer(const ViewerOptions& options) {
-  Showing showing = options.demo ? Showing::demo(*options.demo) : Showing::model(options.model);
+  Showing showing = options.demo ? Showing::demo(*options.demo) : Showing::model(options.model, options.load);
   Toggles toggles;
   Orbit orbit;
   for (const char key : options.keys)
@@ -177,7 +177,7 @@ int run_viewer(const ViewerOptions& options) {
           const std::string path = event.drop.file;
           sdl().SDL_free(event.drop.file);
           try {
-            showing = Showing::model(path);
+            showing = Showing::model(path, options.load);
             orbit = Orbit{};
             error.clear();
             sdl().SDL_SetWindowTitle(window.get(), ("facet view - " + showing.title()).c_str());

@@ -5,6 +5,7 @@
 #include <string>
 
 #include "facet/demo_scenes.hpp"
+#include "facet/model_io.hpp"
 
 namespace facet::viewer {
 
@@ -16,6 +17,7 @@ struct ViewerOptions {
   int frames = 0;          // quit after this many frames; 0: run until closed
   std::string keys;        // pressed in order before the first frame
   std::string screenshot;  // the last frame shown is written here as PNG
+  LoadOptions load;        // what model files (the first and those dropped on the window) may make facet read
 };
 
 // Opens the window (SDL2; under X11, Wayland, or Xvfb for tests) and runs until it is closed, q or Esc, or

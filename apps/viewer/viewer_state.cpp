@@ -39,9 +39,9 @@ Mesh shuffled(const Mesh& mesh, int seed) {
   return out;
 }
 
-Showing Showing::model(const std::string& path) {
+Showing Showing::model(const std::string& path, const LoadOptions& load) {
   Showing s;
-  s.mesh_ = std::make_shared<const Mesh>(load_model(path));
+  s.mesh_ = std::make_shared<const Mesh>(load_model(path, load));
   s.framing_ = framing_of(*s.mesh_, path);
   s.title_ = std::filesystem::path(path).filename().string();
   return s;

@@ -8,6 +8,7 @@
 #include <glm/glm.hpp>
 
 #include "facet/demo_scenes.hpp"
+#include "facet/model_io.hpp"
 #include "facet/render_job.hpp"
 #include "facet/scene.hpp"
 #include "facet/view_spec.hpp"
@@ -41,7 +42,7 @@ struct Orbit {
 class Showing {
  public:
   // Loads a model (throws InputError as load_model does) or makes a demo.
-  static Showing model(const std::string& path);
+  static Showing model(const std::string& path, const LoadOptions& load = {});
   static Showing demo(Demo demo);
 
   const std::string& title() const { return title_; }

@@ -12,6 +12,24 @@ namespace facet {
 
 // Files larger than this are refused before reading (1 GiB).
 inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
+// The default of LoadOptions::max_triangles.
+inline constexpr std::uint64_t kDefaultMaxTriangles = 100'000'000;
+
+// What reading a model may do. Model files are untrusted input (a thumbnailer renders what users upload): these
+// bound what one can make facet read and allocate.
+struct LoadOptions {
+  // Read the files a model names (MTL libraries, textures, glTF buffers and images, the parts Assimp's formats name)
+  // wherever they are. When false, only from inside the model's folder tree: a name that is absolute or climbs out
+  // (../) is looked for by its file name in the model's folder, as viewers do for models made on another machine,
+  // and a link leading out of the tree is not followed. Either way only regular files are read, never a device,
+  // FIFO or directory.
+  bool allow_external_files = false;
+  // Models whose instances place more triangles than this are refused.
+  std::uint64_t max_triangles = kDefaultMaxTriangles;
+  // Textures wider or taller than this (at most kMaxTextureSize, 16384) are not decoded: the material is drawn
+  // untextured, with a warning.
+  int max_texture_size = 16384;
+};
 
 // Reads a model file into a Model (model.hpp): its indexed, triangulated, validated meshes in their own
 // coordinates, the instances placing them (at least one triangle in all) and its cameras. The reader is chosen by
@@ -57,13 +75,14 @@ inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 // than supported (OBJ 255, PLY 1024), or no triangles at all.
 // A missing MTL file, a missing texture file (diffuse_texture is then left empty), dropped faces, unknown PLY header
 // lines and data after a PLY's last element only print a one-line "facet: warning: ..." to stderr.
-Model read_model(const std::filesystem::path& path);
+// Refuses a model placing more than options.max_triangles triangles, and applies the other LoadOptions.
+Model read_model(const std::filesystem::path& path, const LoadOptions& options = {});
 // The same, also naming the reader that read it: "OBJ", "PLY", "STL", "glTF", "GLB" or "Assimp (ext)".
-Model read_model(const std::filesystem::path& path, std::string& format);
+Model read_model(const std::filesystem::path& path, std::string& format, const LoadOptions& options = {});
 
 // read_model(path) flattened into one world-space mesh (flatten in model.hpp), with the file's cameras and each
 // triangle's instance id in Mesh::instance_ids: what `facet render` draws.
-Mesh load_model(const std::filesystem::path& path);
-Mesh load_model(const std::filesystem::path& path, std::string& format);
+Mesh load_model(const std::filesystem::path& path, const LoadOptions& options = {});
+Mesh load_model(const std::filesystem::path& path, std::string& format, const LoadOptions& options = {});
 
 }  // namespace facet

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include "facet/framebuffer.hpp"
+#include "facet/model_io.hpp"
 #include "facet/renderer.hpp"
 #include "facet/scene.hpp"
 #include "facet/sheet_views.hpp"
@@ -50,8 +51,8 @@ std::vector<std::filesystem::path> output_paths(const OutputSpec& outputs);
 // Refuses, before anything renders, an output whose extension names a format facet does not write for it: the
 // colour image and the mask are PNG (.png), depth and normals NumPy (.npy) or OpenEXR (.exr), ids .npy and the
 // camera JSON (.json), in any case; an animation's colour output is .gif, .mp4 or .webm, or PNG when its name
-// holds {frame}. A name with no extension (such as /dev/null, or "-" for standard output) takes the output's first format. Throws
-// std::invalid_argument("<path>: ...") naming what is written there.
+// holds {frame}. A name with no extension (such as /dev/null, or "-" for standard output) takes the output's first
+// format. Throws std::invalid_argument("<path>: ...") naming what is written there.
 void check_output_formats(const OutputSpec& outputs, bool animation = false);
 
 // Two of several renders that would write one file: their indices in the list and the path.
@@ -82,6 +83,8 @@ struct RenderJob {
   // animated GIF looping forever, H.264 in MP4 or VP9 in WebM, by the name's extension, or numbered PNG frames
   // when its name holds {frame} (output_template.hpp).
   int turntable = 0;
+  // What the model file may make facet read and allocate (model_io.hpp).
+  LoadOptions load;
 };
 
 inline constexpr int kMaxTurntableFrames = 3600;

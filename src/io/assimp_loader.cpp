@@ -2,6 +2,7 @@
 #include <assimp/postprocess.h>
 #include <assimp/scene.h>
 
+#include <assimp/DefaultIOSystem.h>
 #include <algorithm>
 #include <assimp/Importer.hpp>
 #include <cctype>
@@ -9,6 +10,7 @@
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 #include <utility>
@@ -30,7 +32,8 @@ glm::vec4 color_of(const aiMaterial& m, const char* key, unsigned type, unsigned
   return finite ? glm::clamp(v, glm::vec4(0.0f), glm::vec4(1.0f)) : fallback;
 }
 
-Material material_of(const aiMaterial& m, const std::filesystem::path& folder) {
+Material material_of(const aiMaterial& m, const ReferencePolicy& policy, const LoadOptions& options,
+                     const std::string& source) {
   Material out;
   aiString name;
   if (m.Get(AI_MATKEY_NAME, name) == AI_SUCCESS) out.name = printable(name.C_Str());
@@ -43,15 +46,44 @@ Material material_of(const aiMaterial& m, const std::filesystem::path& folder) {
   if (m.Get(AI_MATKEY_SHININESS, shininess) == AI_SUCCESS && std::isfinite(shininess) && shininess > 0.0f)
     out.shininess = std::min(shininess, 1024.0f);
   aiString texture;
-  // Embedded textures ("*0") are not read; a file path is resolved against the model's folder.
+  // Embedded textures ("*0") are not read; a file is found as the policy allows.
   if (m.GetTexture(aiTextureType_DIFFUSE, 0, &texture) == AI_SUCCESS && texture.length > 0 &&
       texture.C_Str()[0] != '*') {
-    std::string file = texture.C_Str();
-    std::replace(file.begin(), file.end(), '\\', '/');
-    out.diffuse_texture = (folder / file).lexically_normal().string();
+    const std::string what = "texture '" + printable(texture.C_Str()) + "' of material '" + out.name + "'";
+    out.diffuse_texture = usable_texture(policy, options, texture.C_Str(), what, source).value_or("");
   }
   return out;
 }
+
+// The files Assimp opens for a model: the model itself, and the companions it names (materials, parts, skeletons)
+// only as the reference policy allows, regular files only. Assimp joins a companion's name to the model's folder
+// (or passes an absolute name as it is); the part after the folder is the name the model wrote.
+class ConfinedIoSystem final : public Assimp::DefaultIOSystem {
+ public:
+  ConfinedIoSystem(std::filesystem::path model, ReferencePolicy policy)
+      : model_(model.lexically_normal()), policy_(std::move(policy)) {}
+
+  bool Exists(const char* file) const override { return where(file).has_value(); }
+
+  Assimp::IOStream* Open(const char* file, const char* mode) override {
+    if (std::string_view(mode).find_first_of("wa+") != std::string_view::npos) return nullptr;
+    const std::optional<std::filesystem::path> path = where(file);
+    return path ? DefaultIOSystem::Open(path->c_str(), mode) : nullptr;
+  }
+
+ private:
+  std::optional<std::filesystem::path> where(const char* file) const {
+    const std::filesystem::path asked = std::filesystem::path(file).lexically_normal();
+    if (asked == model_) return model_;
+    const std::string folder = policy_.folder.lexically_normal().string();
+    std::string name = asked.string();
+    if (!folder.empty() && folder != "." && name.starts_with(folder + "/")) name.erase(0, folder.size() + 1);
+    return resolve_reference(policy_, name).path;
+  }
+
+  std::filesystem::path model_;
+  ReferencePolicy policy_;
+};
 
 // Assimp's OFF reader believes the header's counts: 3.5e13 vertices in a 309-byte file keep it busy for good. An
 // ASCII vertex takes at least 6 bytes ("0 0 0\n") and a face 8 ("3 0 1 2\n"), so counts the file cannot hold are
@@ -136,9 +168,12 @@ glm::mat4 matrix_of(const aiMatrix4x4& m) {
 
 }  // namespace
 
-Model load_with_assimp(const std::filesystem::path& path, std::string_view bytes, const std::string& source) {
+Model load_with_assimp(const std::filesystem::path& path, std::string_view bytes, const std::string& source,
+                       const LoadOptions& options) {
   if (lower_extension(path) == ".off") check_off_counts(bytes, source);
+  const ReferencePolicy policy{path.parent_path(), options.allow_external_files};
   Assimp::Importer importer;
+  importer.SetIOHandler(new ConfinedIoSystem(path, policy));  // the importer owns and deletes it
   // Lines and points are dropped by the sort; the node tree is walked below, as the glTF reader walks its nodes.
   importer.SetPropertyInteger(AI_CONFIG_PP_SBP_REMOVE, aiPrimitiveType_POINT | aiPrimitiveType_LINE);
   const unsigned flags =
@@ -152,9 +187,9 @@ Model load_with_assimp(const std::filesystem::path& path, std::string_view bytes
     throw InputError(source, "Assimp cannot read it (" + printable(error.empty() ? "no scene" : error) + ")");
   }
 
-  const std::filesystem::path folder = path.parent_path();
   std::vector<Material> materials;
-  for (unsigned i = 0; i < scene->mNumMaterials; ++i) materials.push_back(material_of(*scene->mMaterials[i], folder));
+  for (unsigned i = 0; i < scene->mNumMaterials; ++i)
+    materials.push_back(material_of(*scene->mMaterials[i], policy, options, source));
   Model out;
   constexpr std::uint32_t kUnread = 0xFFFFFFFFu, kNoTriangles = 0xFFFFFFFEu;
   std::vector<std::uint32_t> slots(scene->mNumMeshes, kUnread);  // per aiMesh: its index in out.meshes

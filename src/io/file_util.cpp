@@ -1,4 +1,4 @@
-// file_util.cpp - whole-file reading for the image decoders (PNG reader and texture loader).
+// file_util.cpp - whole-file reading of regular files only, for the model readers and the image decoders.
 #include "io/file_util.hpp"
 
 #include <cctype>
@@ -8,16 +8,13 @@
 #include <memory>
 #include <system_error>
 
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include "facet/error.hpp"
 
 namespace facet {
-namespace {
-
-[[noreturn]] void fail(const std::filesystem::path& path, const std::string& problem) {
-  throw InputError(path.string(), problem);
-}
-
-}  // namespace
 
 std::string errno_text(int err) { return std::generic_category().message(err); }
 
@@ -27,23 +24,48 @@ std::string lower_extension(const std::filesystem::path& path) {
   return extension;
 }
 
-std::vector<unsigned char> read_image_file(const std::filesystem::path& path) {
-  std::error_code ec;
-  if (std::filesystem::is_directory(path, ec)) fail(path, "is a directory, not an image file");
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"), &std::fclose);
-  if (!file) fail(path, "cannot open: " + errno_text(errno));
-  std::vector<unsigned char> bytes;
-  unsigned char chunk[1 << 16];
-  for (;;) {
-    const std::size_t n = std::fread(chunk, 1, sizeof chunk, file.get());
-    bytes.insert(bytes.end(), chunk, chunk + n);
-    // stb_image takes the length as an int.
-    if (bytes.size() > static_cast<std::size_t>(INT_MAX)) fail(path, "file is too large for an image (over 2 GiB)");
-    if (n < sizeof chunk) break;
+namespace {
+
+template <class Bytes>
+Bytes read_regular_file_as(const std::filesystem::path& path, std::uintmax_t max_bytes, const std::string& source) {
+  // Non-blocking, so that opening a FIFO returns at once instead of waiting for a writer; it is refused below.
+  int fd;
+  do fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
+  while (fd < 0 && errno == EINTR);
+  if (fd < 0) throw InputError(source, errno == ENOENT ? "no such file" : "cannot open: " + errno_text(errno));
+  const std::unique_ptr<int, void (*)(int*)> closer(&fd, [](int* f) { ::close(*f); });
+  struct stat st;
+  if (::fstat(fd, &st) != 0) throw InputError(source, "cannot read: " + errno_text(errno));
+  // A directory, device (/dev/zero), FIFO or socket is never read.
+  if (!S_ISREG(st.st_mode)) throw InputError(source, "not a regular file");
+  const auto size = static_cast<std::uintmax_t>(st.st_size);
+  if (size == 0) throw InputError(source, "file is empty");
+  if (size > max_bytes)
+    throw InputError(source,
+                     "file is too large (" + std::to_string(size) + " bytes, limit " + std::to_string(max_bytes) + ")");
+  Bytes bytes(static_cast<std::size_t>(size), 0);
+  std::size_t done = 0;
+  while (done < bytes.size()) {
+    const ssize_t n = ::read(fd, bytes.data() + done, bytes.size() - done);
+    if (n < 0 && errno == EINTR) continue;
+    if (n < 0) throw InputError(source, "cannot read: " + errno_text(errno));
+    if (n == 0) break;  // the file shrank meanwhile
+    done += static_cast<std::size_t>(n);
   }
-  if (std::ferror(file.get())) fail(path, "cannot read: " + errno_text(errno));
-  if (bytes.empty()) fail(path, "file is empty");
+  bytes.resize(done);
+  if (bytes.empty()) throw InputError(source, "file is empty");
   return bytes;
+}
+
+}  // namespace
+
+std::string read_regular_file(const std::filesystem::path& path, std::uintmax_t max_bytes, const std::string& source) {
+  return read_regular_file_as<std::string>(path, max_bytes, source);
+}
+
+std::vector<unsigned char> read_image_file(const std::filesystem::path& path) {
+  // stb_image takes the length as an int.
+  return read_regular_file_as<std::vector<unsigned char>>(path, INT_MAX, path.string());
 }
 
 }  // namespace facet

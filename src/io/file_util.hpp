@@ -1,6 +1,7 @@
-// file_util.hpp - whole-file reading for the image decoders, with the system's reason when it fails.
+// file_util.hpp - whole-file reading of regular files, with the system's reason when it fails.
 #pragma once
 
+#include <cstdint>
 #include <filesystem>
 #include <string>
 #include <vector>
@@ -13,8 +14,12 @@ std::string errno_text(int err);
 // The extension of path in lower case, with its dot (".obj"), or "" for none.
 std::string lower_extension(const std::filesystem::path& path);
 
-// Reads the whole of an image file into memory for stb_image, whose own fopen only says "can't fopen". Throws
-// InputError when path is a directory, cannot be opened or read, is empty, or is too large for stb_image's int sizes.
+// Reads the whole of a regular file, at most max_bytes long. Throws InputError(source, problem) when it does not
+// exist, cannot be opened or read, is empty or too large, or is not a regular file: a device (/dev/zero), a FIFO
+// (opened without waiting for a writer) or a directory is never read, so a model cannot make facet read forever.
+std::string read_regular_file(const std::filesystem::path& path, std::uintmax_t max_bytes, const std::string& source);
+
+// The same for an image file handed to stb_image (at most 2 GiB: stb_image takes sizes as int), named by its path.
 std::vector<unsigned char> read_image_file(const std::filesystem::path& path);
 
 }  // namespace facet

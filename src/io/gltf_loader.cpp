@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <filesystem>
 #include <glm/gtc/quaternion.hpp>
 #include <glm/gtc/type_ptr.hpp>
 #include <limits>
@@ -15,8 +16,10 @@
 #include "facet/error.hpp"
 #include "facet/model.hpp"
 #include "facet/texture.hpp"
+#include "io/file_util.hpp"
 #include "io/gltf_primitive.hpp"
 #include "io/loaders.hpp"
+#include "io/stb.hpp"
 
 namespace facet {
 namespace {
@@ -40,9 +43,15 @@ struct Reader {
     const tinygltf::Accessor& a = accessor(index, what);
     if (tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type)) != components)
       fail(std::string(what) + ": accessor " + std::to_string(index) + " has the wrong type for this attribute");
+    // Checked before anything is allocated: a count the buffer cannot hold (or, for an accessor of sparse values
+    // alone, more vertices than any model may have) would otherwise claim gigabytes.
+    const bool dense = a.bufferView >= 0;
+    const Span span = dense ? elements(a, components, what) : Span{nullptr, 0};
+    if (a.count > kMaxModelVertices)
+      fail(std::string(what) + ": accessor " + std::to_string(index) + " has " + std::to_string(a.count) +
+           " elements, more than 2^27");
     std::vector<float> out(a.count * static_cast<std::size_t>(components), 0.0f);
-    if (a.bufferView >= 0) {
-      const Span span = elements(a, components, what);
+    if (dense) {
       for (std::size_t i = 0; i < a.count; ++i)
         for (int c = 0; c < components; ++c)
           out[i * components + c] = component(span.data + i * span.stride, a.componentType, c, a.normalized);
@@ -192,6 +201,7 @@ std::shared_ptr<const Texture> decode_texture(const tinygltf::Model& model, int 
   const int image_index = model.textures[static_cast<std::size_t>(texture_index)].source;
   if (image_index < 0 || static_cast<std::size_t>(image_index) >= model.images.size()) return nullptr;
   const tinygltf::Image& image = model.images[static_cast<std::size_t>(image_index)];
+  if (image.width == -1) return nullptr;  // too large: load_image has warned
   const std::size_t texels = static_cast<std::size_t>(std::max(image.width, 0)) * std::max(image.height, 0);
   if (texels == 0 || image.bits != 8 || image.component < 1 || image.component > 4 ||
       image.image.size() != texels * static_cast<std::size_t>(image.component)) {
@@ -532,11 +542,91 @@ class SceneReader {
 
 bool is_gltf_binary(std::string_view bytes) { return bytes.size() >= 12 && bytes.substr(0, 4) == "glTF"; }
 
-Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source) {
+namespace {
+
+// What tinygltf's file and image callbacks need: where the model is, what it may read, and where to warn.
+struct GltfAccess {
+  ReferencePolicy policy;
+  const LoadOptions* options = nullptr;
+  std::string base;  // the folder as tinygltf joins names to it
+  std::string source;
+  std::set<std::string> noted;  // files already warned about: tinygltf may look a file up more than once
+  std::string refused;          // the first file that could not be read, and why: a failed load's error
+};
+
+// tinygltf joins a buffer's or image's URI to the model's folder; the part after the folder is the name the file
+// wrote, found as the policy allows (references.hpp). "" (which does not exist) when nothing may be read.
+std::string expand_path(const std::string& joined, void* user) {
+  auto& access = *static_cast<GltfAccess*>(user);
+  std::string name = joined;
+  if (!access.base.empty()) {
+    const std::string prefix = access.base.back() == '/' ? access.base : access.base + "/";
+    if (name.starts_with(prefix)) name.erase(0, prefix.size());
+  }
+  const Reference found = resolve_reference(access.policy, name);
+  if (!found.path) {
+    if (access.refused.empty())
+      access.refused = "'" + printable(name) + "': " +
+                       (found.note.empty() ? printable(found.problem)
+                                           : "outside the model's folder, and no '" +
+                                                 printable(std::filesystem::path(name).filename().string()) +
+                                                 "' beside it (--allow-external-files reads it)");
+    return {};
+  }
+  if (!found.note.empty() && access.noted.insert(found.note).second)
+    warn(access.source, "'" + printable(name) + "' " + printable(found.note));
+  return found.path->string();
+}
+
+bool file_exists(const std::string& path, void*) {
+  std::error_code ec;
+  return !path.empty() && std::filesystem::is_regular_file(path, ec);
+}
+
+bool read_whole_file(std::vector<unsigned char>* out, std::string* error, const std::string& path, void*) {
+  try {
+    const std::string bytes = read_regular_file(path, kMaxModelFileBytes, path);
+    out->assign(bytes.begin(), bytes.end());
+    return true;
+  } catch (const InputError& e) {
+    if (error) *error += std::string(e.what()) + "\n";
+    return false;
+  }
+}
+
+bool refuse_write(std::string* error, const std::string&, const std::vector<unsigned char>&, void*) {
+  if (error) *error += "facet does not write glTF files\n";
+  return false;
+}
+
+// Images larger than the limit are not decoded (a small PNG can expand to gigabytes): the material is drawn
+// untextured. Their width is set to -1 so that decode_texture knows the warning was given.
+bool load_image(tinygltf::Image* image, const int index, std::string* error, std::string* warning, int width,
+                int height, const unsigned char* bytes, int size, void* user) {
+  const auto& access = *static_cast<const GltfAccess*>(user);
+  int w = 0, h = 0, channels = 0;
+  if (stbi_info_from_memory(bytes, size, &w, &h, &channels) &&
+      (w > access.options->max_texture_size || h > access.options->max_texture_size)) {
+    warn(access.source, "image " + std::to_string(index) + " is " + std::to_string(w) + "x" + std::to_string(h) +
+                            " texels, over the limit of " + std::to_string(access.options->max_texture_size) +
+                            " a side (--max-texture-size); drawing its material untextured");
+    image->width = -1;
+    return true;
+  }
+  return tinygltf::LoadImageData(image, index, error, warning, width, height, bytes, size, nullptr);
+}
+
+}  // namespace
+
+Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source,
+                const LoadOptions& options) {
   tinygltf::TinyGLTF gltf;
   tinygltf::Model model;
   std::string error, warning;
   const std::string base = path.parent_path().string();
+  GltfAccess access{{path.parent_path(), options.allow_external_files}, &options, base, source, {}, {}};
+  gltf.SetFsCallbacks({&file_exists, &expand_path, &read_whole_file, &refuse_write, &access});
+  gltf.SetImageLoader(&load_image, &access);
   const std::optional<std::string> patched = without_draco_indices(bytes, is_gltf_binary(bytes));
   if (patched) bytes = *patched;
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
@@ -548,7 +638,7 @@ Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const
     text = text.substr(0, text.find('\n'));
     return printable(text.empty() ? "not a valid glTF file" : text);
   };
-  if (!ok) throw InputError(source, first_line(error));
+  if (!ok) throw InputError(source, access.refused.empty() ? first_line(error) : access.refused);
   if (!warning.empty()) warn(source, first_line(warning));
   for (const std::string& extension : model.extensionsRequired)
     if (!kSupportedRequired.count(extension))

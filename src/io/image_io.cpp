@@ -131,9 +131,7 @@ void write_npy_words(const std::filesystem::path& path, const char* descr, int w
   write_output(path, bytes);
 }
 
-bool is_exr(const std::filesystem::path& path) {
-  return lower_extension(path) == ".exr";
-}
+bool is_exr(const std::filesystem::path& path) { return lower_extension(path) == ".exr"; }
 
 }  // namespace
 

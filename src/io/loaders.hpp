@@ -3,12 +3,15 @@
 
 #include <cstdint>
 #include <filesystem>
+#include <optional>
 #include <string>
 #include <string_view>
 
 #include "facet/mesh.hpp"
 #include "facet/model.hpp"
+#include "facet/model_io.hpp"
 #include "facet/warnings.hpp"
+#include "io/references.hpp"
 
 namespace facet {
 
@@ -16,14 +19,24 @@ namespace facet {
 // by read_model (non-empty, at most kMaxModelFileBytes) and the source name for its InputErrors. Each returns a
 // validated mesh (or model, each of its meshes validated) with at least one triangle placed, or throws
 // InputError(source, one-line problem).
-Mesh load_obj(const std::filesystem::path& path, std::string& bytes, const std::string& source);
+// The readers of formats that name other files read them as options allow (references.hpp).
+Mesh load_obj(const std::filesystem::path& path, std::string& bytes, const std::string& source,
+              const LoadOptions& options);
 Mesh load_ply(std::string_view bytes, const std::string& source);
 Mesh load_stl(std::string_view bytes, const std::string& source);
 // glTF resolves external buffers and images against the path's folder; its meshes and node instances.
-Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source);
+Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source,
+                const LoadOptions& options);
 
 // Every other format Assimp reads, its meshes and node instances; Assimp opens the file (and its companions) itself.
-Model load_with_assimp(const std::filesystem::path& path, std::string_view bytes, const std::string& source);
+Model load_with_assimp(const std::filesystem::path& path, std::string_view bytes, const std::string& source,
+                       const LoadOptions& options);
+
+// The texture file a material names, if it can be used: a regular file found as `policy` allows whose image is at
+// most options.max_texture_size a side; otherwise nullopt, after a warning naming `what` (e.g. "texture 'a.png'
+// of material 'm'"). Only the image's header is read here; it is decoded when drawn.
+std::optional<std::string> usable_texture(const ReferencePolicy& policy, const LoadOptions& options,
+                                          std::string_view name, const std::string& what, const std::string& source);
 // Whether Assimp has a reader for this extension (".fbx", with the dot).
 bool assimp_reads(const std::string& extension);
 

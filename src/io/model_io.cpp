@@ -3,13 +3,13 @@
 
 #include <algorithm>
 #include <cctype>
-#include <fstream>
 #include <new>
 #include <string>
 #include <string_view>
 #include <utility>
 
 #include "facet/error.hpp"
+#include "io/file_util.hpp"
 #include "io/loaders.hpp"
 #include "io/text_scan.hpp"
 
@@ -31,31 +31,6 @@ namespace {
 enum class Format { kObj, kPly, kStl, kGltf, kAssimp, kUnknown };
 
 constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf, .glb and the formats Assimp reads";
-
-// Problems every format shares, checked before the format so a mistyped path says "no such file".
-std::uintmax_t checked_file_size(const fs::path& path, const std::string& source) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (!fs::exists(status)) throw InputError(source, "no such file");
-  if (!fs::is_regular_file(status)) throw InputError(source, "not a regular file");
-  const std::uintmax_t size = fs::file_size(path, ec);
-  if (ec) throw InputError(source, "cannot read file size (" + ec.message() + ")");
-  if (size == 0) throw InputError(source, "file is empty");
-  if (size > kMaxModelFileBytes)
-    throw InputError(source, "file is too large (" + std::to_string(size) + " bytes, limit " +
-                                 std::to_string(kMaxModelFileBytes) + ")");
-  return size;
-}
-
-std::string read_file(const fs::path& path, std::uintmax_t size, const std::string& source) {
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(source, "cannot open file");
-  std::string bytes(static_cast<std::size_t>(size), '\0');
-  in.read(bytes.data(), static_cast<std::streamsize>(size));
-  bytes.resize(static_cast<std::size_t>(in.gcount()));
-  if (bytes.empty()) throw InputError(source, "file is empty");
-  return bytes;
-}
 
 Format format_of_extension(std::string extension) {
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
@@ -116,19 +91,12 @@ Model one_mesh(Mesh mesh) {
   return model;
 }
 
-}  // namespace
-
-Model read_model(const fs::path& path) {
-  std::string format;
-  return read_model(path, format);
-}
-
-Model read_model(const fs::path& path, std::string& format_name) {
+// Reads the file with the reader its extension or content names.
+Model read_any_model(const fs::path& path, std::string& format_name, const LoadOptions& options) {
   const std::string source = path.string();
-  const std::uintmax_t size = checked_file_size(path, source);
   const std::string extension = path.extension().string();
   Format format = format_of_extension(extension);
-  std::string bytes = read_file(path, size, source);
+  std::string bytes = read_regular_file(path, kMaxModelFileBytes, source);
   if (format == Format::kUnknown) format = format_of_content(bytes);
   constexpr const char* kNames[] = {"OBJ", "PLY", "STL", "glTF", "Assimp", ""};
   format_name = kNames[static_cast<int>(format)];
@@ -136,11 +104,11 @@ Model read_model(const fs::path& path, std::string& format_name) {
   if (format == Format::kAssimp) format_name += " (" + printable(extension.substr(1)) + ")";
   try {
     switch (format) {
-      case Format::kObj: return one_mesh(load_obj(path, bytes, source));
+      case Format::kObj: return one_mesh(load_obj(path, bytes, source, options));
       case Format::kPly: return one_mesh(load_ply(bytes, source));
       case Format::kStl: return one_mesh(load_stl(bytes, source));
-      case Format::kGltf: return load_gltf(path, bytes, source);
-      case Format::kAssimp: return load_with_assimp(path, bytes, source);
+      case Format::kGltf: return load_gltf(path, bytes, source, options);
+      case Format::kAssimp: return load_with_assimp(path, bytes, source, options);
       case Format::kUnknown: break;
     }
   } catch (const std::bad_alloc&) {
@@ -151,13 +119,30 @@ Model read_model(const fs::path& path, std::string& format_name) {
   throw InputError(source, "unsupported model format '" + printable(extension) + "' (" + kSupported + ")");
 }
 
-Mesh load_model(const fs::path& path) {
+}  // namespace
+
+Model read_model(const fs::path& path, const LoadOptions& options) {
   std::string format;
-  return load_model(path, format);
+  return read_model(path, format, options);
 }
 
-Mesh load_model(const fs::path& path, std::string& format_name) {
-  Model model = read_model(path, format_name);
+Model read_model(const fs::path& path, std::string& format_name, const LoadOptions& options) {
+  Model model = read_any_model(path, format_name, options);
+  std::uint64_t triangles = 0;
+  for (const ModelInstance& instance : model.instances) triangles += model.meshes[instance.mesh].indices.size() / 3;
+  if (triangles > options.max_triangles)
+    throw InputError(path.string(), "places " + std::to_string(triangles) + " triangles, more than the limit of " +
+                                        std::to_string(options.max_triangles) + " (--max-triangles)");
+  return model;
+}
+
+Mesh load_model(const fs::path& path, const LoadOptions& options) {
+  std::string format;
+  return load_model(path, format, options);
+}
+
+Mesh load_model(const fs::path& path, std::string& format_name, const LoadOptions& options) {
+  Model model = read_model(path, format_name, options);
   try {
     return flatten(std::move(model), path.string());
   } catch (const std::bad_alloc&) {

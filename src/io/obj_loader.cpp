@@ -4,7 +4,6 @@
 #include <algorithm>
 #include <cctype>
 #include <cmath>
-#include <fstream>
 #include <iostream>
 #include <limits>
 #include <map>
@@ -15,6 +14,7 @@
 
 #include "facet/error.hpp"
 #include "facet/model_io.hpp"
+#include "io/file_util.hpp"
 #include "io/loaders.hpp"
 
 namespace facet {
@@ -23,49 +23,43 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// OBJ files written on Windows use '\' as the separator (spider.mtl has "map_Kd .\wal67ar_small.jpg").
-fs::path file_name_path(std::string name) {
-  std::replace(name.begin(), name.end(), '\\', '/');
-  return fs::path(name);
-}
+// Lets tinyobj read the file's bytes in place; an istringstream would copy them.
+class ViewBuffer : public std::streambuf {
+ public:
+  explicit ViewBuffer(std::string& text) { setg(text.data(), text.data(), text.data() + text.size()); }
+};
 
-fs::path resolve(const fs::path& folder, const std::string& name) {
-  const fs::path p = file_name_path(name);
-  return (p.is_absolute() ? p : folder / p).lexically_normal();
-}
-
-bool regular_file_exists(const fs::path& p) {
-  std::error_code ec;
-  return fs::is_regular_file(p, ec);
-}
-
-// Reads MTL files from the .obj's folder. tinyobj's own reader splits its search path at ':', which breaks on
-// folders containing one, and reports a missing file as a multi-line warning; this one warns in facet's format.
+// Reads MTL files from the .obj's folder tree (references.hpp). tinyobj's own reader splits its search path at
+// ':', which breaks on folders containing one, opens whatever path the file names, and reports a missing file as a
+// multi-line warning; this one warns in facet's format.
 class MtlReader final : public tinyobj::MaterialReader {
  public:
-  MtlReader(fs::path folder, std::string source) : folder_(std::move(folder)), source_(std::move(source)) {}
+  MtlReader(ReferencePolicy policy, std::string source) : policy_(std::move(policy)), source_(std::move(source)) {}
 
   bool operator()(const std::string& name, std::vector<tinyobj::material_t>* materials,
                   std::map<std::string, int>* names, std::string* warnings, std::string* errors) override {
-    const fs::path p = resolve(folder_, name);
-    std::ifstream in;
-    if (regular_file_exists(p)) in.open(p, std::ios::binary);
-    if (!in.is_open()) {
-      warn(source_, "material library '" + printable(name) + "' not found (looked for " + printable(p.string()) +
-                        "); faces keep no material");
+    const std::string what = "material library '" + printable(name) + "'";
+    const Reference found = resolve_reference(policy_, name);
+    if (!found.note.empty()) warn(source_, what + " " + printable(found.note));
+    if (!found.path) {
+      warn(source_, what + ": " + printable(found.problem) + "; faces keep no material");
       return false;
     }
-    std::error_code ec;
-    if (fs::file_size(p, ec) > kMaxModelFileBytes) {
-      warn(source_, "material library '" + printable(name) + "' is too large; ignored");
+    std::string text;
+    try {
+      text = read_regular_file(*found.path, kMaxModelFileBytes, found.path->string());
+    } catch (const InputError& e) {
+      warn(source_, what + ": " + e.what() + "; faces keep no material");
       return false;
     }
+    ViewBuffer buffer(text);
+    std::istream in(&buffer);
     tinyobj::LoadMtl(names, materials, &in, warnings, errors);
     return true;
   }
 
  private:
-  fs::path folder_;
+  ReferencePolicy policy_;
   std::string source_;
 };
 
@@ -209,8 +203,8 @@ class MeshBuilder {
   Mesh mesh_;
 };
 
-std::vector<Material> convert_materials(const std::vector<tinyobj::material_t>& in, const fs::path& folder,
-                                        const std::string& source) {
+std::vector<Material> convert_materials(const std::vector<tinyobj::material_t>& in, const ReferencePolicy& policy,
+                                        const LoadOptions& options, const std::string& source) {
   std::vector<Material> out;
   out.reserve(in.size());
   for (const tinyobj::material_t& m : in) {
@@ -220,11 +214,8 @@ std::vector<Material> convert_materials(const std::vector<tinyobj::material_t>& 
     mat.specular = {m.specular[0], m.specular[1], m.specular[2]};
     mat.shininess = m.shininess;
     if (!m.diffuse_texname.empty()) {
-      const fs::path texture = resolve(folder, m.diffuse_texname);
-      if (regular_file_exists(texture)) mat.diffuse_texture = texture.string();
-      else
-        warn(source, "texture '" + printable(m.diffuse_texname) + "' of material '" + printable(m.name) +
-                         "' not found (looked for " + printable(texture.string()) + ")");
+      const std::string what = "texture '" + printable(m.diffuse_texname) + "' of material '" + printable(m.name) + "'";
+      mat.diffuse_texture = usable_texture(policy, options, m.diffuse_texname, what, source).value_or("");
     }
     out.push_back(std::move(mat));
   }
@@ -252,18 +243,12 @@ std::string parse_problem(const std::string& errors) {
          " (an index is 0 or not a number)";
 }
 
-// Lets tinyobj read the file's bytes in place; an istringstream would copy them.
-class ViewBuffer : public std::streambuf {
- public:
-  explicit ViewBuffer(std::string& text) { setg(text.data(), text.data(), text.data() + text.size()); }
-};
-
 }  // namespace
 
-Mesh load_obj(const fs::path& path, std::string& text, const std::string& source) {
+Mesh load_obj(const fs::path& path, std::string& text, const std::string& source, const LoadOptions& options) {
   reject_non_finite_spellings(text, source);
 
-  const fs::path folder = path.parent_path();
+  const ReferencePolicy policy{path.parent_path(), options.allow_external_files};
   tinyobj::attrib_t attrib;
   std::vector<tinyobj::shape_t> shapes;
   std::vector<tinyobj::material_t> materials;
@@ -272,7 +257,7 @@ Mesh load_obj(const fs::path& path, std::string& text, const std::string& source
   try {
     ViewBuffer buffer(text);
     std::istream in(&buffer);
-    MtlReader mtl(folder, source);
+    MtlReader mtl(policy, source);
     // No triangulation in tinyobj: it splits quads along the shorter diagonal, where the reference splits them as
     // (c0 c1 c2), (c0 c2 c3), and its ear clipper trusts the indices. Without fallback colours, attrib.colors
     // stays empty unless every vertex has them.
@@ -297,7 +282,7 @@ Mesh load_obj(const fs::path& path, std::string& text, const std::string& source
     ++dropped;
   if (dropped > 0) warn(source, "dropped " + std::to_string(dropped) + " face(s) with fewer than 3 corners");
 
-  mesh.materials = convert_materials(materials, folder, source);
+  mesh.materials = convert_materials(materials, policy, options, source);
   validate(mesh, source);
   return mesh;
 }

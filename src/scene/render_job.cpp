@@ -234,7 +234,7 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
   if (job.width < 1 || job.height < 1 || job.width > kMaxDimension || job.height > kMaxDimension)
     throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
   Stopwatch clock;
-  auto mesh = std::make_shared<Mesh>(load_model(job.model));
+  auto mesh = std::make_shared<Mesh>(load_model(job.model, job.load));
   if (!has_area(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
   apply_look_color(*mesh, job.look);
   if (timings) timings->load = clock.lap();

@@ -96,6 +96,27 @@ expect unwritable_camera 1 render "$box" --output "$scratch/unwritable_camera.pn
 expect info_missing 1 info "$scratch/does_not_exist.obj"
 expect info_garbage 1 info "$scratch/garbage.obj"
 expect demo_unwritable 1 demo cube --output "$scratch/no/such/folder/cube.png"
+# A glTF whose buffer lies outside its folder: refused unless --allow-external-files; a FIFO is never read; and
+# the limits on triangles.
+mkdir -p "$scratch/inside"
+python3 -c 'import struct, sys; sys.stdout.buffer.write(struct.pack("<9f", 0, 0, 0, 1, 0, 0, 0, 1, 0))' \
+  >"$scratch/outside.bin"
+printf '%s' '{"asset":{"version":"2.0"},"buffers":[{"byteLength":36,"uri":"../outside.bin"}],"bufferViews":[{"buffer":0,"byteLength":36}],"accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],"meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],"scene":0}' \
+  >"$scratch/inside/external.gltf"
+expect external_buffer 1 render "$scratch/inside/external.gltf"
+if "$facet" render "$scratch/inside/external.gltf" --allow-external-files --resolution 32,32 \
+  --output "$scratch/external_allowed.png" 2>/dev/null && [ -s "$scratch/external_allowed.png" ]; then
+  ok "external_buffer read with --allow-external-files"
+else
+  bad external_buffer "not rendered with --allow-external-files"
+fi
+mkfifo "$scratch/fifo.obj"
+expect fifo_model 1 render "$scratch/fifo.obj"
+expect_message fifo_model "not a regular file"
+expect too_many_triangles 1 render "$box" --max-triangles 5
+expect_message too_many_triangles "more than the limit of 5 (--max-triangles)"
+expect max_triangles_zero 2 render "$box" --max-triangles 0
+expect max_texture_size_range 2 render "$box" --max-texture-size 20000
 
 # Bad usage: exit 2.
 expect no_command 2 -n

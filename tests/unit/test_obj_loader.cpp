@@ -132,7 +132,7 @@ TEST_F(ObjLoader, MissingMtlAndTextureAreWarnings) {
   testing::internal::CaptureStderr();
   const Mesh no_mtl = load_model(obj);
   std::string err = testing::internal::GetCapturedStderr();
-  EXPECT_TRUE(starts_with(err, "facet: warning: " + obj.string() + ": material library 'cube.mtl' not found")) << err;
+  EXPECT_TRUE(starts_with(err, "facet: warning: " + obj.string() + ": material library 'cube.mtl': not found")) << err;
   EXPECT_EQ(std::count(err.begin(), err.end(), '\n'), 1) << err;
   EXPECT_TRUE(no_mtl.materials.empty());
   EXPECT_TRUE(no_mtl.face_materials.empty());
