@@ -321,7 +321,9 @@ class SceneReader {
   void node(int index, const glm::mat4& parent, int depth) {
     if (index < 0 || static_cast<std::size_t>(index) >= model_.nodes.size())
       reader_.fail("node " + std::to_string(index) + " does not exist");
-    if (depth > 64 || on_path_.count(index)) reader_.fail("node " + std::to_string(index) + " is its own ancestor");
+    if (on_path_.count(index)) reader_.fail("node " + std::to_string(index) + " is its own ancestor");
+    if (depth > 64)
+      reader_.fail("the node hierarchy is more than 64 levels deep (at node " + std::to_string(index) + ")");
     const tinygltf::Node& n = model_.nodes[static_cast<std::size_t>(index)];
     const glm::mat4 world = parent * local_transform(n);
     if (n.mesh >= 0) place(n.mesh, world, static_cast<std::uint32_t>(index));

@@ -10,6 +10,7 @@
 
 #include "facet/error.hpp"
 #include "io/file_util.hpp"
+#include "texture/decode.hpp"
 
 // The one stb_image implementation in facet (image_io.cpp uses it too). Only the formats facet promises are
 // compiled in, which also keeps the decoder's attack surface small; the dimension cap rejects absurd files early.
@@ -251,7 +252,11 @@ namespace {
 }  // namespace
 
 Texture load_texture(const std::filesystem::path& path, TexelEncoding encoding) {
-  const std::vector<unsigned char> bytes = read_image_file(path);
+  return decode_texture_file(read_image_file(path), encoding, path);
+}
+
+Texture decode_texture_file(std::span<const unsigned char> bytes, TexelEncoding encoding,
+                            const std::filesystem::path& path) {
   const int length = static_cast<int>(bytes.size());
   int w = 0, h = 0, channels = 0;
   if (!stbi_info_from_memory(bytes.data(), length, &w, &h, &channels))

@@ -1,0 +1,44 @@
+// fuzz_models.cpp - libFuzzer targets for the model readers (OBJ with MTL, PLY, STL, glTF and GLB), one per format,
+// chosen at compile time by FACET_FUZZ_FORMAT.
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <string>
+#include <string_view>
+
+#include "fuzz_input.hpp"
+#include "io/loaders.hpp"
+
+namespace {
+
+// An empty folder for the model: the files an input names (MTL libraries, buffers, images) are looked for there
+// and not found, except those the seed corpus put beside it.
+[[maybe_unused]] const std::filesystem::path& model_path() {
+  static const std::filesystem::path path = [] {
+    const std::filesystem::path folder = std::filesystem::temp_directory_path() / "facet-fuzz-model";
+    std::filesystem::create_directories(folder);
+    return folder / "input";
+  }();
+  return path;
+}
+
+}  // namespace
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  std::string bytes(reinterpret_cast<const char*>(data), size);
+  [[maybe_unused]] const facet::LoadOptions options;
+  return facet::fuzz::run([&] {
+    const std::string source = "input";
+#if FACET_FUZZ_FORMAT == 1
+    (void)facet::load_obj(model_path(), bytes, source, options);
+#elif FACET_FUZZ_FORMAT == 2
+    (void)facet::load_ply(bytes, source);
+#elif FACET_FUZZ_FORMAT == 3
+    (void)facet::load_stl(bytes, source);
+#elif FACET_FUZZ_FORMAT == 4
+    (void)facet::load_gltf(model_path(), bytes, source, options);
+#else
+#error "FACET_FUZZ_FORMAT: 1 OBJ, 2 PLY, 3 STL, 4 glTF"
+#endif
+  });
+}
