@@ -43,7 +43,22 @@ case $target in
       >"$corpus/json"
     printf 'a.obj\n# comment\nb.glb\n' >"$corpus/list" ;;
 esac
-if [ -d "tests/fuzz/regressions/$target" ]; then cp tests/fuzz/regressions/"$target"/* "$corpus/" 2>/dev/null || true; fi
+# Regression inputs; NAME.patch is a file of assimp-testmodels with some bytes changed (test_fuzz_regressions.cpp).
+for input in tests/fuzz/regressions/"$target"/*; do
+  [ -f "$input" ] || continue
+  if [[ $input == *.patch ]]; then
+    python3 - "$input" "$corpus/$(basename "$input" .patch)" <<'PY'
+import json, sys
+spec = json.load(open(sys.argv[1]))
+data = bytearray(open(spec['base'], 'rb').read())
+for offset, run in spec['patches']:
+    data[offset:offset + len(run) // 2] = bytes.fromhex(run)
+open(sys.argv[2], 'wb').write(data)
+PY
+  else
+    cp "$input" "$corpus/"
+  fi
+done
 
 echo "fuzz.sh: fuzzing $target for $seconds s from $(find "$corpus" -type f | wc -l) inputs" >&2
 # -rss_limit_mb and -malloc_limit_mb: an input that makes a reader claim more than 2 GB is a finding too.

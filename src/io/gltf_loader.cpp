@@ -19,7 +19,7 @@
 #include "io/file_util.hpp"
 #include "io/gltf_primitive.hpp"
 #include "io/loaders.hpp"
-#include "io/stb.hpp"
+#include "texture/image_decode.hpp"
 
 namespace facet {
 namespace {
@@ -603,19 +603,28 @@ bool refuse_write(std::string* error, const std::string&, const std::vector<unsi
 
 // Images larger than the limit are not decoded (a small PNG can expand to gigabytes): the material is drawn
 // untextured. Their width is set to -1 so that decode_texture knows the warning was given.
-bool load_image(tinygltf::Image* image, const int index, std::string* error, std::string* warning, int width,
-                int height, const unsigned char* bytes, int size, void* user) {
+// Images are decoded by facet's decoders (image_decode.hpp), not tinygltf's stb_image. One that cannot be
+// decoded, or is larger than the limit (a small PNG can expand to gigabytes), leaves its material untextured with
+// a warning; its width is set to -1 so that decode_texture knows the warning was given.
+bool load_image(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
+                const unsigned char* bytes, int size, void* user) {
   const auto& access = *static_cast<const GltfAccess*>(user);
-  int w = 0, h = 0, channels = 0;
-  if (stbi_info_from_memory(bytes, size, &w, &h, &channels) &&
-      (w > access.options->max_texture_size || h > access.options->max_texture_size)) {
-    warn(access.source, "image " + std::to_string(index) + " is " + std::to_string(w) + "x" + std::to_string(h) +
-                            " texels, over the limit of " + std::to_string(access.options->max_texture_size) +
-                            " a side (--max-texture-size); drawing its material untextured");
+  try {
+    DecodedImage decoded = decode_image(std::span(bytes, static_cast<std::size_t>(std::max(size, 0))),
+                                        access.options->max_texture_size, "image " + std::to_string(index));
+    image->width = decoded.width;
+    image->height = decoded.height;
+    image->component = 4;
+    image->bits = 8;
+    image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
+    image->image = std::move(decoded.rgba);
+  } catch (const InputError& e) {
+    warn(access.source, std::string(e.what()) +
+                            " (--max-texture-size sets the size limit); drawing its material "
+                            "untextured");
     image->width = -1;
-    return true;
   }
-  return tinygltf::LoadImageData(image, index, error, warning, width, height, bytes, size, nullptr);
+  return true;
 }
 
 }  // namespace

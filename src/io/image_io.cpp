@@ -17,9 +17,8 @@
 #include "io/output_file.hpp"
 #include "io/png.hpp"
 #include "io/video.hpp"
+#include "texture/image_decode.hpp"
 
-// stb_image's implementation lives in src/texture/texture.cpp; here only its declarations are needed.
-#include "io/stb.hpp"
 
 namespace facet {
 
@@ -90,14 +89,10 @@ void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer
 }
 
 std::vector<std::uint8_t> read_png(const std::filesystem::path& path, int& width, int& height) {
-  const std::vector<unsigned char> bytes = read_image_file(path);
-  int channels = 0;
-  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
-      stbi_load_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width, &height, &channels, 4),
-      &stbi_image_free);
-  if (!pixels)
-    throw InputError(path.string(), std::string("cannot decode image (stb_image: ") + stbi_failure_reason() + ")");
-  return std::vector<std::uint8_t>(pixels.get(), pixels.get() + static_cast<std::size_t>(width) * height * 4);
+  DecodedImage image = decode_image(read_image_file(path), kMaxDimension, path.string());
+  width = image.width;
+  height = image.height;
+  return std::move(image.rgba);
 }
 
 namespace {

@@ -11,6 +11,7 @@
 #include "facet/error.hpp"
 #include "io/file_util.hpp"
 #include "texture/decode.hpp"
+#include "texture/image_decode.hpp"
 
 // The one stb_image implementation in facet (image_io.cpp uses it too). Only the formats facet promises are
 // compiled in, which also keeps the decoder's attack surface small; the dimension cap rejects absurd files early.
@@ -155,7 +156,7 @@ void Texture::generate_mipmaps() {
   // bucket, so at most two steps follow).
   const float* decode = detail::srgb_decode_table();
   struct SrgbRounding {
-    std::array<float, 256> half_step{};         // [b]: the lowest linear value that rounds above byte b
+    std::array<float, 256> half_step{};             // [b]: the lowest linear value that rounds above byte b
     std::array<std::uint8_t, 4096> bucket_start{};  // [q]: the byte linear value q / 16 rounds to
   };
   static const SrgbRounding rounding = [] {
@@ -243,13 +244,6 @@ void Texture::generate_mipmaps() {
   }
 }
 
-namespace {
-
-[[noreturn]] void fail(const std::filesystem::path& path, const std::string& problem) {
-  throw InputError(path.string(), problem);
-}
-
-}  // namespace
 
 Texture load_texture(const std::filesystem::path& path, TexelEncoding encoding) {
   return decode_texture_file(read_image_file(path), encoding, path);
@@ -257,21 +251,12 @@ Texture load_texture(const std::filesystem::path& path, TexelEncoding encoding) 
 
 Texture decode_texture_file(std::span<const unsigned char> bytes, TexelEncoding encoding,
                             const std::filesystem::path& path) {
-  const int length = static_cast<int>(bytes.size());
-  int w = 0, h = 0, channels = 0;
-  if (!stbi_info_from_memory(bytes.data(), length, &w, &h, &channels))
-    fail(path, std::string("not a readable PNG, JPEG, TGA or BMP image (stb_image: ") + stbi_failure_reason() + ")");
-  if (w < 1 || h < 1 || w > kMaxTextureSize || h > kMaxTextureSize)
-    fail(path, "image is " + std::to_string(w) + "x" + std::to_string(h) + " texels; the limit is 1.." +
-                   std::to_string(kMaxTextureSize) + " per side");
-  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load_from_memory(bytes.data(), length, &w, &h, &channels, 4),
-                                                   &stbi_image_free);
-  if (!pixels) fail(path, std::string("cannot decode image (stb_image: ") + stbi_failure_reason() + ")");
-
+  const DecodedImage image = decode_image(bytes, kMaxTextureSize, path.string());
+  const int w = image.width, h = image.height;
   // Image files store the top row first; texture row 0 is v = 0, the bottom (OpenGL's convention).
   std::vector<std::uint32_t> texels(static_cast<std::size_t>(w) * h);
   for (int y = 0; y < h; ++y) {
-    const stbi_uc* src = pixels.get() + static_cast<std::size_t>(h - 1 - y) * w * 4;
+    const std::uint8_t* src = image.rgba.data() + static_cast<std::size_t>(h - 1 - y) * w * 4;
     std::uint32_t* dst = texels.data() + static_cast<std::size_t>(y) * w;
     for (int x = 0; x < w; ++x, src += 4)
       dst[x] = std::uint32_t{src[0]} | std::uint32_t{src[1]} << 8 | std::uint32_t{src[2]} << 16 |

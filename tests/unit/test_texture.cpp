@@ -490,9 +490,11 @@ TEST(TextureLoad, ErrorsNameTheFile) {
   // A valid TGA header claiming 20000x1 texels.
   write_bytes(dir / "huge.tga", std::string({0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0x20, 0x4e, 1, 0, 32, 8}));
   expect_input_error(dir / "huge.tga", "");
-  // A truncated PNG: the signature and nothing else.
+  // A truncated PNG: the signature and nothing else; a JPEG that stops after its start marker.
   write_bytes(dir / "truncated.png", "\x89PNG\r\n\x1a\n");
-  expect_input_error(dir / "truncated.png", "stb_image");
+  expect_input_error(dir / "truncated.png", "cannot decode PNG (libspng: ");
+  write_bytes(dir / "truncated.jpg", "\xff\xd8\xff\xe0");
+  expect_input_error(dir / "truncated.jpg", "cannot decode JPEG (libjpeg-turbo: ");
 }
 
 }  // namespace

@@ -1,0 +1,98 @@
+// image_decode.cpp - PNG through libspng, JPEG through TurboJPEG, TGA and BMP through stb_image, all bounded.
+#include "texture/image_decode.hpp"
+
+#include <spng.h>
+#include <turbojpeg.h>
+
+#include <climits>
+#include <memory>
+
+#include "facet/error.hpp"
+#include "io/stb.hpp"
+
+namespace facet {
+
+namespace {
+
+void check_size(int width, int height, int max_size, const std::string& source) {
+  if (width < 1 || height < 1 || width > max_size || height > max_size)
+    throw InputError(source, "image is " + std::to_string(width) + "x" + std::to_string(height) +
+                                 " texels; the limit is 1.." + std::to_string(max_size) + " per side");
+}
+
+DecodedImage decode_png(std::span<const unsigned char> bytes, int max_size, const std::string& source) {
+  std::unique_ptr<spng_ctx, void (*)(spng_ctx*)> png(spng_ctx_new(0), &spng_ctx_free);
+  if (!png) throw std::bad_alloc();
+  const auto fail = [&](int code) {
+    throw InputError(source, std::string("cannot decode PNG (libspng: ") + spng_strerror(code) + ")");
+  };
+  // Ancillary chunks' checksums are not checked (as browsers and stb do not); critical ones are.
+  spng_set_crc_action(png.get(), SPNG_CRC_USE, SPNG_CRC_USE);
+  spng_set_image_limits(png.get(), static_cast<std::uint32_t>(max_size), static_cast<std::uint32_t>(max_size));
+  spng_set_chunk_limits(png.get(), 1u << 26, 1u << 26);
+  if (int e = spng_set_png_buffer(png.get(), bytes.data(), bytes.size())) fail(e);
+  spng_ihdr header{};
+  if (int e = spng_get_ihdr(png.get(), &header)) {
+    if (e == SPNG_EWIDTH || e == SPNG_EHEIGHT || e == SPNG_EUSER_WIDTH || e == SPNG_EUSER_HEIGHT)
+      throw InputError(source, "image is wider or taller than " + std::to_string(max_size) + " texels");
+    fail(e);
+  }
+  DecodedImage out;
+  out.width = static_cast<int>(header.width);
+  out.height = static_cast<int>(header.height);
+  check_size(out.width, out.height, max_size, source);
+  std::size_t size = 0;
+  if (int e = spng_decoded_image_size(png.get(), SPNG_FMT_RGBA8, &size)) fail(e);
+  out.rgba.resize(size);
+  if (int e = spng_decode_image(png.get(), out.rgba.data(), size, SPNG_FMT_RGBA8, SPNG_DECODE_TRNS)) fail(e);
+  return out;
+}
+
+DecodedImage decode_jpeg(std::span<const unsigned char> bytes, int max_size, const std::string& source) {
+  std::unique_ptr<void, int (*)(tjhandle)> jpeg(tjInitDecompress(), &tjDestroy);
+  if (!jpeg) throw std::bad_alloc();
+  if (bytes.size() > ULONG_MAX) throw InputError(source, "JPEG file too large");
+  const auto fail = [&] {
+    throw InputError(source, std::string("cannot decode JPEG (libjpeg-turbo: ") + tjGetErrorStr2(jpeg.get()) + ")");
+  };
+  int width = 0, height = 0, subsampling = 0, colorspace = 0;
+  if (tjDecompressHeader3(jpeg.get(), bytes.data(), static_cast<unsigned long>(bytes.size()), &width, &height,
+                          &subsampling, &colorspace) != 0)
+    fail();
+  if (width < 1 || height < 1) throw InputError(source, "cannot decode JPEG (libjpeg-turbo: no image size found)");
+  check_size(width, height, max_size, source);
+  DecodedImage out{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 4)};
+  // A warning (a truncated or slightly corrupt stream) still leaves a whole image, as viewers show it.
+  if (tjDecompress2(jpeg.get(), bytes.data(), static_cast<unsigned long>(bytes.size()), out.rgba.data(), width, 0,
+                    height, TJPF_RGBA, 0) != 0 &&
+      tjGetErrorCode(jpeg.get()) != TJERR_WARNING)
+    fail();
+  return out;
+}
+
+DecodedImage decode_with_stb(std::span<const unsigned char> bytes, int max_size, const std::string& source) {
+  if (bytes.size() > INT_MAX) throw InputError(source, "image file too large");
+  const int length = static_cast<int>(bytes.size());
+  int width = 0, height = 0, channels = 0;
+  if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels))
+    throw InputError(
+        source, std::string("not a readable PNG, JPEG, TGA or BMP image (stb_image: ") + stbi_failure_reason() + ")");
+  check_size(width, height, max_size, source);
+  std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
+      stbi_load_from_memory(bytes.data(), length, &width, &height, &channels, 4), &stbi_image_free);
+  if (!pixels) throw InputError(source, std::string("cannot decode image (stb_image: ") + stbi_failure_reason() + ")");
+  const std::size_t size = static_cast<std::size_t>(width) * height * 4;
+  return DecodedImage{width, height, std::vector<std::uint8_t>(pixels.get(), pixels.get() + size)};
+}
+
+}  // namespace
+
+DecodedImage decode_image(std::span<const unsigned char> bytes, int max_size, const std::string& source) {
+  static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  if (bytes.size() >= 8 && std::equal(kPng, kPng + 8, bytes.begin())) return decode_png(bytes, max_size, source);
+  if (bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff)
+    return decode_jpeg(bytes, max_size, source);
+  return decode_with_stb(bytes, max_size, source);
+}
+
+}  // namespace facet
