@@ -1,5 +1,6 @@
 #!/usr/bin/env bash
-# test.sh - installs what is missing, builds facet warning-free, and runs every test (ctest), then the same under ASan+UBSan.
+# test.sh - installs what is missing, builds facet warning-free, and runs every test (ctest), then the same under
+# ASan+UBSan, then the threading and determinism tests under ThreadSanitizer.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 scripts/deps.sh
@@ -18,4 +19,8 @@ if [ "${FACET_SKIP_SANITIZE:-0}" != 1 ]; then
   cmake --preset asan >/dev/null
   cmake --build --preset asan -j "$jobs"
   ctest --preset asan -j "$jobs"
+  # The tests that draw on several threads (CMakePresets.json names them), in a build of their binary alone.
+  cmake --preset tsan >/dev/null
+  cmake --build --preset tsan -j "$jobs"
+  ctest --preset tsan -j "$jobs"
 fi

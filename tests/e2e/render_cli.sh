@@ -321,6 +321,27 @@ if "$facet" render "$engine" --turntable 9 --resolution 45,33 --output "$scratch
 else
   bad "turntable WebM" "$(cat "$scratch/turn.err") ${msg:-}"
 fi
+# Every output is the same bytes at any thread count: the image and every buffer, and a turntable as GIF and MP4.
+same_at_any_thread_count=1
+for t in 1 2 3; do
+  mkdir -p "$scratch/threads$t"
+  "$facet" render "$gltf" --threads "$t" --resolution 96,72 --output "$scratch/threads$t/c.png" \
+    --output-depth "$scratch/threads$t/d.npy" --output-normal "$scratch/threads$t/n.exr" \
+    --output-ids "$scratch/threads$t/i.npy" --output-mask "$scratch/threads$t/m.png" 2>/dev/null &&
+    "$facet" render "$engine" --threads "$t" --turntable 6 --resolution 64,48 --output "$scratch/threads$t/t.gif" &&
+    "$facet" render "$engine" --threads "$t" --turntable 6 --resolution 64,48 --output "$scratch/threads$t/t.mp4" ||
+    same_at_any_thread_count=0
+done 2>/dev/null
+for t in 2 3; do
+  for f in c.png d.npy n.exr i.npy m.png t.gif t.mp4; do
+    cmp -s "$scratch/threads1/$f" "$scratch/threads$t/$f" || same_at_any_thread_count=0
+  done
+done
+if [ "$same_at_any_thread_count" = 1 ]; then
+  ok "PNG, .npy, .exr, mask, GIF and MP4 outputs are the same bytes at 1, 2 and 3 threads"
+else
+  bad "outputs at any thread count" "$(cd "$scratch" && md5sum threads*/* | sort)"
+fi
 for args in "--views front,bottom" "--views front --output-depth $scratch/d.npy" "--views front --camera-index 0" \
   "--turntable 8 --output-mask $scratch/m.png" "--turntable 4 --views front" "--turntable 0"; do
   # shellcheck disable=SC2086  # the cases are word lists

@@ -69,8 +69,10 @@ CullLanes cull_lanes(const SetupInput& in, std::size_t first) {
 }
 
 // The full setup of triangle t alone (one triangle never reaches the 16-lane pass).
-SetupChunk set_up_alone(const Soup& soup, CullMode cull, std::size_t t) {
-  SetupChunk chunk;
+// One triangle set up on its own, in a chunk reused from call to call (a new chunk reserves room for thousands of
+// triangles, which made this test spend most of its time allocating). Valid until the next call.
+const SetupChunk& set_up_alone(const Soup& soup, CullMode cull, std::size_t t) {
+  static SetupChunk chunk;
   chunk.reset();
   setup_triangles(input_for(soup, cull, t, 1), chunk);
   return chunk;
@@ -107,7 +109,7 @@ TEST(SetupCull, RejectsExactlyWhatFullSetupCulls) {
       const CullLanes lanes = cull_lanes(input_for(soup, cull, first, kCullLanes), first);
       for (int i = 0; i < kCullLanes; ++i) {
         const bool lane_keeps = (lanes.keep >> i) & 1u;
-        const SetupChunk alone = set_up_alone(soup, cull, first + i);
+        const SetupChunk& alone = set_up_alone(soup, cull, first + i);
         ASSERT_EQ(lane_keeps, !alone.triangles.empty())
             << "triangle " << first + i << ", cull mode " << static_cast<int>(cull);
         // Every corner is inside, so whatever the pass keeps it has fully accepted, with setup's bounds.
@@ -189,7 +191,7 @@ TEST(SetupCull, ChunkSetupMatchesOneTriangleAtATime) {
   std::vector<TriangleSetup> expected;
   std::size_t culled = 0, invalid = 0;
   for (std::size_t t = 0; t < count; ++t) {
-    const SetupChunk one = set_up_alone(soup, CullMode::back, t);
+    const SetupChunk& one = set_up_alone(soup, CullMode::back, t);
     expected.insert(expected.end(), one.triangles.begin(), one.triangles.end());
     culled += one.culled;
     invalid += one.invalid;
