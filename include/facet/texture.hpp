@@ -11,6 +11,7 @@
 
 #include <glm/glm.hpp>
 
+#include "facet/framebuffer.hpp"
 #include "facet/sampler.hpp"
 #include "facet/simd.hpp"
 
@@ -260,7 +261,8 @@ class Texture {
   int level_count_ = 0;
   bool pow2_ = false;                  // level 0 has power-of-two sides: the inline fast path applies
   bool srgb_ = false;                  // TexelEncoding::srgb
-  std::vector<std::uint32_t> texels_;  // all levels, level 0 first, each padded and row-major, row 0 at v = 0
+  // All levels, level 0 first, each padded and row-major, row 0 at v = 0.
+  std::vector<std::uint32_t, CacheAlignedAllocator<std::uint32_t>> texels_;
 };
 
 #pragma GCC diagnostic push

@@ -38,17 +38,7 @@ void check_size(int width, int height, std::size_t count, std::size_t per_pixel,
 void write_png(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba,
                bool keep_alpha) {
   check_size(width, height, rgba.size(), 4, "PNG");
-  const std::uint8_t* pixels = rgba.data();
-  std::vector<std::uint8_t> rgb;
-  if (!keep_alpha) {
-    rgb.resize(static_cast<std::size_t>(width) * height * 3);
-    for (std::size_t i = 0, n = static_cast<std::size_t>(width) * height; i < n; ++i)
-      std::memcpy(&rgb[i * 3], &rgba[i * 4], 3);
-    pixels = rgb.data();
-  }
-  const int channels = keep_alpha ? 4 : 3;
-  const std::size_t bytes = static_cast<std::size_t>(width) * static_cast<std::size_t>(height) * channels;
-  write_output(path, encode_png(width, height, channels, std::span(pixels, bytes)));
+  write_output(path, encode_png(width, height, keep_alpha ? 4 : 3, rgba, 4));
 }
 
 void write_png_gray(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> gray) {
@@ -84,8 +74,14 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 }
 
 void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha) {
-  const std::vector<std::uint8_t> rgba = framebuffer.rgba8();
-  write_png(path, framebuffer.width(), framebuffer.height(), rgba, keep_alpha);
+  if constexpr (std::endian::native == std::endian::little) {
+    // Packed pixels are R, G, B, A in memory on a little-endian machine: encoded where they lie, without a copy.
+    const std::span<const std::uint32_t> color = framebuffer.color();
+    write_png(path, framebuffer.width(), framebuffer.height(),
+              std::span(reinterpret_cast<const std::uint8_t*>(color.data()), color.size_bytes()), keep_alpha);
+  } else {
+    write_png(path, framebuffer.width(), framebuffer.height(), framebuffer.rgba8(), keep_alpha);
+  }
 }
 
 std::vector<std::uint8_t> read_png(const std::filesystem::path& path, int& width, int& height) {

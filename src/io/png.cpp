@@ -3,6 +3,8 @@
 
 #include <libdeflate.h>
 
+#include "facet/framebuffer.hpp"
+
 #include <array>
 #include <cstring>
 #include <memory>
@@ -49,30 +51,44 @@ void put_chunk(std::vector<std::uint8_t>& out, const char* type, std::span<const
 
 }  // namespace
 
-std::vector<std::uint8_t> encode_png(int width, int height, int channels, std::span<const std::uint8_t> pixels) {
-  if (width < 1 || height < 1 || (channels != 1 && channels != 3 && channels != 4))
+std::vector<std::uint8_t> encode_png(int width, int height, int channels, std::span<const std::uint8_t> pixels,
+                                     int source_channels) {
+  if (source_channels == 0) source_channels = channels;
+  if (width < 1 || height < 1 || (channels != 1 && channels != 3 && channels != 4) || source_channels < channels ||
+      source_channels > 4)
     throw std::invalid_argument("PNG: bad size " + std::to_string(width) + "x" + std::to_string(height) + "x" +
                                 std::to_string(channels));
   const std::size_t row = static_cast<std::size_t>(width) * static_cast<std::size_t>(channels);
-  if (pixels.size() != row * static_cast<std::size_t>(height))
+  const std::size_t source_row = static_cast<std::size_t>(width) * static_cast<std::size_t>(source_channels);
+  if (pixels.size() != source_row * static_cast<std::size_t>(height))
     throw std::invalid_argument("PNG: " + std::to_string(pixels.size()) + " bytes for " + std::to_string(width) + "x" +
                                 std::to_string(height) + "x" + std::to_string(channels));
 
   // Filter type 2 (Up) on every row; the first row's "row above" is zero, so it is stored as it is.
-  std::vector<std::uint8_t> filtered((row + 1) * static_cast<std::size_t>(height));
+  // Both work buffers are as large as the image: on huge pages, they fault in 2 MiB at a time (framebuffer.hpp).
+  std::vector<std::uint8_t, CacheAlignedAllocator<std::uint8_t>> filtered((row + 1) * static_cast<std::size_t>(height));
   for (std::size_t y = 0; y < static_cast<std::size_t>(height); ++y) {
     std::uint8_t* out = filtered.data() + y * (row + 1);
-    const std::uint8_t* line = pixels.data() + y * row;
+    const std::uint8_t* line = pixels.data() + y * source_row;
     out[0] = 2;
-    if (y == 0) {
-      std::memcpy(out + 1, line, row);
-    } else {
-      const std::uint8_t* above = line - row;
-      for (std::size_t i = 0; i < row; ++i) out[1 + i] = static_cast<std::uint8_t>(line[i] - above[i]);
+    if (source_channels == channels) {
+      if (y == 0) {
+        std::memcpy(out + 1, line, row);
+      } else {
+        const std::uint8_t* above = line - source_row;
+        for (std::size_t i = 0; i < row; ++i) out[1 + i] = static_cast<std::uint8_t>(line[i] - above[i]);
+      }
+      continue;
     }
+    const std::uint8_t* above = y == 0 ? nullptr : line - source_row;
+    const auto n = static_cast<std::size_t>(channels), m = static_cast<std::size_t>(source_channels);
+    for (std::size_t x = 0; x < static_cast<std::size_t>(width); ++x)
+      for (std::size_t c = 0; c < n; ++c)
+        out[1 + x * n + c] = static_cast<std::uint8_t>(line[x * m + c] - (above ? above[x * m + c] : 0));
   }
   libdeflate_compressor* c = compressor();
-  std::vector<std::uint8_t> zlib(libdeflate_zlib_compress_bound(c, filtered.size()));
+  std::vector<std::uint8_t, CacheAlignedAllocator<std::uint8_t>> zlib(
+      libdeflate_zlib_compress_bound(c, filtered.size()));
   const std::size_t compressed =
       libdeflate_zlib_compress(c, filtered.data(), filtered.size(), zlib.data(), zlib.size());
   if (compressed == 0) throw std::runtime_error("PNG: compression failed");

@@ -14,10 +14,19 @@ namespace facet {
 
 namespace {
 
-void check_size(int width, int height, int max_size, const std::string& source) {
+// No image format stores more than a few hundred texels a byte (deflate and run-length codes top out near 1,000:1
+// on RGBA bytes, JPEG near 256:1), so a header claiming more texels than 4,096 a byte of the file describes texels
+// the file does not hold: a 72-byte BMP claiming 10,000 x 8,000 would otherwise be decoded to 320 MB of guesses.
+constexpr std::uint64_t kMaxTexelsPerByte = 4096;
+
+void check_size(int width, int height, int max_size, std::size_t file_bytes, const std::string& source) {
   if (width < 1 || height < 1 || width > max_size || height > max_size)
     throw InputError(source, "image is " + std::to_string(width) + "x" + std::to_string(height) +
                                  " texels; the limit is 1.." + std::to_string(max_size) + " per side");
+  const std::uint64_t texels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
+  if (texels > (1u << 20) && texels / kMaxTexelsPerByte > file_bytes)
+    throw InputError(source, "image claims " + std::to_string(width) + "x" + std::to_string(height) +
+                                 " texels, more than its " + std::to_string(file_bytes) + " bytes can hold");
 }
 
 DecodedImage decode_png(std::span<const unsigned char> bytes, int max_size, const std::string& source) {
@@ -40,7 +49,7 @@ DecodedImage decode_png(std::span<const unsigned char> bytes, int max_size, cons
   DecodedImage out;
   out.width = static_cast<int>(header.width);
   out.height = static_cast<int>(header.height);
-  check_size(out.width, out.height, max_size, source);
+  check_size(out.width, out.height, max_size, bytes.size(), source);
   std::size_t size = 0;
   if (int e = spng_decoded_image_size(png.get(), SPNG_FMT_RGBA8, &size)) fail(e);
   out.rgba.resize(size);
@@ -60,7 +69,7 @@ DecodedImage decode_jpeg(std::span<const unsigned char> bytes, int max_size, con
                           &subsampling, &colorspace) != 0)
     fail();
   if (width < 1 || height < 1) throw InputError(source, "cannot decode JPEG (libjpeg-turbo: no image size found)");
-  check_size(width, height, max_size, source);
+  check_size(width, height, max_size, bytes.size(), source);
   DecodedImage out{width, height, std::vector<std::uint8_t>(static_cast<std::size_t>(width) * height * 4)};
   // A warning (a truncated or slightly corrupt stream) still leaves a whole image, as viewers show it.
   if (tjDecompress2(jpeg.get(), bytes.data(), static_cast<unsigned long>(bytes.size()), out.rgba.data(), width, 0,
@@ -77,7 +86,7 @@ DecodedImage decode_with_stb(std::span<const unsigned char> bytes, int max_size,
   if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels))
     throw InputError(
         source, std::string("not a readable PNG, JPEG, TGA or BMP image (stb_image: ") + stbi_failure_reason() + ")");
-  check_size(width, height, max_size, source);
+  check_size(width, height, max_size, bytes.size(), source);
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
       stbi_load_from_memory(bytes.data(), length, &width, &height, &channels, 4), &stbi_image_free);
   if (!pixels) throw InputError(source, std::string("cannot decode image (stb_image: ") + stbi_failure_reason() + ")");
