@@ -2,16 +2,13 @@
 #include "io/references.hpp"
 
 #include <algorithm>
-#include <cstdio>
 #include <system_error>
 
-#include <fcntl.h>
-#include <sys/stat.h>
-#include <unistd.h>
-
+#include "facet/error.hpp"
 #include "facet/texture.hpp"
+#include "io/file_util.hpp"
 #include "io/loaders.hpp"
-#include "io/stb.hpp"
+#include "texture/image_decode.hpp"
 
 namespace facet {
 
@@ -93,23 +90,17 @@ std::optional<std::string> usable_texture(const ReferencePolicy& policy, const L
     warn(source, what + ": " + printable(found.problem));
     return std::nullopt;
   }
-  // The header alone, through a descriptor checked to be a regular file still (it could have been swapped).
-  const int fd = ::open(found.path->c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC | O_NOCTTY);
-  struct stat st;
-  if (fd < 0 || ::fstat(fd, &st) != 0 || !S_ISREG(st.st_mode)) {
-    if (fd >= 0) ::close(fd);
-    warn(source, what + ": cannot open " + printable(found.path->string()));
+  // The size from the header, read by the decoders that will decode it (image_decode.hpp); the file is read
+  // through the same regular-file check as every other.
+  std::optional<std::pair<int, int>> size;
+  try {
+    size = image_size(read_image_file(*found.path));
+  } catch (const InputError& e) {
+    warn(source, what + ": " + e.problem());
     return std::nullopt;
   }
-  std::FILE* file = ::fdopen(fd, "rb");
-  if (!file) {
-    ::close(fd);
-    warn(source, what + ": cannot open " + printable(found.path->string()));
-    return std::nullopt;
-  }
-  int width = 0, height = 0, channels = 0;
-  const bool known = stbi_info_from_file(file, &width, &height, &channels) != 0;
-  std::fclose(file);
+  const int width = size ? size->first : 0, height = size ? size->second : 0;
+  const bool known = size.has_value();
   // An unreadable header is reported when the image is decoded, as for any texture.
   if (known && (width > options.max_texture_size || height > options.max_texture_size)) {
     warn(source, what + " is " + std::to_string(width) + "x" + std::to_string(height) + " texels, over the limit of " +

@@ -4,6 +4,7 @@
 #include <spng.h>
 #include <turbojpeg.h>
 
+#include <algorithm>
 #include <climits>
 #include <memory>
 
@@ -94,14 +95,46 @@ DecodedImage decode_with_stb(std::span<const unsigned char> bytes, int max_size,
   return DecodedImage{width, height, std::vector<std::uint8_t>(pixels.get(), pixels.get() + size)};
 }
 
+bool is_png(std::span<const unsigned char> bytes) {
+  static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
+  return bytes.size() >= 8 && std::equal(kPng, kPng + 8, bytes.begin());
+}
+
+bool is_jpeg(std::span<const unsigned char> bytes) {
+  return bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff;
+}
+
 }  // namespace
 
 DecodedImage decode_image(std::span<const unsigned char> bytes, int max_size, const std::string& source) {
-  static constexpr unsigned char kPng[8] = {0x89, 'P', 'N', 'G', '\r', '\n', 0x1a, '\n'};
-  if (bytes.size() >= 8 && std::equal(kPng, kPng + 8, bytes.begin())) return decode_png(bytes, max_size, source);
-  if (bytes.size() >= 3 && bytes[0] == 0xff && bytes[1] == 0xd8 && bytes[2] == 0xff)
-    return decode_jpeg(bytes, max_size, source);
+  if (is_png(bytes)) return decode_png(bytes, max_size, source);
+  if (is_jpeg(bytes)) return decode_jpeg(bytes, max_size, source);
   return decode_with_stb(bytes, max_size, source);
+}
+
+std::optional<std::pair<int, int>> image_size(std::span<const unsigned char> bytes) {
+  if (is_png(bytes)) {
+    std::unique_ptr<spng_ctx, void (*)(spng_ctx*)> png(spng_ctx_new(0), &spng_ctx_free);
+    spng_ihdr header{};
+    if (!png || spng_set_png_buffer(png.get(), bytes.data(), bytes.size()) != 0 ||
+        spng_get_ihdr(png.get(), &header) != 0 || header.width > INT_MAX || header.height > INT_MAX)
+      return std::nullopt;
+    return std::pair{static_cast<int>(header.width), static_cast<int>(header.height)};
+  }
+  if (is_jpeg(bytes)) {
+    std::unique_ptr<void, int (*)(tjhandle)> jpeg(tjInitDecompress(), &tjDestroy);
+    int width = 0, height = 0, subsampling = 0, colorspace = 0;
+    if (!jpeg || bytes.size() > ULONG_MAX ||
+        tjDecompressHeader3(jpeg.get(), bytes.data(), static_cast<unsigned long>(bytes.size()), &width, &height,
+                            &subsampling, &colorspace) != 0)
+      return std::nullopt;
+    return std::pair{width, height};
+  }
+  int width = 0, height = 0, channels = 0;
+  if (bytes.size() > INT_MAX ||
+      !stbi_info_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width, &height, &channels))
+    return std::nullopt;
+  return std::pair{width, height};
 }
 
 }  // namespace facet

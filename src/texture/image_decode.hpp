@@ -2,6 +2,8 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <utility>
 #include <span>
 #include <string>
 #include <vector>
@@ -18,5 +20,9 @@ struct DecodedImage {
 // TGA and BMP through stb_image. An image wider or taller than max_size is refused from its header, before any
 // pixel is decoded. Throws InputError(source, problem).
 DecodedImage decode_image(std::span<const unsigned char> bytes, int max_size, const std::string& source);
+
+// The width and height an image file's header states, read by the same decoders without decoding pixels; nullopt
+// when the header cannot be read (decode_image then says why).
+std::optional<std::pair<int, int>> image_size(std::span<const unsigned char> bytes);
 
 }  // namespace facet

@@ -13,11 +13,10 @@
 #include "texture/decode.hpp"
 #include "texture/image_decode.hpp"
 
-// The one stb_image implementation in facet (image_io.cpp uses it too). Only the formats facet promises are
-// compiled in, which also keeps the decoder's attack surface small; the dimension cap rejects absurd files early.
+// The one stb_image implementation in facet, for TGA and BMP only: PNG and JPEG go through libspng and
+// libjpeg-turbo (image_decode.hpp), which fuzzing showed to be the safer readers of malformed files. The dimension
+// cap rejects absurd files early.
 #define STB_IMAGE_IMPLEMENTATION
-#define STBI_ONLY_PNG
-#define STBI_ONLY_JPEG
 #define STBI_ONLY_TGA
 #define STBI_ONLY_BMP
 #define STBI_MAX_DIMENSIONS 16384

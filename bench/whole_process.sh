@@ -1,0 +1,54 @@
+#!/usr/bin/env bash
+# whole_process.sh - `facet render MODEL --output f.png` as a user times it, against the reference renderer doing
+# the same job (Assimp loads the file, llvmpipe draws one frame, the PNG is written), as whole processes.
+# Usage: bench/whole_process.sh FACET GLREF [ROUNDS]. 1920x1080, 2 threads each; the two alternate in every round
+# (the host is noisy); prints every round, the medians and the ratio glref / facet per model.
+set -euo pipefail
+facet=$(realpath "$1")
+glref=$(realpath "$2")
+rounds=${3:-5}
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# Two generated UV spheres: a 200,704-triangle OBJ and an 870,400-triangle ASCII PLY.
+python3 - "$work" <<'PY'
+import math, sys
+def sphere(rings, segments):
+    v = [(math.sin(math.pi * r / rings) * math.cos(2 * math.pi * s / segments), math.cos(math.pi * r / rings),
+          math.sin(math.pi * r / rings) * math.sin(2 * math.pi * s / segments))
+         for r in range(rings + 1) for s in range(segments + 1)]
+    f = []
+    for r in range(rings):
+        for s in range(segments):
+            a, b = r * (segments + 1) + s, (r + 1) * (segments + 1) + s
+            f += [(a, b, a + 1), (a + 1, b, b + 1)]
+    return v, f
+v, f = sphere(224, 448)
+with open(sys.argv[1] + '/sphere200k.obj', 'w') as out:
+    out.writelines(f'v {x:.6f} {y:.6f} {z:.6f}\n' for x, y, z in v)
+    out.writelines(f'f {a + 1} {b + 1} {c + 1}\n' for a, b, c in f)
+v, f = sphere(512, 850)
+with open(sys.argv[1] + '/sphere870k.ply', 'w') as out:
+    out.write(f'ply\nformat ascii 1.0\nelement vertex {len(v)}\nproperty float x\nproperty float y\n'
+              f'property float z\nelement face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n')
+    out.writelines(f'{x:.6f} {y:.6f} {z:.6f}\n' for x, y, z in v)
+    out.writelines(f'3 {a} {b} {c}\n' for a, b, c in f)
+PY
+
+ms() { local start end; start=$(date +%s%N); "$@" >/dev/null 2>&1; end=$(date +%s%N); echo $(((end - start) / 1000)); }
+median() { sort -n | awk '{v[NR]=$1} END {print (NR % 2) ? v[(NR+1)/2] : (v[NR/2] + v[NR/2+1]) / 2}'; }
+for model in /usr/share/assimp/models/OBJ/WusonOBJ.obj "$work/sphere200k.obj" "$work/sphere870k.ply"; do
+  f=() g=()
+  echo "### $(basename "$model")"
+  printf '%-6s %12s %12s %8s\n' round "facet (ms)" "glref (ms)" ratio
+  for r in $(seq "$rounds"); do
+    a=$(ms "$facet" render "$model" --output "$work/f.png" --resolution 1920,1080 --threads 2)
+    b=$(ms "$glref" --mesh "$model" --warmup 0 --frames 1 --threads 2 --resolution 1920,1080 --png "$work/g.png")
+    f+=("$a") g+=("$b")
+    printf '%-6s %12.1f %12.1f %8.2f\n' "$r" "$(echo "$a / 1000" | bc -l)" "$(echo "$b / 1000" | bc -l)" \
+      "$(echo "$b / $a" | bc -l)"
+  done
+  mf=$(printf '%s\n' "${f[@]}" | median) mg=$(printf '%s\n' "${g[@]}" | median)
+  printf '%-6s %12.1f %12.1f %8.2f\n' median "$(echo "$mf / 1000" | bc -l)" "$(echo "$mg / 1000" | bc -l)" \
+    "$(echo "$mg / $mf" | bc -l)"
+done
