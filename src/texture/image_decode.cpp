@@ -15,17 +15,20 @@ namespace facet {
 
 namespace {
 
-// No image format stores more than a few hundred texels a byte (deflate and run-length codes top out near 1,000:1
-// on RGBA bytes, JPEG near 256:1), so a header claiming more texels than 4,096 a byte of the file describes texels
-// the file does not hold: a 72-byte BMP claiming 10,000 x 8,000 would otherwise be decoded to 320 MB of guesses.
-constexpr std::uint64_t kMaxTexelsPerByte = 4096;
+// How many texels a byte of a file can describe: deflate tops out near 1,032:1 (8,256 texels a byte for a 1-bit
+// PNG, 258 for RGBA), JPEG near 256 texels a byte, and the run-length codes of TGA and BMP at 128. A header claiming
+// more describes texels the file does not hold: a 72-byte BMP claiming 9,985 x 8,229 texels would otherwise be
+// decoded into 330 MB of guesses.
+constexpr std::uint64_t kMaxTexelsPerByte = 8192;    // PNG and JPEG
+constexpr std::uint64_t kMaxTexelsPerByteRle = 256;  // TGA and BMP
 
-void check_size(int width, int height, int max_size, std::size_t file_bytes, const std::string& source) {
+void check_size(int width, int height, int max_size, std::size_t file_bytes, const std::string& source,
+                std::uint64_t max_texels_per_byte = kMaxTexelsPerByte) {
   if (width < 1 || height < 1 || width > max_size || height > max_size)
     throw InputError(source, "image is " + std::to_string(width) + "x" + std::to_string(height) +
                                  " texels; the limit is 1.." + std::to_string(max_size) + " per side");
   const std::uint64_t texels = static_cast<std::uint64_t>(width) * static_cast<std::uint64_t>(height);
-  if (texels > (1u << 20) && texels / kMaxTexelsPerByte > file_bytes)
+  if (texels > (1u << 20) && texels / max_texels_per_byte > file_bytes)
     throw InputError(source, "image claims " + std::to_string(width) + "x" + std::to_string(height) +
                                  " texels, more than its " + std::to_string(file_bytes) + " bytes can hold");
 }
@@ -87,7 +90,7 @@ DecodedImage decode_with_stb(std::span<const unsigned char> bytes, int max_size,
   if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels))
     throw InputError(
         source, std::string("not a readable PNG, JPEG, TGA or BMP image (stb_image: ") + stbi_failure_reason() + ")");
-  check_size(width, height, max_size, bytes.size(), source);
+  check_size(width, height, max_size, bytes.size(), source, kMaxTexelsPerByteRle);
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
       stbi_load_from_memory(bytes.data(), length, &width, &height, &channels, 4), &stbi_image_free);
   if (!pixels) throw InputError(source, std::string("cannot decode image (stb_image: ") + stbi_failure_reason() + ")");
