@@ -71,19 +71,13 @@ std::vector<std::string> render_arguments(const Json& object, const std::string&
 // The job the arguments describe, parsed by `facet render`'s own flags; CLI11's and the flags' errors become
 // std::invalid_argument.
 RenderJob job_of(const std::vector<std::string>& argv, std::size_t n) {
-  // Building the parser costs more than parsing one job, so each thread keeps one, its flags bound to `args`,
-  // which starts every parse from the defaults the flags set.
+  // A parser of its own for each job: one kept and cleared between jobs grows with every parse (CLI11 keeps some
+  // of each parse's state), and a long batch's memory must stay flat.
   struct Parser {
     CLI::App app;
-    RenderArgs args, defaults;
-    Parser() {
-      add_render_command(app, args);
-      defaults = args;
-    }
-  };
-  thread_local Parser parser;
-  parser.app.clear();
-  parser.args = parser.defaults;
+    RenderArgs args;
+    Parser() { add_render_command(app, args); }
+  } parser;
   std::vector<const char*> pointers;
   for (const std::string& a : argv) pointers.push_back(a.c_str());
   try {
@@ -172,15 +166,18 @@ CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
   return batch;
 }
 
-RenderJob parse_batch_job(const BatchJob& job, const BatchArgs& args) {
+namespace {
+
+// The job of one line's text.
+RenderJob parse_job_text(const BatchJob& job, const std::string& text, const BatchArgs& args) {
   try {
     std::vector<std::string> argv;
     if (job.json) {
-      const Json object = Json::parse(job.text, nullptr, false);
+      const Json object = Json::parse(text, nullptr, false);
       if (object.is_discarded()) throw std::invalid_argument("not valid JSON");
       argv = render_arguments(object, args.output);
     } else {
-      std::string model = job.text.substr(job.text.find_first_not_of(" \t"));
+      std::string model = text.substr(text.find_first_not_of(" \t"));
       while (!model.empty() && (model.back() == '\r' || model.back() == ' ' || model.back() == '\t')) model.pop_back();
       argv = {"facet", "render", model, "--output", args.output};
     }
@@ -190,31 +187,42 @@ RenderJob parse_batch_job(const BatchJob& job, const BatchArgs& args) {
   }
 }
 
+}  // namespace
+
+RenderJob parse_batch_job(const BatchJob& job, const BatchArgs& args) {
+  std::ifstream in(args.jobs, std::ios::binary);
+  std::string text(job.length, '\0');
+  if (!in.seekg(static_cast<std::streamoff>(job.offset)) || !in.read(text.data(), job.length))
+    throw InputError(args.jobs, "line " + std::to_string(job.line) + ": cannot read it again (the file changed?)");
+  return parse_job_text(job, text, args);
+}
+
 std::vector<BatchJob> read_batch_jobs(const BatchArgs& args) {
   const std::string source = args.jobs;
   std::error_code ec;
   if (!std::filesystem::is_regular_file(args.jobs, ec)) throw InputError(source, "no such file");
   std::ifstream in(args.jobs);
   if (!in) throw InputError(source, "cannot open file");
-  std::vector<std::pair<std::size_t, std::string>> lines;
-  std::string text;
-  for (std::size_t number = 1; std::getline(in, text); ++number) {
-    const std::size_t first = text.find_first_not_of(" \t\r");
-    if (first == std::string::npos || text[first] == '#') continue;
-    lines.emplace_back(number, text);
-  }
-  const bool json = !lines.empty() && lines.front().second[lines.front().second.find_first_not_of(" \t")] == '{';
-  if (!json && args.output.empty()) throw UsageError("--output: a list of models needs an output template");
-
   std::vector<BatchJob> jobs;
-  jobs.reserve(lines.size());
+  std::optional<bool> json;  // decided by the first job line: a JSON object, or a model path
   // Two jobs writing one file: found by the hashes of the outputs' normalised paths (a few bytes a job, where the
   // paths themselves would take hundreds), each match confirmed against the earlier job's paths.
   std::unordered_multimap<std::size_t, std::size_t> writers;
   const auto normalised = [](const std::filesystem::path& path) { return path.lexically_normal().string(); };
-  for (auto& [number, line] : lines) {
-    jobs.push_back({number, jobs.size(), json, std::move(line)});
-    const RenderJob job = parse_batch_job(jobs.back(), args);
+  std::string line;
+  for (std::size_t number = 1;; ++number) {
+    const std::streamoff offset = in.tellg();
+    if (!std::getline(in, line)) break;
+    const std::size_t first = line.find_first_not_of(" \t\r");
+    if (first == std::string::npos || line[first] == '#') continue;
+    if (!json) {
+      json = line[first] == '{';
+      if (!*json && args.output.empty()) throw UsageError("--output: a list of models needs an output template");
+    }
+    if (line.size() > UINT32_MAX) throw InputError(source, "line " + std::to_string(number) + ": too long");
+    jobs.push_back({number, jobs.size(), *json, static_cast<std::uint64_t>(offset),
+                    static_cast<std::uint32_t>(line.size())});
+    const RenderJob job = parse_job_text(jobs.back(), line, args);
     for (const std::filesystem::path& path : output_paths(job.outputs)) {
       const std::string name = normalised(path);
       const std::size_t key = std::hash<std::string>{}(name);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <string>
 #include <vector>
 
@@ -25,17 +26,19 @@ struct BatchArgs {
 // Adds the `batch` subcommand, filling `args` when it is parsed.
 CLI::App* add_batch_command(CLI::App& app, BatchArgs& args);
 
-// One job of a jobs file: the line it came from and its text. A parsed RenderJob takes about 2 KB, so a batch keeps
-// the text and parses a job again when it runs: memory stays flat however many jobs the file holds.
+// One job of a jobs file: where its line lies in the file. A parsed RenderJob takes about 2 KB and the line itself
+// a few hundred bytes, so a batch keeps only this and reads and parses a job's line again when it runs: memory stays
+// flat however many jobs the file holds. The file must not change while the batch runs.
 struct BatchJob {
-  std::size_t line = 0;   // 1-based line number in the jobs file
-  std::size_t index = 0;  // the job's index among the file's jobs: {n} in output names
-  bool json = false;      // a JSON object of flags, or a model path
-  std::string text;
+  std::size_t line = 0;      // 1-based line number in the jobs file
+  std::size_t index = 0;     // the job's index among the file's jobs: {n} in output names
+  bool json = false;         // a JSON object of flags, or a model path
+  std::uint64_t offset = 0;  // of the line's first byte in the file
+  std::uint32_t length = 0;  // of the line, without its newline
 };
 
 // The RenderJob of one job of the jobs file, as read_batch_jobs checked it. Throws InputError(jobs file,
-// "line N: ...") as read_batch_jobs does.
+// "line N: ...") as read_batch_jobs does, or if the file can no longer be read.
 RenderJob parse_batch_job(const BatchJob& job, const BatchArgs& args);
 
 // Every job of the file, in order, checked before anything is rendered. Each JSON line is an object whose keys are
