@@ -144,6 +144,17 @@ TEST_F(HostileFiles, CountsBeyondTheFileAreRefusedBeforeAllocating) {
   gltf.replace(gltf.find("\"count\":3"), 9, "\"count\":300000000");
   write_file(dir_ / "accessor.gltf", gltf);
   EXPECT_NE(problem(dir_ / "accessor.gltf"), "");
+  // An accessor offset, and a buffer view, reaching past the 36 bytes of the buffer.
+  std::string offset = triangle_gltf("outside.bin");
+  offset.replace(offset.find("\"count\":3"), 9, "\"byteOffset\":4000000000,\"count\":3");
+  write_file(dir_ / "offset.gltf", offset);
+  EXPECT_NE(problem(dir_ / "offset.gltf", LoadOptions{.allow_external_files = true}), "");
+  std::string view = triangle_gltf("outside.bin");
+  view.replace(view.find("\"byteLength\":36}]"), 17, "\"byteLength\":36,\"byteOffset\":30}]");
+  write_file(dir_ / "view.gltf", view);
+  EXPECT_NE(problem(dir_ / "view.gltf", LoadOptions{.allow_external_files = true}), "");
+  EXPECT_EQ(problem(dir_ / "accessor.gltf", LoadOptions{.allow_external_files = true}),
+            "POSITION: accessor of 300000000 elements does not fit in its buffer view");
   // Refused from the sizes alone: gigabytes claimed, a few megabytes used.
   EXPECT_LT(peak_mib() - peak_before, 64) << "peak memory grew from " << peak_before << " MiB to " << peak_mib();
 }
