@@ -32,8 +32,7 @@ enum class Format { kObj, kPly, kStl, kGltf, kAssimp, kUnknown };
 
 constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf, .glb and the formats Assimp reads";
 
-Format format_of_extension(std::string extension) {
-  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+Format format_of_extension(const std::string& extension) {
   if (extension == ".obj") return Format::kObj;
   if (extension == ".ply") return Format::kPly;
   if (extension == ".stl") return Format::kStl;
@@ -95,7 +94,7 @@ Model one_mesh(Mesh mesh) {
 Model read_any_model(const fs::path& path, std::string& format_name, const LoadOptions& options) {
   const std::string source = path.string();
   const std::string extension = path.extension().string();
-  Format format = format_of_extension(extension);
+  Format format = format_of_extension(lower_extension(path));
   std::string bytes = read_regular_file(path, kMaxModelFileBytes, source);
   if (format == Format::kUnknown) format = format_of_content(bytes);
   constexpr const char* kNames[] = {"OBJ", "PLY", "STL", "glTF", "Assimp", ""};

@@ -93,15 +93,19 @@ many=200
 python3 -c 'import sys
 for n in range(int(sys.argv[2])): print(sys.argv[1])' "$models/OBJ/WusonOBJ.obj" "$many" >many.txt
 mkdir -p stopped whole
-(cd stopped && exec "$facet" batch ../many.txt --output 'out/{n}.png' --quiet 2>err.log) &
-pid=$!
-# Stop it once it has made its first output (a fixed sleep is too short on a loaded machine under the sanitizers).
-for _ in $(seq 600); do
-  compgen -G "stopped/out/*.png" >/dev/null && break
-  sleep 0.1
-done
-kill -TERM "$pid"
-wait "$pid"
+# interrupt FOLDER SIGNAL: runs the batch in FOLDER, sends SIGNAL once its first output exists (a fixed sleep is
+# too short on a loaded machine under the sanitizers), and returns the batch's exit status.
+interrupt() {
+  (cd "$1" && exec "$facet" batch ../many.txt --output 'out/{n}.png' --quiet 2>err.log) &
+  local pid=$!
+  for _ in $(seq 600); do
+    compgen -G "$1/out/*.png" >/dev/null && break
+    sleep 0.1
+  done
+  kill "-$2" "$pid"
+  wait "$pid"
+}
+interrupt stopped TERM
 stopped_status=$?
 made=$(find stopped/out -name '*.png' 2>/dev/null | wc -l)
 temporaries=$(find stopped -name '.*' -type f | wc -l)
@@ -119,14 +123,7 @@ fi
 # SIGKILL (as power loss) cannot be caught: whatever temporaries it leaves, the rerun removes those of its own
 # outputs whose writer is dead, keeps a live writer's and other files', and finishes with the uninterrupted bytes.
 mkdir -p killed/out
-(cd killed && exec "$facet" batch ../many.txt --output 'out/{n}.png' --quiet 2>err.log) &
-pid=$!
-for _ in $(seq 600); do
-  compgen -G "killed/out/*.png" >/dev/null && break
-  sleep 0.1
-done
-kill -KILL "$pid"
-wait "$pid"
+interrupt killed KILL
 killed_status=$?
 last=$((many - 1))
 rm -f "killed/out/$last.png"
