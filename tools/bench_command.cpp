@@ -62,6 +62,9 @@ CLI::App* add_bench_command(CLI::App& app, BenchArgs& args) {
                    "Rendering threads, the calling thread included; 0 and 1 mean one (default: hardware threads)")
       ->check(number_in(0, 1024, true));
   // 0 < S: the smallest normal float is the least value that does not round to zero on the way to float.
+  bench->add_option("--samples", args.samples, "Samples per pixel: 1, 2, 4 or 8 (multisampling; default 1)")
+      ->check(CLI::IsMember({1, 2, 4, 8}))
+      ->type_name("N");
   bench->add_option("--scale", args.scale, "Object scale of the sphere and the mesh, 0 < S <= 1000 (default 1)")
       ->check(number_in(FLT_MIN, 1000.0));
   bench->add_option("--png", args.png, "Write frame 0 as PNG (top row = top of screen)")->type_name("PATH");
@@ -106,7 +109,7 @@ Timings summarize(std::vector<double> ms) {
 
 int run(const BenchArgs& o, int width, int height, int threads, const BenchGeometry& g) {
   Renderer renderer(std::max(1, threads));
-  Framebuffer target(width, height);
+  Framebuffer target(width, height, o.samples);
   const Texture texture = make_checker_texture(1024);
   BenchShader shader;
   shader.texture = &texture;
@@ -151,18 +154,20 @@ int run(const BenchArgs& o, int width, int height, int threads, const BenchGeome
 
   const std::string renderer_name = std::string("facet ") + kVersion;
   const std::size_t triangles = g.indices.size() / 3;
+  const std::string samples_field = o.samples > 1 ? ",\"samples\":" + std::to_string(o.samples) : "";
+  const std::string samples_text = o.samples > 1 ? "  samples " + std::to_string(o.samples) : "";
   if (o.json)
     std::printf(
         "{\"renderer\":\"%s\",\"scene\":\"%s\",\"triangles\":%zu,\"width\":%d,\"height\":%d,\"threads\":%d,"
-        "\"warmup\":%d,\"frames\":%d,\"median_ms\":%.3f,\"min_ms\":%.3f,\"max_ms\":%.3f}\n",
+        "\"warmup\":%d,\"frames\":%d,\"median_ms\":%.3f,\"min_ms\":%.3f,\"max_ms\":%.3f%s}\n",
         json_escape(renderer_name).c_str(), json_escape(g.name).c_str(), triangles, width, height, threads, o.warmup,
-        o.frames, t.median, t.min, t.max);
+        o.frames, t.median, t.min, t.max, samples_field.c_str());
   else
     std::printf(
-        "%s  %s  %zu triangles  %dx%d  threads %d  median %.3f ms (min %.3f, max %.3f), %d frames after %d "
+        "%s  %s  %zu triangles  %dx%d  threads %d%s  median %.3f ms (min %.3f, max %.3f), %d frames after %d "
         "warm-up\n",
-        renderer_name.c_str(), g.name.c_str(), triangles, width, height, threads, t.median, t.min, t.max, o.frames,
-        o.warmup);
+        renderer_name.c_str(), g.name.c_str(), triangles, width, height, threads, samples_text.c_str(), t.median, t.min,
+        t.max, o.frames, o.warmup);
   return std::fflush(stdout) == 0 ? 0 : 1;
 }
 

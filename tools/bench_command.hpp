@@ -14,6 +14,7 @@ struct BenchArgs {
   std::string resolution = "1920,1080";
   int frames = 30, warmup = 5;
   int threads = -1;  // not given: every hardware thread
+  int samples = 1;   // multisampling: 1, 2, 4 or 8 samples per pixel
   float scale = 1.0f;
   std::string png, depth;
   bool json = false, stats = false;

@@ -208,6 +208,11 @@ void add_look_options(CLI::App& app, LookArgs& args) {
   app.add_option("--threads", args.threads, "Render threads (0 = all cores)")
       ->check(number_in(0, 1024, true))
       ->type_name("N");
+  app.add_option("--samples", args.samples,
+                 "Anti-aliasing samples per pixel: 1 (none), 2, 4 or 8 (default 4); depth, normals, ids and mask "
+                 "take sample 0")
+      ->check(CLI::IsMember({1, 2, 4, 8}))
+      ->type_name("N");
 }
 
 void add_output_options(CLI::App& app, OutputArgs& args, const std::string& default_resolution) {

@@ -86,6 +86,7 @@ struct LookArgs {
   std::optional<CullMode> culling;
   std::string background_color, color, light_direction;
   int threads = 0;
+  int samples = 4;  // multisample anti-aliasing
 };
 void add_look_options(CLI::App& app, LookArgs& args);
 LookSpec look_spec(const LookArgs& args);

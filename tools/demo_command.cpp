@@ -55,7 +55,7 @@ int run_demo(const DemoArgs& args) {
   const float aspect = static_cast<float>(size.x) / static_cast<float>(size.y);
   const glm::vec4 clear = clear_color(look, demo.background);
   Renderer renderer(args.look.threads);
-  Framebuffer target(size.x, size.y);
+  Framebuffer target(size.x, size.y, args.look.samples);
   std::vector<std::vector<std::uint8_t>> frames;  // an animation's, encoded together at the end
   for (int i = 0; i < args.frames; ++i) {
     DemoFrame frame = demo_frame(demo, args.time + i / 30.0, aspect);

@@ -70,6 +70,7 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
   base.height = size.y;
   base.camera = camera_spec(args.camera);
   base.look = look_spec(args.look);
+  base.samples = args.look.samples;
   if (!args.views.empty()) base.views = parse_sheet_views(args.views);
   base.turntable = args.turntable;
   base.load = load_options(args.input);

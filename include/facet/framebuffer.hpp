@@ -1,4 +1,4 @@
-// framebuffer.hpp - the render target: RGBA8 colour and float depth, row 0 at the top of the image.
+// framebuffer.hpp - the render target: RGBA8 colour and float depth per sample, row 0 at the top of the image.
 #pragma once
 
 #include <algorithm>
@@ -14,6 +14,7 @@ namespace facet {
 
 inline constexpr int kTileSize = 64;  // pixels; one thread owns a tile while it is rasterized
 inline constexpr int kMaxDimension = 16384;
+inline constexpr int kMaxSamples = 8;  // multisampling: 1, 2, 4 or 8 colour and depth samples per pixel
 
 // Packs a colour in [0, 1] as little-endian RGBA8: r in the low byte, rounded to nearest. NaN becomes 0.
 inline std::uint32_t pack_channel(float c) {
@@ -67,29 +68,41 @@ class Renderer;
 
 class Framebuffer {
  public:
-  // Throws std::invalid_argument unless 1 <= width, height <= kMaxDimension.
-  Framebuffer(int width, int height);
+  // Throws std::invalid_argument unless 1 <= width, height <= kMaxDimension and samples is 1, 2, 4 or 8.
+  // With samples > 1 every pixel holds that many colour and depth samples at the standard Vulkan (and Direct3D)
+  // sample positions; Renderer::finish() averages each pixel's colour samples into color().
+  Framebuffer(int width, int height, int samples = 1);
 
   int width() const { return width_; }
   int height() const { return height_; }
+  int samples() const { return samples_; }
   int tiles_x() const { return tiles_x_; }
   int tiles_y() const { return tiles_y_; }
 
-  // Rows are top to bottom; x grows to the right. Valid after Renderer::finish(). Writable access means the
-  // caller may store anything: the next clear then rewrites every tile.
+  // Rows are top to bottom; x grows to the right. Valid after Renderer::finish(): with several samples, the
+  // average of each pixel's samples (the resolve). Writable access means the caller may store anything: the next
+  // clear then rewrites every tile (and, with several samples, the next finish() resolves over it).
   std::span<std::uint32_t> color() {
     contents_exposed_ = true;
-    return color_;
+    return samples_ > 1 ? std::span<std::uint32_t>(resolved_) : std::span<std::uint32_t>(color_);
   }
-  std::span<const std::uint32_t> color() const { return color_; }
-  // Writable access to depth also voids the hierarchical depth bounds (they become "unknown").
+  std::span<const std::uint32_t> color() const {
+    return samples_ > 1 ? std::span<const std::uint32_t>(resolved_) : std::span<const std::uint32_t>(color_);
+  }
+  // The colour of one sample of every pixel, not averaged: buffers whose values must not blend (surface ids) read
+  // sample 0, the same sample depth() holds.
+  std::span<const std::uint32_t> sample_color(int sample) const {
+    return std::span<const std::uint32_t>(color_).subspan(sample_offset(sample), pixel_count());
+  }
+  // Depth of sample 0 of every pixel (the only one with a single sample). Writable access also voids the
+  // hierarchical depth bounds (they become "unknown").
   std::span<float> depth() {
     contents_exposed_ = true;
     std::fill(block_max_depth_.begin(), block_max_depth_.end(), kUnknownDepthBound);
-    return depth_;
+    return std::span<float>(depth_).first(pixel_count());
   }
-  std::span<const float> depth() const { return depth_; }
-  std::uint32_t pixel(int x, int y) const { return color_[static_cast<std::size_t>(y) * width_ + x]; }
+  std::span<const float> depth() const { return std::span<const float>(depth_).first(pixel_count()); }
+  std::uint32_t pixel(int x, int y) const { return color()[static_cast<std::size_t>(y) * width_ + x]; }
   float depth_at(int x, int y) const { return depth_[static_cast<std::size_t>(y) * width_ + x]; }
 
   // The colour as bytes R, G, B, A per pixel, top row first (what PNG writers take).
@@ -117,6 +130,8 @@ class Framebuffer {
   // pixel row at a time. Only the owner of that row of tiles calls it.
   void resolve_clear_tile_row(int tile_row);
   void resolve_all_clears();
+  // Averages the colour samples of one row of tiles into color(). Only the owner of that row calls it.
+  void resolve_samples_tile_row(int tile_row);
 
   // For the rasterizer. Hierarchical depth: one upper bound on the stored depth per 8x8 block; a triangle whose
   // nearest point in a block is behind the bound is rejected for the whole block without a per-pixel test. Each
@@ -124,6 +139,11 @@ class Framebuffer {
   // threads updating the bounds of neighbouring tiles never share a line.
   static constexpr float kUnknownDepthBound = 3.402823466e+38f;
   static constexpr int kTileBlocks = (kTileSize / 8) * (kTileSize / 8);
+  // Samples are stored as planes, one whole image per sample (sample s at s * pixel_count()), so that the code
+  // that draws one sample reads like the code that draws pixels; each plane has its own depth bounds.
+  std::size_t pixel_count() const { return static_cast<std::size_t>(width_) * height_; }
+  std::size_t sample_offset(int sample) const { return static_cast<std::size_t>(sample) * pixel_count(); }
+  std::size_t bounds_per_sample() const { return static_cast<std::size_t>(tiles_x_) * tiles_y_ * kTileBlocks; }
   std::uint32_t* color_storage() { return color_.data(); }
   float* depth_storage() { return depth_.data(); }
   float* tile_depth_bounds(int tile_index) {
@@ -132,8 +152,9 @@ class Framebuffer {
 
   void reset_depth_bounds(int tile_index, float value);
 
-  int width_, height_, tiles_x_, tiles_y_;
+  int width_, height_, samples_, tiles_x_, tiles_y_;
   std::vector<std::uint32_t, CacheAlignedAllocator<std::uint32_t>> color_;
+  std::vector<std::uint32_t, CacheAlignedAllocator<std::uint32_t>> resolved_;  // with several samples
   std::vector<float, CacheAlignedAllocator<float>> depth_;
   std::vector<float, CacheAlignedAllocator<float>> block_max_depth_;
   detail::PendingClear pending_;

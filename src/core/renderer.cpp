@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/thread_pool.hpp"
+#include "facet/detail/multisample.hpp"
 #include "setup/setup.hpp"
 
 namespace facet {
@@ -40,7 +41,7 @@ struct Renderer::Work {
   std::vector<std::uint32_t> order;              // painter's order
   std::vector<float> sort_keys;
   std::vector<std::uint64_t> active_tiles;   // tiles with work, most binned triangles first (see execute)
-  std::vector<detail::TileScratch> scratch;  // one per thread, for deferred shading
+  std::vector<detail::TileScratch> scratch;  // per thread one per sample, for deferred shading
 };
 
 Renderer::Renderer(int threads) : work_(std::make_unique<Work>(resolve_thread_count(threads))) {}
@@ -52,8 +53,10 @@ int Renderer::threads() const { return work_->pool.size(); }
 void Renderer::clear(Framebuffer& target, glm::vec4 color, float depth) { target.request_clear(color, depth); }
 
 void Renderer::finish(Framebuffer& target) {
-  work_->pool.parallel_for(static_cast<std::size_t>(target.tiles_y()),
-                           [&](std::size_t row, int) { target.resolve_clear_tile_row(static_cast<int>(row)); });
+  work_->pool.parallel_for(static_cast<std::size_t>(target.tiles_y()), [&](std::size_t row, int) {
+    target.resolve_clear_tile_row(static_cast<int>(row));
+    target.resolve_samples_tile_row(static_cast<int>(row));
+  });
   target.resolve_all_clears();
 }
 
@@ -143,6 +146,10 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   }
 
   const std::size_t tiles = static_cast<std::size_t>(target.tiles_x()) * target.tiles_y();
+  const int samples = target.samples();
+  const SamplePattern& pattern = sample_pattern(samples);
+  const std::size_t scratch_needed = static_cast<std::size_t>(w.pool.size()) * static_cast<std::size_t>(samples);
+  if (w.scratch.size() < scratch_needed) w.scratch.resize(scratch_needed);
   for (std::size_t batch_first = 0, next_batch = 0; batch_first < count; batch_first = next_batch) {
     next_batch = batch_end(batch_first);
     const std::size_t batch_count = next_batch - batch_first;
@@ -176,7 +183,9 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
                              .height = target.height(),
                              .tiles_x = target.tiles_x(),
                              .cull = state.cull,
-                             .line_width = state.line_width};
+                             .line_width = state.line_width,
+                             .sample_lo = pattern.lo,
+                             .sample_hi = pattern.hi};
       if (triangles) setup_triangles(input, chunk);
       else setup_lines(input, chunk);
       chunk.sort_by_tile(tiles);
@@ -216,9 +225,12 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
                           .chunks = w.chunks.data(),
                           .chunk_count = chunk_count,
                           .varyings = outputs.varyings,
-                          .scratch = &w.scratch[static_cast<std::size_t>(thread)],
+                          .scratch = &w.scratch[static_cast<std::size_t>(thread) * static_cast<std::size_t>(samples)],
                           .clear = clear,
-                          .last_batch = next_batch == count};
+                          .last_batch = next_batch == count,
+                          .samples = samples,
+                          .sample_stride = target.sample_offset(1),
+                          .bounds_stride = target.bounds_per_sample()};
       request.raster(request.draw, work);
     });
   }

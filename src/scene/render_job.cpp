@@ -149,7 +149,8 @@ FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene,
     if (!request.depth) out.depth = {};
   }
   if (surface_pass) {
-    Framebuffer id_target(target.width(), target.height());
+    // Ids and the normals found from them come from sample 0, as depth and the mask do: never a blend of samples.
+    Framebuffer id_target(target.width(), target.height(), target.samples());
     out.surfaces = scene.render_ids(renderer, id_target, view, options);
     if (request.normal) out.normal = scene.camera_normals(out.surfaces, view);
     if (request.ids) out.ids = file_ids(scene, out.surfaces);
@@ -282,7 +283,7 @@ void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timin
   for (std::size_t p = 0; p < sheet.size(); p += 4)  // empty cells show the background
     for (int c = 0; c < 4; ++c)
       sheet[p + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(std::lround(frame.clear[c] * 255.0f));
-  Framebuffer cell(job.width, job.height);
+  Framebuffer cell(job.width, job.height, job.samples);
   const int scale = job.width >= 480 ? 2 : 1;
   for (int k = 0; k < n; ++k) {
     const SheetView view = job.views[static_cast<std::size_t>(k)];
@@ -322,7 +323,7 @@ void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* t
   Stopwatch clock;
   const Framing framing = framing_of(*frame.scene.instances()[0].mesh, job.model.string());
   const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
-  Framebuffer target(job.width, job.height);
+  Framebuffer target(job.width, job.height, job.samples);
   std::vector<std::vector<std::uint8_t>> frames;
   for (int k = 0; k < job.turntable; ++k) {
     CameraSpec camera = job.camera;
@@ -362,14 +363,14 @@ void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
   if (!job.views.empty()) return render_sheet(job, renderer, timings);
   if (job.turntable > 0) return render_turntable(job, renderer, timings);
   JobFrame frame = prepare_job(job, timings);
-  Framebuffer target(job.width, job.height);
+  Framebuffer target(job.width, job.height, job.samples);
   draw_and_write(renderer, target, frame.scene, frame.view, frame.options, frame.clear, job.outputs, timings);
 }
 
 FrameBuffers render_buffers(const RenderJob& job, Renderer& renderer, const BufferRequest& request,
                             std::string* camera) {
   JobFrame frame = prepare_job(job, nullptr);
-  Framebuffer target(job.width, job.height);
+  Framebuffer target(job.width, job.height, job.samples);
   FrameBuffers buffers = draw_buffers(renderer, target, frame.scene, frame.view, frame.options, frame.clear, request);
   if (camera) *camera = camera_json(frame.view, job.width, job.height);
   return buffers;

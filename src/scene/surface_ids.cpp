@@ -81,7 +81,8 @@ SurfaceIds Scene::render_ids(Renderer& renderer, Framebuffer& target, const View
   const std::size_t pixels = static_cast<std::size_t>(ids.width) * ids.height;
   ids.instance.assign(pixels, kNoSurface);
   ids.triangle.assign(pixels, kNoSurface);
-  const std::span<const std::uint32_t> color = std::as_const(target).color();
+  // Sample 0 with multisampling: an average of ids is no id.
+  const std::span<const std::uint32_t> color = target.sample_color(0);
   for (std::size_t p = 0; p < pixels; ++p) {
     const std::uint32_t key = color[p];
     if (key >= key_instance.size()) continue;

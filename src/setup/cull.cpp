@@ -65,6 +65,7 @@ void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
 
   const std::int32_t last_x = in.width - 1, last_y = in.height - 1;
   constexpr std::int32_t half = kSubpixelScale / 2;
+  const std::int32_t lo = in.sample_lo, hi = in.sample_hi, centre_test = in.multisample() ? 0 : 1;
   std::uint32_t keep = 0, accepted = 0;
   for (int i = 0; i < N; ++i) {
     // Values, not references into the arrays: std::min of references becomes a conditional load, which stops the
@@ -72,17 +73,19 @@ void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
     const std::int32_t x0 = x[0][i], x1 = x[1][i], x2 = x[2][i], y0 = y[0][i], y1 = y[1][i], y2 = y[2][i];
     const std::int32_t front = area[i] < 0;
     const std::int32_t faced_away = (away >> i) & 1;
-    // Pixels whose centres lie within the snapped bounds (floor division by 256 is an arithmetic shift).
+    // Pixels whose centres (multisampled: any of whose samples) lie within the snapped bounds (floor division by
+    // 256 is an arithmetic shift).
     const std::int32_t min_x = std::min(std::min(x0, x1), x2), max_x = std::max(std::max(x0, x1), x2);
     const std::int32_t min_y = std::min(std::min(y0, y1), y2), max_y = std::max(std::max(y0, y1), y2);
-    const std::int32_t px0 = std::max(0, (min_x - half + kSubpixelScale - 1) >> kSubpixelBits);
-    const std::int32_t py0 = std::max(0, (min_y - half + kSubpixelScale - 1) >> kSubpixelBits);
-    const std::int32_t px1 = std::min(last_x, (max_x - half) >> kSubpixelBits);
-    const std::int32_t py1 = std::min(last_y, (max_y - half) >> kSubpixelBits);
+    const std::int32_t px0 = std::max(0, (min_x - hi + kSubpixelScale - 1) >> kSubpixelBits);
+    const std::int32_t py0 = std::max(0, (min_y - hi + kSubpixelScale - 1) >> kSubpixelBits);
+    const std::int32_t px1 = std::min(last_x, (max_x - lo) >> kSubpixelBits);
+    const std::int32_t py1 = std::min(last_y, (max_y - lo) >> kSubpixelBits);
     const std::int32_t empty = (px0 > px1) | (py0 > py1);
     // Bounds holding at most four centres: does any lie inside all three clockwise edges (fill rule included)?
+    // Multisampled, samples other than the centres count too, and setup leaves the test to rasterization.
     const std::int32_t columns = px1 - px0 + 1, centres = columns * (py1 - py0 + 1);
-    const std::int32_t few = (empty ^ 1) & (centres <= 4);
+    const std::int32_t few = (empty ^ 1) & (centres <= 4) & centre_test;
     const std::int32_t X[3] = {x0, front ? x2 : x1, front ? x1 : x2};
     const std::int32_t Y[3] = {y0, front ? y2 : y1, front ? y1 : y2};
     std::int32_t covered = 0;

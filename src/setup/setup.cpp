@@ -75,14 +75,14 @@ class Binner {
       ++out_.culled;
       return false;
     }
-    // Pixels whose centres (i + 0.5) * 256 lie within the snapped bounds.
+    // Pixels whose centres (i + 0.5) * 256 (or, multisampled, any of whose samples) lie within the snapped bounds.
     const std::int32_t min_x = std::min({x[0], x[1], x[2]}), max_x = std::max({x[0], x[1], x[2]});
     const std::int32_t min_y = std::min({y[0], y[1], y[2]}), max_y = std::max({y[0], y[1], y[2]});
-    const int half = kSubpixelScale / 2;
-    s.px0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_x - half + kSubpixelScale - 1)));
-    s.py0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_y - half + kSubpixelScale - 1)));
-    s.px1 = std::min<int>(in_.width - 1, static_cast<int>(floor_div_subpixel(max_x - half)));
-    s.py1 = std::min<int>(in_.height - 1, static_cast<int>(floor_div_subpixel(max_y - half)));
+    const int lo = in_.sample_lo, hi = in_.sample_hi;
+    s.px0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_x - hi + kSubpixelScale - 1)));
+    s.py0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_y - hi + kSubpixelScale - 1)));
+    s.px1 = std::min<int>(in_.width - 1, static_cast<int>(floor_div_subpixel(max_x - lo)));
+    s.py1 = std::min<int>(in_.height - 1, static_cast<int>(floor_div_subpixel(max_y - lo)));
     if (s.px0 > s.px1 || s.py0 > s.py1) {
       ++out_.culled;
       return false;
@@ -95,7 +95,7 @@ class Binner {
     s.Y[0] = y[0], s.Y[1] = y[second], s.Y[2] = y[third];
     // Dense meshes make many triangles whose bounds hold a pixel centre or two, and many of those cover none of
     // them: test those centres now rather than set up a triangle that covers nothing.
-    if ((s.px1 - s.px0 + 1) * (s.py1 - s.py0 + 1) <= 4 && !covers_a_centre(s)) {
+    if (!in_.multisample() && (s.px1 - s.px0 + 1) * (s.py1 - s.py0 + 1) <= 4 && !covers_a_centre(s)) {
       ++out_.culled;
       return false;
     }
@@ -136,7 +136,10 @@ class Binner {
                    std::uint32_t primitive) {
     const auto index = static_cast<std::uint32_t>(out_.triangles.size());
     TriangleSetup& t = out_.triangles.emplace_back();
-    for (int k = 0; k < 3; ++k) t.edge[k] = {lanes.edge_a[k][i], lanes.edge_b[k][i], lanes.edge_q[k][i]};
+    for (int k = 0; k < 3; ++k) {
+      t.edge[k] = {lanes.edge_a[k][i], lanes.edge_b[k][i], lanes.edge_q[k][i]};
+      t.edge_fraction[k] = lanes.edge_fraction[k][i];
+    }
     t.min_x = static_cast<std::int16_t>(cull.px0[i]);
     t.min_y = static_cast<std::int16_t>(cull.py0[i]);
     t.max_x = static_cast<std::int16_t>(cull.px1[i]);
@@ -184,6 +187,7 @@ class Binner {
     for (int k = 0; k < 3; ++k) {
       const int a = k, b = (k + 1) % 3;
       t.edge[k] = make_edge(std::int64_t{X[b]} - X[a], std::int64_t{Y[b]} - Y[a], X[a], Y[a]);
+      t.edge_fraction[k] = edge_fraction(std::int64_t{X[b]} - X[a], std::int64_t{Y[b]} - Y[a], X[a], Y[a]);
     }
     t.min_x = static_cast<std::int16_t>(s.px0);
     t.min_y = static_cast<std::int16_t>(s.py0);
@@ -213,17 +217,18 @@ class Binner {
     const bool single = tx0 == tx1 && ty0 == ty1;
     for (int ty = ty0; ty <= ty1; ++ty)
       for (int tx = tx0; tx <= tx1; ++tx)
-        if (single || touches_tile(t, tx * kTileSize, ty * kTileSize))
+        if (single || touches_tile(t, tx * kTileSize, ty * kTileSize, in_.multisample()))
           out_.add(static_cast<std::uint32_t>(ty * in_.tiles_x + tx), index);
   }
 
-  // False when one edge has every pixel centre of the tile outside: large triangles skip the tiles their
-  // bounding box covers but they do not.
-  static bool touches_tile(const TriangleSetup& t, int x, int y) {
+  // False when one edge has every pixel centre (multisampled: every sample) of the tile outside: large triangles
+  // skip the tiles their bounding box covers but they do not. Samples lie within half a pixel of the centre.
+  static bool touches_tile(const TriangleSetup& t, int x, int y, bool multisample) {
     for (const Edge& e : t.edge) {
       const std::int64_t corner = std::int64_t{e.a} * x + std::int64_t{e.b} * y + e.q;
+      const std::int64_t slack = multisample ? (std::abs(std::int64_t{e.a}) + std::abs(std::int64_t{e.b})) / 2 + 1 : 0;
       const std::int64_t reach = std::max<std::int64_t>(0, std::int64_t{e.a} * (kTileSize - 1)) +
-                                 std::max<std::int64_t>(0, std::int64_t{e.b} * (kTileSize - 1));
+                                 std::max<std::int64_t>(0, std::int64_t{e.b} * (kTileSize - 1)) + slack;
       if (corner + reach < 0) return false;
     }
     return true;

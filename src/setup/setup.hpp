@@ -29,6 +29,10 @@ struct SetupInput {
   int width, height, tiles_x;
   CullMode cull;
   float line_width;
+  // The pixel's sample positions span [sample_lo, sample_hi] in 1/256 pixel from its top-left corner, both
+  // ways: 128 and 128, the centre, without multisampling. Bounds hold the pixels where any sample may be inside.
+  int sample_lo = kSubpixelScale / 2, sample_hi = kSubpixelScale / 2;
+  bool multisample() const { return sample_lo != sample_hi; }
 };
 
 // The vertices that primitives [first, first + count) reference, ignoring indices at or above vertex_count (setup
@@ -62,11 +66,22 @@ template <class I>
   return (((dy == 0) & (dx > 0)) | (dy < 0)) ? I{0} : I{-1};
 }
 
+// The edge function of clockwise edge (dx, dy) from corner (x, y) at the centre of pixel (0, 0): k of Edge.
+[[gnu::always_inline]] inline std::int64_t edge_at_centre(std::int64_t dx, std::int64_t dy, std::int64_t x,
+                                                          std::int64_t y) {
+  return (kSubpixelScale / 2) * (-dy + dx) + (dy * x - dx * y) + top_left_bias(dx, dy);
+}
+
 // The edge of TriangleSetup from clockwise corner (x, y) along (dx, dy), all in 1/256 pixel (see Edge).
 [[gnu::always_inline]] inline Edge make_edge(std::int64_t dx, std::int64_t dy, std::int64_t x, std::int64_t y) {
-  const std::int64_t k_centre = (kSubpixelScale / 2) * (-dy + dx) + (dy * x - dx * y) + top_left_bias(dx, dy);
   // Floor division by the sub-pixel scale: C++20 defines >> on negative values as an arithmetic shift.
-  return {static_cast<std::int32_t>(-dy), static_cast<std::int32_t>(dx), k_centre >> kSubpixelBits};
+  return {static_cast<std::int32_t>(-dy), static_cast<std::int32_t>(dx), edge_at_centre(dx, dy, x, y) >> kSubpixelBits};
+}
+
+// The bits of k that make_edge's q drops (TriangleSetup::edge_fraction).
+[[gnu::always_inline]] inline std::uint8_t edge_fraction(std::int64_t dx, std::int64_t dy, std::int64_t x,
+                                                         std::int64_t y) {
+  return static_cast<std::uint8_t>(edge_at_centre(dx, dy, x, y) & (kSubpixelScale - 1));
 }
 
 // The plane through (0, 0, f0), (dx1, dy1, f1) and (dx2, dy2, f2), relative to the first corner. Double precision:
@@ -82,6 +97,7 @@ template <class I>
 struct alignas(64) SetupLanes {
   std::int32_t edge_a[3][kCullLanes], edge_b[3][kCullLanes];
   std::int64_t edge_q[3][kCullLanes];
+  std::uint8_t edge_fraction[3][kCullLanes];
   float origin_x[kCullLanes], origin_y[kCullLanes];
   float plane[4][3][kCullLanes];  // depth, 1/w, b1/w, b2/w; each at_origin, ddx, ddy
 };

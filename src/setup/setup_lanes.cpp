@@ -33,6 +33,7 @@ void setup_accepted_lanes(const SetupInput& in, std::size_t first, const CullLan
       const int a = k, b = (k + 1) % 3;
       const Edge edge = make_edge(X[b] - X[a], Y[b] - Y[a], X[a], Y[a]);
       out.edge_a[k][i] = edge.a, out.edge_b[k][i] = edge.b, out.edge_q[k][i] = edge.q;
+      out.edge_fraction[k][i] = edge_fraction(X[b] - X[a], Y[b] - Y[a], X[a], Y[a]);
     }
     const double scale = 1.0 / kSubpixelScale;
     const double dx1 = static_cast<double>(X[1] - X[0]) * scale, dy1 = static_cast<double>(Y[1] - Y[0]) * scale;

@@ -3,4 +3,5 @@
 #include "facet/draw.hpp"
 
 FACET_INSTANTIATE_SHADER(facet::test::ColorShader);
+FACET_INSTANTIATE_SHADER(facet::test::TranslucentShader);
 FACET_INSTANTIATE_SHADER(facet::test::CountingShader);

@@ -27,6 +27,11 @@ struct ColorShader {
   glm::vec4 fragment(const Fragment<Varyings>& f) const { return glm::vec4(f.varyings.color, 1.0f); }
 };
 
+// ColorShader's colours at half opacity: with alpha blending, a sample drawn twice shows it.
+struct TranslucentShader : ColorShader {
+  glm::vec4 fragment(const Fragment<Varyings>& f) const { return glm::vec4(f.varyings.color, 0.5f); }
+};
+
 // Counts how often each pixel is shaded: fragment() has a side effect through a uniform pointer, which is safe
 // because one thread owns each pixel.
 struct CountingShader {
@@ -74,6 +79,7 @@ struct CheckerShader {
 
 }  // namespace facet::test
 
-// Most tests draw with these two: compiled once, in test_shaders.cpp.
+// Most tests draw with these: compiled once, in test_shaders.cpp.
 FACET_EXTERN_SHADER(facet::test::ColorShader);
+FACET_EXTERN_SHADER(facet::test::TranslucentShader);
 FACET_EXTERN_SHADER(facet::test::CountingShader);

@@ -135,6 +135,7 @@ Seen render_through(const fs::path& model, int index, const LookSpec& look) {
   RenderJob job;
   job.model = model;
   job.width = job.height = 32;
+  job.samples = 1;  // pixel counts compared between scenes: pixel centres, not sample 0's offset position
   job.camera.file_camera = index;
   job.look = look;
   const fs::path dir = model.parent_path();
@@ -247,6 +248,7 @@ TEST(GltfMaterials, MaskCutsByAlpha) {
   job.model = test::write_file(
       dir, "cut.gltf",
       lit_square({0, 0, 1}, R"({"pbrMetallicRoughness":{"baseColorTexture":{"index":0}},"alphaMode":"MASK"})", images));
+  job.samples = 1;  // pixel counts compared with render_through's
   job.width = job.height = 32;
   job.camera.file_camera = 0;
   job.outputs = {.color = dir / "c.png", .ids = dir / "i.npy", .mask = dir / "m.png"};

@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -16,6 +17,7 @@
 #include "facet/model_io.hpp"
 #include "facet/primitives.hpp"
 #include "facet/render_job.hpp"
+#include "support/npy.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace facet {
@@ -238,6 +240,37 @@ TEST(CameraModel, DepthBackProjectsToTheSurfaceDrawn) {
   }
 }
 
+// Anti-aliased, the colour is a blend of samples but ids, depth and the mask are sample 0's: every id names a real
+// triangle of the model (a blend of ids would not), and the three agree on every pixel.
+TEST(Render, AntialiasedBuffersHoldSingleSamples) {
+  const std::filesystem::path dir = test::scratch_dir("render_job");
+  RenderJob job;
+  job.model = kBox;
+  job.width = 64;
+  job.height = 48;
+  job.samples = 8;
+  job.outputs = {.color = dir / "aa.png", .depth = dir / "aa_depth.npy", .ids = dir / "aa_ids.npy",
+                 .mask = dir / "aa_mask.png"};
+  Renderer renderer(2);
+  render(job, renderer);
+  const test::Npy ids = test::read_npy(dir / "aa_ids.npy");
+  const test::Npy depth = test::read_npy(dir / "aa_depth.npy");
+  int w = 0, h = 0;
+  const std::vector<std::uint8_t> mask = read_png(dir / "aa_mask.png", w, h);
+  ASSERT_EQ(ids.words.size(), 2u * static_cast<std::size_t>(w * h));
+  ASSERT_EQ(depth.words.size(), static_cast<std::size_t>(w * h));
+  int drawn = 0;
+  for (std::size_t p = 0; p < static_cast<std::size_t>(w * h); ++p) {
+    const std::uint32_t face = ids.words[2 * p + 1];
+    const bool has_id = face != kNoSurface, has_depth = std::bit_cast<float>(depth.words[p]) > 0.0f;
+    ASSERT_TRUE(!has_id || face < 12u) << "pixel " << p << ": face " << face << " of a 12-triangle box";
+    ASSERT_EQ(has_id, has_depth) << "pixel " << p;
+    ASSERT_EQ(has_id, mask[4 * p] == 255) << "pixel " << p;
+    drawn += has_id;
+  }
+  EXPECT_GT(drawn, 200);
+}
+
 TEST(Render, MaskDepthCameraAndImageAgree) {
   const std::filesystem::path dir = test::scratch_dir("render_job");
   RenderJob job;
@@ -247,18 +280,28 @@ TEST(Render, MaskDepthCameraAndImageAgree) {
   job.look.background = glm::vec3(0.0f, 1.0f, 0.0f);
   job.outputs = {.color = dir / "c.png", .depth = dir / "d.npy", .mask = dir / "m.png", .camera = dir / "camera.json"};
   Renderer renderer(2);
-  render(job, renderer);
-  int w = 0, h = 0;
-  const std::vector<std::uint8_t> color = read_png(dir / "c.png", w, h);
-  const std::vector<std::uint8_t> mask = read_png(dir / "m.png", w, h);
-  ASSERT_EQ(w * h, 48 * 40);
+  // One sample: the mask is 0 exactly where the image shows the background. Four: the mask is sample 0's, so an
+  // edge pixel, a blend of surface and background, may be in or out, but the rest agrees.
   int drawn = 0;
-  for (int i = 0; i < w * h; ++i) {
-    const std::uint8_t m = mask[static_cast<std::size_t>(i) * 4];
-    ASSERT_TRUE(m == 0 || m == 255);
-    const bool background = color[i * 4] == 0 && color[i * 4 + 1] == 255 && color[i * 4 + 2] == 0;
-    EXPECT_EQ(m == 0, background) << "pixel " << i;
-    drawn += m == 255;
+  for (const int samples : {4, 1}) {
+    job.samples = samples;
+    render(job, renderer);
+    int w = 0, h = 0;
+    const std::vector<std::uint8_t> color = read_png(dir / "c.png", w, h);
+    const std::vector<std::uint8_t> mask = read_png(dir / "m.png", w, h);
+    ASSERT_EQ(w * h, 48 * 40);
+    drawn = 0;
+    int sample_0_empty = 0;  // pixels showing some of the box whose sample 0 misses it
+    for (int i = 0; i < w * h; ++i) {
+      const std::uint8_t m = mask[static_cast<std::size_t>(i) * 4];
+      ASSERT_TRUE(m == 0 || m == 255);
+      const bool background = color[i * 4] == 0 && color[i * 4 + 1] == 255 && color[i * 4 + 2] == 0;
+      drawn += m == 255;
+      if (background) EXPECT_EQ(m, 0) << "pixel " << i << ", " << samples << " samples";
+      else if (m == 0) ++sample_0_empty;
+    }
+    if (samples == 1) EXPECT_EQ(sample_0_empty, 0);
+    else EXPECT_LT(sample_0_empty, drawn / 8) << "only silhouette pixels";
   }
   EXPECT_GT(drawn, 100);
   std::ifstream json(dir / "camera.json");

@@ -125,9 +125,13 @@ struct TileWork {
   const SetupChunk* chunks;
   std::size_t chunk_count;
   const float* varyings;       // post-transform varyings, indexed by TriangleSetup::vertex
-  TileScratch* scratch;        // the running thread's, for deferred shading
+  TileScratch* scratch;        // the running thread's, for deferred shading: one per sample
   detail::PendingClear clear;  // deferred shading: the clear the tile applies itself as it writes its pixels
   bool last_batch;             // no later batch of the draw visits the tile: deferred shading may stream its depth out
+  // Multisampling: samples per pixel, and how far apart the samples' colour and depth planes and depth bounds lie
+  // (color, depth and depth_bounds above are sample 0's; see sample_work in multisample.hpp).
+  int samples = 1;
+  std::size_t sample_stride = 0, bounds_stride = 0;
 };
 
 }  // namespace facet::detail

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <bit>
 #include <cstddef>
 #include <cstdint>
 
@@ -76,35 +77,51 @@ inline std::uint64_t raster_block_coverage(const TriangleSetup& tri, int bx, int
   return raster_block_coverage(tri, bx, by, 0, kBlockSize - 1, 0, kBlockSize - 1);
 }
 
+// Shades the covered pixels of the 2x2 quad at (px, py), pixel k at (px + (k & 1), py + (k >> 1)). bits[k] holds
+// pixel k's covered samples, sample s in bit s; views[s] is the triangle seen from sample s (at_sample), views[0] the
+// triangle itself without multisampling (kMulti false: one sample, at the centre). Depth is tested and written per
+// sample; the shader runs once per pixel, at its centre, and its colour goes to every sample that passed.
 // Always inlined, like raster_triangle: both must be compiled inside each target clone of raster_tile.
-template <Shader S>
-[[gnu::always_inline]] inline void shade_quad(const ShadeContext<S>& ctx, const TriangleSetup& tri,
-                                              const TileWork& work, int px, int py, unsigned covered) {
+template <Shader S, bool kMulti>
+[[gnu::always_inline]] inline void shade_quad_samples(const ShadeContext<S>& ctx, const TriangleSetup& tri,
+                                                      const TriangleSetup* views, const TileWork& work, int px, int py,
+                                                      unsigned (&bits)[4]) {
   using Varyings = typename S::Varyings;
   constexpr std::size_t kFloats = float_count_v<Varyings>;
   constexpr bool kDerivatives = needs_derivatives<S>();
+  constexpr int kMaxN = kMulti ? kMaxSamples : 1;
+  const int n = kMulti ? work.samples : 1;
   const RenderState& state = *ctx.state;
   const bool early_depth = !S::may_discard && state.depth_test;
 
-  float z[4];
+  float z[4][kMaxN];
   std::size_t index[4];
   for (int k = 0; k < 4; ++k) {
-    const float dx = static_cast<float>(px + (k & 1)) + 0.5f - tri.origin_x;
-    const float dy = static_cast<float>(py + (k >> 1)) + 0.5f - tri.origin_y;
-    z[k] = std::clamp(evaluate(tri.depth, dx, dy) + state.depth_offset, 0.0f, 1.0f);
+    for (int s = 0; s < n; ++s) {
+      const float dx = static_cast<float>(px + (k & 1)) + 0.5f - views[s].origin_x;
+      const float dy = static_cast<float>(py + (k >> 1)) + 0.5f - views[s].origin_y;
+      z[k][s] = std::clamp(evaluate(views[s].depth, dx, dy) + state.depth_offset, 0.0f, 1.0f);
+    }
     index[k] = static_cast<std::size_t>(py + (k >> 1)) * work.stride + (px + (k & 1));
   }
-  if (early_depth) {
-    for (int k = 0; k < 4; ++k) {
-      if (!(covered & (1u << k))) continue;
-      if (!depth_passes(state.depth_func, z[k], work.depth[index[k]])) covered &= ~(1u << k);
-      else if (state.depth_write) work.depth[index[k]] = z[k];
+  // Drops pixel k's samples that fail the depth test, and writes the depth of those that pass.
+  const auto test_depth = [&](int k) __attribute__((always_inline)) {
+    for (unsigned pending = bits[k]; pending; pending &= pending - 1) {
+      const int s = std::countr_zero(pending);
+      float& stored = work.depth[work.sample_stride * static_cast<std::size_t>(s) + index[k]];
+      if (!depth_passes(state.depth_func, z[k][s], stored)) bits[k] &= ~(1u << s);
+      else if (state.depth_write) stored = z[k][s];
     }
-    if (!covered) return;
-  }
+  };
+  if (early_depth)
+    for (int k = 0; k < 4; ++k) test_depth(k);
+  unsigned covered = 0;
+  for (int k = 0; k < 4; ++k) covered |= static_cast<unsigned>(bits[k] != 0) << k;
+  if (!covered) return;
 
   // Perspective-correct weights of the source vertices: b/w and 1/w are linear in screen space.
   FloatArray<Varyings> value[4];
+  [[maybe_unused]] float centre_z[4];
   const float* v0 = work.varyings + std::size_t{tri.vertex[0]} * kFloats;
   const float* v1 = work.varyings + std::size_t{tri.vertex[1]} * kFloats;
   const float* v2 = work.varyings + std::size_t{tri.vertex[2]} * kFloats;
@@ -112,6 +129,7 @@ template <Shader S>
     if (!kDerivatives && !(covered & (1u << k))) continue;
     const float dx = static_cast<float>(px + (k & 1)) + 0.5f - tri.origin_x;
     const float dy = static_cast<float>(py + (k >> 1)) + 0.5f - tri.origin_y;
+    if constexpr (kMulti) centre_z[k] = std::clamp(evaluate(tri.depth, dx, dy) + state.depth_offset, 0.0f, 1.0f);
     const float w = 1.0f / evaluate(tri.inv_w, dx, dy);
     const float b1 = evaluate(tri.b1_over_w, dx, dy) * w, b2 = evaluate(tri.b2_over_w, dx, dy) * w;
     // Weighted sum of the three vertices' values rather than v0 + b1 (v1 - v0) + b2 (v2 - v0): errors of the same
@@ -136,28 +154,41 @@ template <Shader S>
   for (int k = 0; k < 4; ++k) {
     if (!(covered & (1u << k))) continue;
     fragment.varyings = from_floats<Varyings>(value[k]);
-    fragment.screen =
-        glm::vec3(static_cast<float>(px + (k & 1)) + 0.5f, static_cast<float>(py + (k >> 1)) + 0.5f, z[k]);
+    fragment.screen = glm::vec3(static_cast<float>(px + (k & 1)) + 0.5f, static_cast<float>(py + (k >> 1)) + 0.5f,
+                                kMulti ? centre_z[k] : z[k][0]);
     glm::vec4 color;
     if constexpr (S::may_discard) {
       const auto result = ctx.shader->fragment(fragment);
       if (!result) continue;
       color = *result;
       if (state.depth_test) {
-        if (!depth_passes(state.depth_func, z[k], work.depth[index[k]])) continue;
-        if (state.depth_write) work.depth[index[k]] = z[k];
+        test_depth(k);
+        if (!bits[k]) continue;
       }
     } else {
       color = ctx.shader->fragment(fragment);
     }
     if (!state.color_write) continue;
-    if (state.blend == BlendMode::alpha) {
-      const float a = std::clamp(color.a, 0.0f, 1.0f);
-      const glm::vec4 under = unpack_rgba8(work.color[index[k]]);
-      color = glm::vec4(glm::vec3(color) * a + glm::vec3(under) * (1.0f - a), a + under.a * (1.0f - a));
+    for (unsigned pending = bits[k]; pending; pending &= pending - 1) {
+      std::uint32_t& out =
+          work.color[work.sample_stride * static_cast<std::size_t>(std::countr_zero(pending)) + index[k]];
+      glm::vec4 shaded = color;
+      if (state.blend == BlendMode::alpha) {
+        const float a = std::clamp(color.a, 0.0f, 1.0f);
+        const glm::vec4 under = unpack_rgba8(out);
+        shaded = glm::vec4(glm::vec3(color) * a + glm::vec3(under) * (1.0f - a), a + under.a * (1.0f - a));
+      }
+      out = pack_rgba8(shaded);
     }
-    work.color[index[k]] = pack_rgba8(color);
   }
+}
+
+// One sample per pixel, at its centre: `covered` has bit k for pixel k of the quad.
+template <Shader S>
+[[gnu::always_inline]] inline void shade_quad(const ShadeContext<S>& ctx, const TriangleSetup& tri,
+                                              const TileWork& work, int px, int py, unsigned covered) {
+  unsigned bits[4] = {covered & 1u, (covered >> 1) & 1u, (covered >> 2) & 1u, (covered >> 3) & 1u};
+  shade_quad_samples<S, false>(ctx, tri, &tri, work, px, py, bits);
 }
 
 // Hierarchical depth works with an upper bound on the stored depth of each 8x8 block. The plane's extremes over a

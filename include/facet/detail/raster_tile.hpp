@@ -7,6 +7,7 @@
 #include "facet/detail/dispatch.hpp"
 #include "facet/detail/raster.hpp"
 #include "facet/detail/raster_deferred.hpp"
+#include "facet/detail/raster_multisample.hpp"
 
 namespace facet::detail {
 
@@ -23,6 +24,18 @@ template <Shader S>
 FACET_DISPATCH_LEVELS
 void raster_tile(const void* draw, const TileWork& work) {
   const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
+  if (work.samples > 1) {
+    if (shades_deferred<S>(*ctx.state)) {
+      raster_tile_deferred_multisample(ctx, work);
+      return;
+    }
+    for (std::size_t c = 0; c < work.chunk_count; ++c) {
+      const SetupChunk& chunk = work.chunks[c];
+      for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i)
+        raster_triangle_multisample(ctx, chunk.triangles[chunk.binned[i]], work);
+    }
+    return;
+  }
   if (shades_deferred<S>(*ctx.state)) {
     raster_tile_deferred(ctx, work);
     return;

@@ -36,6 +36,9 @@ struct TriangleSetup {
   std::uint32_t vertex[3];  // source vertices whose varyings are blended, relative to the range the batch shaded
   std::uint32_t primitive;
   bool front_facing;
+  // The low 8 bits of each edge's k (see Edge), which q drops: with them the edge can be evaluated exactly at the
+  // sample positions of multisampling, which are not pixel centres (see at_sample in multisample.hpp).
+  std::uint8_t edge_fraction[3];
 };
 
 inline float evaluate(const Plane& p, float dx, float dy) { return p.at_origin + p.ddx * dx + p.ddy * dy; }

@@ -1,0 +1,79 @@
+// multisample.hpp - sample positions, and a set-up triangle's edges and depth seen from one sample of every pixel.
+#pragma once
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+
+#include "facet/detail/binning.hpp"
+#include "facet/detail/triangle_setup.hpp"
+#include "facet/framebuffer.hpp"
+
+namespace facet::detail {
+
+// A sample's place in its pixel, in 1/256 pixel from the pixel's centre, y down.
+struct SampleOffset {
+  std::int32_t x, y;
+};
+
+// The standard sample locations of Vulkan (the same as Direct3D's), given there in 1/16 pixel from the pixel's
+// top-left corner; sample 0 comes first.
+struct SamplePattern {
+  int count;
+  SampleOffset offset[kMaxSamples];
+  int lo, hi;  // the range of positions from the pixel's top-left corner, both ways, in 1/256 pixel
+};
+
+constexpr SamplePattern make_sample_pattern(int count, const int (&sixteenths)[kMaxSamples][2]) {
+  SamplePattern p{count, {}, kSubpixelScale, 0};
+  for (int s = 0; s < count; ++s) {
+    const int x = sixteenths[s][0] * 16, y = sixteenths[s][1] * 16;
+    p.offset[s] = {x - kSubpixelScale / 2, y - kSubpixelScale / 2};
+    p.lo = std::min({p.lo, x, y});
+    p.hi = std::max({p.hi, x, y});
+  }
+  return p;
+}
+
+inline constexpr SamplePattern kSamplePatterns[4] = {
+    make_sample_pattern(1, {{8, 8}}),
+    make_sample_pattern(2, {{12, 12}, {4, 4}}),
+    make_sample_pattern(4, {{6, 2}, {14, 6}, {2, 10}, {10, 14}}),
+    make_sample_pattern(8, {{9, 5}, {7, 11}, {13, 9}, {5, 3}, {3, 13}, {1, 7}, {11, 15}, {15, 1}}),
+};
+
+// The pattern of 1, 2, 4 or 8 samples (what Framebuffer accepts).
+inline const SamplePattern& sample_pattern(int samples) {
+  return kSamplePatterns[samples >= 8 ? 3 : (samples >= 4 ? 2 : (samples >= 2 ? 1 : 0))];
+}
+
+// The triangle as the rasterizer sees it from sample `o` of each pixel: coverage of pixel (i, j) by the result is
+// the coverage of the sample at (i, j) + o by the triangle, exactly (the same integers as the centre's, with the
+// fill rule), and its depth plane evaluated at a pixel centre gives the depth at that sample. Its interpolation
+// planes are shifted alike; the fragment shader still runs at the pixel centre, with the triangle itself.
+inline TriangleSetup at_sample(const TriangleSetup& tri, SampleOffset o) {
+  TriangleSetup view = tri;
+  for (int e = 0; e < 3; ++e) {
+    const Edge& edge = tri.edge[e];
+    // k at the sample: k at the centre, which q and the fraction hold, plus the edge's gradient times the offset.
+    const std::int64_t k = edge.q * kSubpixelScale + tri.edge_fraction[e] + std::int64_t{edge.a} * o.x +
+                           std::int64_t{edge.b} * o.y;
+    view.edge[e].q = k >> kSubpixelBits;
+  }
+  // Planes are evaluated at (pixel centre - origin): moving the origin back by the offset moves that to the sample.
+  view.origin_x = tri.origin_x - static_cast<float>(o.x) / kSubpixelScale;
+  view.origin_y = tri.origin_y - static_cast<float>(o.y) / kSubpixelScale;
+  return view;
+}
+
+// The tile work of sample s: its colour and depth planes, depth bounds and the thread's scratch for it.
+inline TileWork sample_work(const TileWork& work, int s) {
+  TileWork one = work;
+  one.color += work.sample_stride * static_cast<std::size_t>(s);
+  one.depth += work.sample_stride * static_cast<std::size_t>(s);
+  one.depth_bounds += work.bounds_stride * static_cast<std::size_t>(s);
+  one.scratch += s;
+  return one;
+}
+
+}  // namespace facet::detail

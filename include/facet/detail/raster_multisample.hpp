@@ -1,0 +1,182 @@
+// raster_multisample.hpp - rasterization of one tile with several samples per pixel, immediate and deferred.
+#pragma once
+
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+
+#include "facet/detail/multisample.hpp"
+#include "facet/detail/raster.hpp"
+#include "facet/detail/raster_deferred.hpp"
+
+namespace facet::detail {
+
+// Multisampling as OpenGL does it: coverage, the fill rule and the depth test per sample, each sample seeing the
+// triangle through at_sample; the fragment shader once per pixel and triangle, at the pixel centre (extrapolated
+// where the centre itself is outside, as GL does without the centroid qualifier); its colour written to every
+// covered sample that passed. Every sample plane keeps its own hierarchical depth bounds.
+
+// Immediate shading of one triangle: per 8x8 block, each sample's hierarchical depth test and coverage, then the
+// quads any sample covers.
+template <Shader S>
+[[gnu::always_inline]] inline void raster_triangle_multisample(const ShadeContext<S>& ctx, const TriangleSetup& tri,
+                                                               const TileWork& work) {
+  const RenderState& state = *ctx.state;
+  const int n = work.samples;
+  const SamplePattern& pattern = sample_pattern(n);
+  TriangleSetup views[kMaxSamples];
+  for (int s = 0; s < n; ++s) views[s] = at_sample(tri, pattern.offset[s]);
+
+  const int x0 = std::max<int>(tri.min_x, work.x0), x1 = std::min<int>(tri.max_x, work.x1 - 1);
+  const int y0 = std::max<int>(tri.min_y, work.y0), y1 = std::min<int>(tri.max_y, work.y1 - 1);
+  if (x0 > x1 || y0 > y1) return;
+  const bool less = state.depth_func == DepthFunc::less, lequal = state.depth_func == DepthFunc::lequal;
+  // As raster_blocks: LESS and LEQUAL writes only lower depth, other functions' writes make bounds follow them up.
+  const bool reject_hidden = state.depth_test && (less || lequal);
+  const bool writes_depth = state.depth_test && state.depth_write;
+  for (int by = y0 & ~(kBlockSize - 1); by <= y1; by += kBlockSize) {
+    for (int bx = x0 & ~(kBlockSize - 1); bx <= x1; bx += kBlockSize) {
+      const int i0 = std::max(x0 - bx, 0), i1 = std::min(x1 - bx, kBlockSize - 1);
+      const int j0 = std::max(y0 - by, 0), j1 = std::min(y1 - by, kBlockSize - 1);
+      const std::size_t block =
+          static_cast<std::size_t>((by - work.y0) / kBlockSize * (kTileSize / kBlockSize) + (bx - work.x0) / kBlockSize);
+      const auto range = [&](int s) __attribute__((always_inline)) {
+        return raster_block_depth_range(views[s], state.depth_offset, bx + i0, by + j0, bx + i1, by + j1);
+      };
+      std::uint64_t mask[kMaxSamples], any = 0;
+      for (int s = 0; s < n; ++s) {
+        mask[s] = 0;
+        const float bound = work.depth_bounds[work.bounds_stride * static_cast<std::size_t>(s) + block];
+        if (reject_hidden && bound < 1.0f) {
+          const float nearest = range(s).nearest;
+          if (less ? nearest - kDepthBoundMargin >= bound : nearest - kDepthBoundMargin > bound) continue;
+        }
+        mask[s] = raster_block_coverage(views[s], bx, by, i0, i1, j0, j1);
+        any |= mask[s];
+      }
+      if (!any) continue;
+      for (int qy = 0; qy < kBlockSize; qy += 2)
+        for (int qx = 0; qx < kBlockSize; qx += 2) {
+          unsigned bits[4] = {0, 0, 0, 0};
+          for (int k = 0; k < 4; ++k) {
+            const int bit = (qy + (k >> 1)) * kBlockSize + qx + (k & 1);
+            if (!((any >> bit) & 1)) continue;
+            for (int s = 0; s < n; ++s) bits[k] |= static_cast<unsigned>((mask[s] >> bit) & 1) << s;
+          }
+          if (bits[0] | bits[1] | bits[2] | bits[3])
+            shade_quad_samples<S, true>(ctx, tri, views, work, bx + qx, by + qy, bits);
+        }
+      if (!writes_depth) continue;
+      for (int s = 0; s < n; ++s) {
+        // A discarding shader may leave covered samples unwritten: its blocks never count as full.
+        const bool full = mask[s] == ~std::uint64_t{0} && !S::may_discard;
+        if (!(full || (!reject_hidden && mask[s]))) continue;
+        float& bound = work.depth_bounds[work.bounds_stride * static_cast<std::size_t>(s) + block];
+        const float farthest = std::min(range(s).farthest + kDepthBoundMargin, 1.0f);
+        bound = reject_hidden ? std::min(bound, farthest) : std::max(bound, farthest);
+      }
+    }
+  }
+}
+
+// The lanes of a strip where two samples' triangle references are equal (a loop for the vectoriser).
+[[gnu::always_inline]] inline unsigned strip_refs_equal(const std::uint32_t* a, const std::uint32_t* b) {
+  unsigned bits = 0;
+#pragma GCC unroll 1
+  for (int k = 0; k < simd::kLanes; ++k) bits |= static_cast<unsigned>(a[k] == b[k]) << k;
+  return bits;
+}
+
+// Deferred shading with several samples: the visibility pass of every sample plane, triangle by triangle in draw
+// order, then the planes' shading passes in sample order. A pixel's sample whose triangle an earlier sample of the
+// pixel also kept takes that sample's colour (the shader runs at the centre either way, so it is the same colour);
+// only a triangle new to the pixel is shaded. Inside a triangle, that is one shading per pixel; on an edge, one per
+// triangle meeting there.
+template <Shader S>
+[[gnu::always_inline]] inline void raster_tile_deferred_multisample(const ShadeContext<S>& ctx, const TileWork& work) {
+  const RenderState& state = *ctx.state;
+  const int n = work.samples;
+  const SamplePattern& pattern = sample_pattern(n);
+  TileWork planes[kMaxSamples];
+  for (int s = 0; s < n; ++s) {
+    planes[s] = sample_work(work, s);
+    if (state.depth_test || work.clear.depth)
+      for_each_depth_row(
+          planes[s], [&](float* local, float* global, auto count) __attribute__((always_inline)) {
+            if (work.clear.depth) std::fill_n(local, static_cast<int>(count), work.clear.depth_value);
+            else std::memcpy(local, global, static_cast<std::size_t>(count) * sizeof(float));
+          });
+    std::fill_n(planes[s].scratch->triangle, kTileSize * kTileSize, kNoTriangle);
+  }
+
+  with_depth_func(
+      state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
+        for (std::size_t c = 0; c < work.chunk_count; ++c) {
+          const SetupChunk& chunk = work.chunks[c];
+          for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i) {
+            const std::uint32_t index = chunk.binned[i];
+            const TriangleSetup& tri = chunk.triangles[index];
+            for (int s = 0; s < n; ++s) {
+              const TriangleSetup view = at_sample(tri, pattern.offset[s]);
+              if (state.depth_test) raster_triangle_visibility<kFunc, true>(view, state, planes[s], triangle_ref(c, index));
+              else raster_triangle_visibility<kFunc, false>(view, state, planes[s], triangle_ref(c, index));
+            }
+          }
+        }
+      });
+
+  RenderState resolved = state;
+  resolved.depth_test = false;
+  const ShadeContext<S> shade{ctx.shader, &resolved};
+  const int width = work.x1 - work.x0, height = work.y1 - work.y0;
+  for (int s = 0; s < n; ++s) {
+    const TileWork& plane = planes[s];
+    for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
+      for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
+        for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
+          const std::size_t at = scratch_index(block_x, block_y) + static_cast<std::size_t>(strip) * simd::kLanes;
+          const std::uint32_t* refs = plane.scratch->triangle + at;
+          const unsigned covered = ~strip_lanes_equal(refs, kNoTriangle) & 0xffffu;
+          const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
+          const unsigned fill = work.clear.color ? strip_inside(work, px, py) & ~covered : 0u;
+          // Lanes whose triangle an earlier sample kept take that sample's colour.
+          unsigned copied = 0;
+          alignas(64) std::uint32_t colors[simd::kLanes];
+          for (int t = 0; t < s && (covered & ~copied); ++t) {
+            const unsigned same = strip_refs_equal(refs, planes[t].scratch->triangle + at) & covered & ~copied;
+            for (unsigned b = same; b; b &= b - 1) {
+              const int k = std::countr_zero(b);
+              colors[k] = planes[t].color[static_cast<std::size_t>(py + (k >> 3)) * work.stride + px + (k & 7)];
+            }
+            copied |= same;
+          }
+          if (copied) store_strip(plane, px, py, copied, colors);
+          const unsigned shaded = covered & ~copied;
+          if (fill && !(LaneShader<S> && shaded)) fill_strip(plane, px, py, fill);
+          if (!shaded) continue;
+          if constexpr (LaneShader<S>) {
+            alignas(64) std::uint32_t own[simd::kLanes];
+            for (int k = 0; k < simd::kLanes; ++k) own[k] = (shaded >> k) & 1 ? refs[k] : kNoTriangle;
+            FragmentLanes<typename S::Varyings> fragment;
+            prepare_strip_lanes(shade, plane, px, py, own, nullptr, fragment);
+            finish_strip_lanes(shade, plane, px, py, shaded, fill, fragment);
+          } else {
+            for (unsigned pending = shaded; pending;) {
+              const std::uint32_t ref = refs[std::countr_zero(pending)];
+              const unsigned same = strip_lanes_equal(refs, ref) & shaded;
+              pending &= ~same;
+              shade_block_quads(shade, triangle_at(work, ref), plane, px, py, std::uint64_t{same});
+            }
+          }
+        }
+  }
+
+  if (work.clear.depth || (state.depth_test && state.depth_write))
+    for (int s = 0; s < n; ++s)
+      for_each_depth_row(
+          planes[s], [&](float* local, float* global, auto count) __attribute__((always_inline)) {
+            std::memcpy(global, local, static_cast<std::size_t>(count) * sizeof(float));
+          });
+}
+
+}  // namespace facet::detail
