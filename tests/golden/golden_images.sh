@@ -12,7 +12,10 @@ examples=("${@:3}")
 here=$(cd "$(dirname "${BASH_SOURCE[0]}")" && pwd)
 models=/usr/share/assimp/models/OBJ
 mkdir -p "$scratch"
-size=(--resolution 240,180)
+# Most goldens are single-sampled (--samples 1: the pipeline's own edges); the antialiased_ ones take the CLI's
+# default of 4 samples, lines and edge overlays included.
+size=(--resolution 240,180 --samples 1)
+aa_size=(--resolution 240,180)
 
 cases=(
   "demo_cube|demo cube ${size[*]}"
@@ -22,6 +25,9 @@ cases=(
   "textured_obj|render $models/spider.obj ${size[*]}"
   "wireframe|render $models/WusonOBJ.obj --wireframe ${size[*]}"
   "edges|render $models/box.obj --edges ${size[*]}"
+  "antialiased_wuson|render $models/WusonOBJ.obj ${aa_size[*]}"
+  "antialiased_edges|render $models/box.obj --edges ${aa_size[*]}"
+  "antialiased_demo_torus|demo torus ${aa_size[*]}"
 )
 # glTF's three forms of the textured box (the separate one's sampler mirrors its texture in u and clamps it in v,
 # the others repeat it); the texture transform test shows its "correct" marks (its
@@ -30,7 +36,7 @@ gltf=/usr/share/assimp/models/glTF2
 cases+=("gltf_box_textured_binary|render $gltf/BoxTextured-glTF-Binary/BoxTextured.glb ${size[*]}")
 cases+=("gltf_box_textured_embedded|render $gltf/BoxTextured-glTF-Embedded/BoxTextured.gltf ${size[*]}")
 cases+=("gltf_box_textured_separate|render $gltf/BoxTextured-glTF/BoxTextured.gltf ${size[*]}")
-cases+=("gltf_texture_transform|render $gltf/textureTransform/TextureTransformTest.gltf --resolution 320,240")
+cases+=("gltf_texture_transform|render $gltf/textureTransform/TextureTransformTest.gltf --resolution 320,240 --samples 1")
 cases+=("ply_vertex_colors|render /usr/share/assimp/models/PLY/float-color.ply ${size[*]}")
 cases+=("stl_binary|render /usr/share/assimp/models/STL/Spider_binary.stl ${size[*]}")
 for p in perspective orthographic frustum oblique isometric dimetric trimetric front top side; do
