@@ -56,7 +56,9 @@ elif cmd == 'apex-up':  # apex-up FILE: the first row of the model is narrower t
     if not top < bottom:
         sys.exit(f'apex not at the top: {top} model pixels near the top row, {bottom} near the bottom')
     print(f'apex up ({top} px near the top, {bottom} near the bottom)')
-elif cmd == 'depth':  # depth FILE.npy PNG(RGBA): shape (H, W) float32, 0 exactly where the PNG is transparent
+elif cmd == 'depth':  # depth FILE.npy PNG(RGBA): shape (H, W) float32, 0 where the PNG is transparent, > 0 where opaque
+    # Anti-aliased, a pixel at a silhouette is partly covered (0 < alpha < 255) and its depth is sample 0's, which
+    # may or may not be covered.
     data = open(path, 'rb').read()
     if data[:6] != b'\x93NUMPY':
         sys.exit('not a .npy file')
@@ -72,9 +74,9 @@ elif cmd == 'depth':  # depth FILE.npy PNG(RGBA): shape (H, W) float32, 0 exactl
     bad = inside = 0
     for y in range(h):
         for x in range(w):
-            d, drawn = values[y * w + x], rows[y][x * 4 + 3] > 0
-            inside += drawn
-            if drawn != (d > 0) or not d < float('inf') or d < 0:
+            d, alpha = values[y * w + x], rows[y][x * 4 + 3]
+            inside += alpha > 0
+            if (alpha == 0 and d > 0) or (alpha == 255 and not d > 0) or not d < float('inf') or d < 0:
                 bad += 1
     if inside == 0 or bad > 0.002 * w * h:
         sys.exit(f'{bad} pixels where depth and coverage disagree ({inside} covered)')
