@@ -31,17 +31,18 @@ class OffscreenRenderer:
 
     threads: the renderer's worker threads (0: one per hardware thread). Each renderer renders one frame at a
     time; renderers in different Python threads render in parallel (the GIL is released while drawing).
-    samples: samples per pixel; facet draws one (multisampling is not implemented yet).
+    samples: multisample anti-aliasing, 1, 2, 4 or 8 samples per pixel (4 as pyrender draws); depth, ids and the
+    mask are taken from sample 0 of each pixel, never blended.
     """
 
-    def __init__(self, viewport_width, viewport_height, point_size=1.0, threads=0, samples=1):
-        if samples != 1:
-            raise ValueError(f"samples: facet draws 1 sample per pixel, got {samples}")
+    def __init__(self, viewport_width, viewport_height, point_size=1.0, threads=0, samples=4):
+        if samples not in (1, 2, 4, 8) or isinstance(samples, bool):
+            raise ValueError(f"samples: expected 1, 2, 4 or 8, got {samples!r}")
         if not isinstance(threads, int) or threads < 0:
             raise ValueError(f"threads: expected 0 or more, got {threads!r}")
         self.point_size = point_size
         self._threads = threads
-        self._core = _facet.RendererCore(int(viewport_width), int(viewport_height), threads)
+        self._core = _facet.RendererCore(int(viewport_width), int(viewport_height), threads, int(samples))
 
     @property
     def viewport_width(self):
@@ -115,16 +116,16 @@ class OffscreenRenderer:
 
 def render(model, width=640, height=480, buffers=("color", "depth"), shading="automatic", azimuth=0.0,
            elevation=0.0, projection="perspective", up="+Y", camera_index=None, background=None, rgba=False,
-           threads=0):
-    """Renders a model file as `facet render` does (framed from the front right, above, lit by a headlight) and
-    returns a dict of the buffers named (see OffscreenRenderer.render_buffers, ids holding the file's node and face
+           threads=0, samples=4):
+    """Renders a model file as `facet render` does (framed from the front right, above, lit by a headlight,
+    anti-aliased with `samples` samples per pixel: 1, 2, 4 or 8) and returns a dict of the buffers named (see OffscreenRenderer.render_buffers, ids holding the file's node and face
     ids) plus "camera", the camera as render_buffers' camera_json gives it."""
     for name in buffers:
         if name not in BUFFERS:
             raise ValueError(f"buffers: unknown buffer {name!r} (one of {', '.join(BUFFERS)})")
-    return _facet.render_file(os.fspath(model), int(width), int(height), int(threads), shading, float(azimuth),
-                              float(elevation), projection, up, camera_index, background, list(buffers),
-                              bool(rgba))
+    return _facet.render_file(os.fspath(model), int(width), int(height), int(threads), int(samples), shading,
+                              float(azimuth), float(elevation), projection, up, camera_index, background,
+                              list(buffers), bool(rgba))
 
 
 __all__ = ["BUFFERS", "RenderFlags", "OffscreenRenderer", "render"]

@@ -84,7 +84,8 @@ py::dict arrays_of(FrameBuffers&& b, const BufferRequest& request, bool rgba, st
 // One renderer per Python OffscreenRenderer: its threads and framebuffer, used by one render at a time.
 class RendererCore {
  public:
-  RendererCore(int width, int height, int threads) : renderer_(threads), target_(width, height) {}
+  RendererCore(int width, int height, int threads, int samples)
+      : renderer_(threads), target_(width, height, samples) {}
 
   int width() const { return target_.width(); }
   int height() const { return target_.height(); }
@@ -153,16 +154,19 @@ class RendererCore {
 };
 
 // facet.render()'s work: a RenderJob, as `facet render` builds it, drawn into buffers.
-py::dict render_file(const std::string& model, int width, int height, int threads, const std::string& shading,
+py::dict render_file(const std::string& model, int width, int height, int threads, int samples, const std::string& shading,
                      float azimuth, float elevation, const std::string& projection, const std::string& up,
                      std::optional<int> camera_index, py::handle background, const std::vector<std::string>& buffers,
                      bool rgba) {
   if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
     value_error("width and height must lie in 1.." + std::to_string(kMaxDimension));
+  if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
+    value_error("samples: expected 1, 2, 4 or 8, got " + std::to_string(samples));
   RenderJob job;
   job.model = model;
   job.width = width;
   job.height = height;
+  job.samples = samples;
   job.camera.azimuth_degrees = azimuth;
   job.camera.elevation_degrees = elevation;
   job.camera.file_camera = camera_index;
@@ -246,7 +250,7 @@ PYBIND11_MODULE(_facet, m) {
       });
 
   py::class_<RendererCore>(m, "RendererCore")
-      .def(py::init<int, int, int>(), py::arg("width"), py::arg("height"), py::arg("threads"))
+      .def(py::init<int, int, int, int>(), py::arg("width"), py::arg("height"), py::arg("threads"), py::arg("samples"))
       .def_property_readonly("width", &RendererCore::width)
       .def_property_readonly("height", &RendererCore::height)
       .def("render", &RendererCore::render)

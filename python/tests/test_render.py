@@ -48,7 +48,7 @@ def test_sphere_depth_matches_the_analytic_sphere(sphere):
     eye = np.array([0.3, 0.2, 3.5])
     width, height, yfov = 160, 120, 0.9
     scene = sphere_scene(sphere, facet.PerspectiveCamera(yfov=yfov, znear=0.5, zfar=10.0), look_at(eye))
-    depth = facet.OffscreenRenderer(width, height, threads=1).render(scene, facet.RenderFlags.DEPTH_ONLY)
+    depth = facet.OffscreenRenderer(width, height, threads=1, samples=1).render(scene, facet.RenderFlags.DEPTH_ONLY)
     pose = look_at(eye)
     # The ray through each pixel centre, in camera space (OpenGL axes), meets the unit sphere at distance t.
     tan = np.tan(yfov / 2)
@@ -76,7 +76,7 @@ def test_orthographic_depth_is_the_distance_along_the_view():
     scene = facet.Scene()
     scene.add(facet.Mesh(positions, [[0, 1, 2], [0, 2, 3]]))
     scene.add(facet.OrthographicCamera(xmag=2, ymag=1.5, znear=0.5, zfar=20), pose=look_at((0, 0, 4)))
-    depth = facet.OffscreenRenderer(32, 24, threads=1).render(scene, facet.RenderFlags.DEPTH_ONLY)
+    depth = facet.OffscreenRenderer(32, 24, threads=1, samples=1).render(scene, facet.RenderFlags.DEPTH_ONLY)
     np.testing.assert_allclose(depth, 6.0, rtol=1e-5)
 
 
@@ -92,7 +92,7 @@ def test_intrinsics_put_a_point_where_the_pinhole_model_does(point):
     scene = facet.Scene()
     scene.add(facet.Mesh(positions, [[0, 1, 2], [0, 2, 3]]))
     scene.add(camera, pose=np.eye(4))
-    renderer = facet.OffscreenRenderer(width, height, threads=1)
+    renderer = facet.OffscreenRenderer(width, height, threads=1, samples=1)
     mask = renderer.render_buffers(scene, ["mask"])["mask"] == 255
     # OpenCV: x right, y down, z forward. The square projects to a rectangle centred on (u, v), and a pixel is
     # covered exactly when its centre (u, v integers) lies inside: a half-pixel slip would move a whole column.
@@ -110,13 +110,28 @@ def test_intrinsics_put_a_point_where_the_pinhole_model_does(point):
 
 def test_rgba_alpha_is_zero_only_where_the_background_shows(sphere):
     scene = sphere_scene(sphere, facet.PerspectiveCamera(yfov=0.8), look_at((0, 0, 4)), bg_color=(0.2, 0.3, 0.4, 0.0))
-    color, depth = facet.OffscreenRenderer(64, 48, threads=1).render(scene, facet.RenderFlags.RGBA)
+    color, depth = facet.OffscreenRenderer(64, 48, threads=1, samples=1).render(scene, facet.RenderFlags.RGBA)
     assert color.shape == (48, 64, 4)
     np.testing.assert_array_equal(color[..., 3] == 255, depth > 0)
     np.testing.assert_array_equal(color[..., 3] == 0, depth == 0)
     opaque = facet.OffscreenRenderer(64, 48, threads=1).render(
         sphere_scene(sphere, facet.PerspectiveCamera(yfov=0.8), look_at((0, 0, 4))))[0]
     assert opaque.shape == (48, 64, 3)
+
+
+@pytest.mark.parametrize("samples", [2, 4, 8])
+def test_multisampling_blends_only_the_silhouette(sphere, samples):
+    """Anti-aliased, alpha is each pixel's covered fraction; depth is sample 0's, so it is set wherever every sample
+    is covered, unset wherever none is, and either way on the silhouette."""
+    scene = sphere_scene(sphere, facet.PerspectiveCamera(yfov=0.8), look_at((0, 0, 4)), bg_color=(0.2, 0.3, 0.4, 0.0))
+    color, depth = facet.OffscreenRenderer(64, 48, threads=2, samples=samples).render(scene, facet.RenderFlags.RGBA)
+    alpha = color[..., 3].astype(int)
+    edge = (alpha > 0) & (alpha < 255)
+    assert 20 < edge.sum() < 400
+    assert np.all(depth[alpha == 255] > 0) and np.all(depth[alpha == 0] == 0)
+    # Partly covered pixels take multiples of 255 / samples, rounded.
+    allowed = {round(255 * k / samples) for k in range(1, samples)}
+    assert set(np.unique(alpha[edge])) <= allowed
 
 
 def test_buffers_agree_on_every_pixel(sphere):
