@@ -20,6 +20,19 @@ for s in "${scenes[@]}"; do
   ROUNDS=$rounds "$peers/compare.sh" ./build/tools/facet build/peers $s --threads 2
 done
 
+echo "## 4x multisampling against llvmpipe's, 2 threads each"
+for s in "--sphere 224" "--sphere 707" "--quads 64 --order f2b" "--mesh /usr/share/assimp/models/OBJ/WusonOBJ.obj"; do
+  # shellcheck disable=SC2086
+  ROUNDS=$rounds "$peers/compare.sh" ./build/tools/facet build/peers $s --threads 2 --samples 4
+done
+echo "## cost of 4 samples against 1, sphere:224 (median ms of 30 frames, alternated)"
+for ((r = 1; r <= rounds; r++)); do
+  for n in 1 4; do
+    ms=$(./build/tools/facet bench --sphere 224 --threads 2 --samples $n --json | sed -n -E 's/.*"median_ms":([0-9.]+).*/\1/p')
+    echo "round $r samples=$n median_ms=$ms"
+  done
+done
+
 echo "## thread scaling (median ms of 30 frames)"
 for s in "--sphere 707" "--quads 64 --order b2f"; do
   for t in 1 2; do

@@ -42,7 +42,7 @@ struct DrawWith {
                               .source = &source,
                               .indices = indices,
                               .state = &state,
-                              .raster = &raster_tile<S>,
+                              .raster = target.samples() > 1 ? &raster_tile_multisample<S> : &raster_tile<S>,
                               .draw = &context,
                               .deferred = shades_deferred<S>(state)});
   }

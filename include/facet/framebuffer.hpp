@@ -70,7 +70,7 @@ class Framebuffer {
  public:
   // Throws std::invalid_argument unless 1 <= width, height <= kMaxDimension and samples is 1, 2, 4 or 8.
   // With samples > 1 every pixel holds that many colour and depth samples at the standard Vulkan (and Direct3D)
-  // sample positions; Renderer::finish() averages each pixel's colour samples into color().
+  // sample positions, and color() is the average of each pixel's colour samples.
   Framebuffer(int width, int height, int samples = 1);
 
   int width() const { return width_; }
@@ -80,8 +80,9 @@ class Framebuffer {
   int tiles_y() const { return tiles_y_; }
 
   // Rows are top to bottom; x grows to the right. Valid after Renderer::finish(): with several samples, the
-  // average of each pixel's samples (the resolve). Writable access means the caller may store anything: the next
-  // clear then rewrites every tile (and, with several samples, the next finish() resolves over it).
+  // average of each pixel's samples (the resolve, which each tile does as it is drawn). Writable access means the
+  // caller may store anything: the next clear then rewrites every tile (and, with several samples, the next draw
+  // over a tile resolves over it).
   std::span<std::uint32_t> color() {
     contents_exposed_ = true;
     return samples_ > 1 ? std::span<std::uint32_t>(resolved_) : std::span<std::uint32_t>(color_);
@@ -130,8 +131,6 @@ class Framebuffer {
   // pixel row at a time. Only the owner of that row of tiles calls it.
   void resolve_clear_tile_row(int tile_row);
   void resolve_all_clears();
-  // Averages the colour samples of one row of tiles into color(). Only the owner of that row calls it.
-  void resolve_samples_tile_row(int tile_row);
 
   // For the rasterizer. Hierarchical depth: one upper bound on the stored depth per 8x8 block; a triangle whose
   // nearest point in a block is behind the bound is rejected for the whole block without a per-pixel test. Each
@@ -145,6 +144,8 @@ class Framebuffer {
   std::size_t sample_offset(int sample) const { return static_cast<std::size_t>(sample) * pixel_count(); }
   std::size_t bounds_per_sample() const { return static_cast<std::size_t>(tiles_x_) * tiles_y_ * kTileBlocks; }
   std::uint32_t* color_storage() { return color_.data(); }
+  // The averaged colour, which each tile's rasterization keeps current (clears fill it too); null with one sample.
+  std::uint32_t* resolved_storage() { return samples_ > 1 ? resolved_.data() : nullptr; }
   float* depth_storage() { return depth_.data(); }
   float* tile_depth_bounds(int tile_index) {
     return block_max_depth_.data() + static_cast<std::size_t>(tile_index) * kTileBlocks;

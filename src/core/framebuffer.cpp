@@ -42,24 +42,6 @@ void fill_words(void* first, std::size_t count, std::uint32_t value) {
 #endif
 }
 
-// The rounded mean of `samples` planes of RGBA8 pixels, `plane` pixels apart, for [first, first + count). Two
-// channels at a time in 16-bit halves of 32-bit words: eight samples of 255 sum to 2040, which fits.
-FACET_CPU_DISPATCH("avx512f", "avx2", "default")
-void average_samples(const std::uint32_t* first, std::size_t plane, int samples, std::size_t count,
-                     std::uint32_t* out) {
-  const int shift = std::countr_zero(static_cast<unsigned>(samples));
-  const std::uint32_t round = 0x00010001u * static_cast<std::uint32_t>(samples / 2);
-  for (std::size_t i = 0; i < count; ++i) {
-    std::uint32_t even = round, odd = round;  // bytes 0 and 2 (red, blue), bytes 1 and 3 (green, alpha)
-    for (int s = 0; s < samples; ++s) {
-      const std::uint32_t c = first[static_cast<std::size_t>(s) * plane + i];
-      even += c & 0x00ff00ffu;
-      odd += (c >> 8) & 0x00ff00ffu;
-    }
-    out[i] = ((even >> shift) & 0x00ff00ffu) | ((odd >> shift) & 0x00ff00ffu) << 8;
-  }
-}
-
 }  // namespace
 
 Framebuffer::Framebuffer(int width, int height, int samples) : width_(width), height_(height), samples_(samples) {
@@ -84,13 +66,6 @@ std::vector<std::uint8_t> Framebuffer::rgba8() const {
   for (std::size_t i = 0; i < pixels.size(); ++i)
     for (int c = 0; c < 4; ++c) bytes[i * 4 + c] = static_cast<std::uint8_t>(pixels[i] >> (8 * c));
   return bytes;
-}
-
-void Framebuffer::resolve_samples_tile_row(int tile_row) {
-  if (samples_ == 1) return;
-  const std::size_t first = static_cast<std::size_t>(tile_row) * kTileSize * width_;
-  const std::size_t end = std::min(first + static_cast<std::size_t>(kTileSize) * width_, pixel_count());
-  average_samples(color_.data() + first, pixel_count(), samples_, end - first, resolved_.data() + first);
 }
 
 void Framebuffer::request_clear(glm::vec4 color, float depth, bool clear_color, bool clear_depth) {
@@ -119,6 +94,9 @@ void Framebuffer::resolve_clear(int tile_index) {
     if (pending_.color) fill_color(color_.data() + first, width_, y1 - y0, x1 - x0, pending_.color_value);
     if (pending_.depth) fill_depth(depth_.data() + first, width_, y1 - y0, x1 - x0, pending_.depth_value);
   }
+  if (pending_.color && samples_ > 1)
+    fill_color(resolved_.data() + static_cast<std::size_t>(y0) * width_ + x0, width_, y1 - y0, x1 - x0,
+               pending_.color_value);
   if (pending_.depth) reset_depth_bounds(tile_index, pending_.depth_value);
   tile_holds_clear_[tile_index] = held_.color;
 }
@@ -160,6 +138,8 @@ void Framebuffer::resolve_clear_tile_row(int tile_row) {
         if (pending_.color) fill_words(color_.data() + offset, count, pending_.color_value);
         if (pending_.depth)
           fill_words(depth_.data() + offset, count, std::bit_cast<std::uint32_t>(pending_.depth_value));
+        if (pending_.color && samples_ > 1 && s == 0)
+          fill_words(resolved_.data() + offset, count, pending_.color_value);
       }
     for (; t < end; ++t) {
       tile_needs_clear_[t] = 0;

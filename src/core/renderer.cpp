@@ -53,10 +53,8 @@ int Renderer::threads() const { return work_->pool.size(); }
 void Renderer::clear(Framebuffer& target, glm::vec4 color, float depth) { target.request_clear(color, depth); }
 
 void Renderer::finish(Framebuffer& target) {
-  work_->pool.parallel_for(static_cast<std::size_t>(target.tiles_y()), [&](std::size_t row, int) {
-    target.resolve_clear_tile_row(static_cast<int>(row));
-    target.resolve_samples_tile_row(static_cast<int>(row));
-  });
+  work_->pool.parallel_for(static_cast<std::size_t>(target.tiles_y()),
+                           [&](std::size_t row, int) { target.resolve_clear_tile_row(static_cast<int>(row)); });
   target.resolve_all_clears();
 }
 
@@ -230,7 +228,8 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
                           .last_batch = next_batch == count,
                           .samples = samples,
                           .sample_stride = target.sample_offset(1),
-                          .bounds_stride = target.bounds_per_sample()};
+                          .bounds_stride = target.bounds_per_sample(),
+                          .resolved = target.resolved_storage()};
       request.raster(request.draw, work);
     });
   }

@@ -132,6 +132,7 @@ struct TileWork {
   // (color, depth and depth_bounds above are sample 0's; see sample_work in multisample.hpp).
   int samples = 1;
   std::size_t sample_stride = 0, bounds_stride = 0;
+  std::uint32_t* resolved = nullptr;  // the averaged colour (stride as color), which the tile pass keeps current
 };
 
 }  // namespace facet::detail

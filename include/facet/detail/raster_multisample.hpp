@@ -79,19 +79,11 @@ template <Shader S>
   }
 }
 
-// The lanes of a strip where two samples' triangle references are equal (a loop for the vectoriser).
-[[gnu::always_inline]] inline unsigned strip_refs_equal(const std::uint32_t* a, const std::uint32_t* b) {
-  unsigned bits = 0;
-#pragma GCC unroll 1
-  for (int k = 0; k < simd::kLanes; ++k) bits |= static_cast<unsigned>(a[k] == b[k]) << k;
-  return bits;
-}
-
 // Deferred shading with several samples: the visibility pass of every sample plane, triangle by triangle in draw
-// order, then the planes' shading passes in sample order. A pixel's sample whose triangle an earlier sample of the
-// pixel also kept takes that sample's colour (the shader runs at the centre either way, so it is the same colour);
-// only a triangle new to the pixel is shaded. Inside a triangle, that is one shading per pixel; on an edge, one per
-// triangle meeting there.
+// order, then one shading pass over the strips, each strip's samples in order. A pixel's sample whose triangle an
+// earlier sample of the pixel also kept takes that sample's colour (the shader runs at the centre either way, so it
+// is the same colour); only a triangle new to the pixel is shaded, with the strip's other lanes masked off. Inside
+// a triangle, that is one shading per pixel; on an edge, one per triangle meeting there.
 template <Shader S>
 [[gnu::always_inline]] inline void raster_tile_deferred_multisample(const ShadeContext<S>& ctx, const TileWork& work) {
   const RenderState& state = *ctx.state;
@@ -129,47 +121,62 @@ template <Shader S>
   resolved.depth_test = false;
   const ShadeContext<S> shade{ctx.shader, &resolved};
   const int width = work.x1 - work.x0, height = work.y1 - work.y0;
-  for (int s = 0; s < n; ++s) {
-    const TileWork& plane = planes[s];
-    for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
-      for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
-        for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
-          const std::size_t at = scratch_index(block_x, block_y) + static_cast<std::size_t>(strip) * simd::kLanes;
+  // Per strip, the samples in order; each sample's 16 colours stay here for the later samples to copy.
+  alignas(64) std::uint32_t colors[kMaxSamples][simd::kLanes];
+  for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
+    for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
+      for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
+        const std::size_t at = scratch_index(block_x, block_y) + static_cast<std::size_t>(strip) * simd::kLanes;
+        const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
+        const unsigned inside = work.clear.color ? strip_inside(work, px, py) : 0u;
+        for (int s = 0; s < n; ++s) {
+          const TileWork& plane = planes[s];
           const std::uint32_t* refs = plane.scratch->triangle + at;
           const unsigned covered = ~strip_lanes_equal(refs, kNoTriangle) & 0xffffu;
-          const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
-          const unsigned fill = work.clear.color ? strip_inside(work, px, py) & ~covered : 0u;
-          // Lanes whose triangle an earlier sample kept take that sample's colour.
+          const unsigned fill = inside & ~covered;
+          if (!(covered | fill)) continue;
+          std::uint32_t* out = colors[s];
+          // Lanes whose triangle an earlier sample kept take that sample's colour; lanes without one, the clear.
           unsigned copied = 0;
-          alignas(64) std::uint32_t colors[simd::kLanes];
           for (int t = 0; t < s && (covered & ~copied); ++t) {
-            const unsigned same = strip_refs_equal(refs, planes[t].scratch->triangle + at) & covered & ~copied;
-            for (unsigned b = same; b; b &= b - 1) {
-              const int k = std::countr_zero(b);
-              colors[k] = planes[t].color[static_cast<std::size_t>(py + (k >> 3)) * work.stride + px + (k & 7)];
+            const std::uint32_t* earlier = planes[t].scratch->triangle + at;
+            const std::uint32_t* from = colors[t];
+            unsigned same = 0;
+#pragma GCC unroll 1
+            for (int k = 0; k < simd::kLanes; ++k) {
+              const bool take = refs[k] == earlier[k] && !((copied >> k) & 1) && ((covered >> k) & 1);
+              out[k] = take ? from[k] : out[k];
+              same |= static_cast<unsigned>(take) << k;
             }
             copied |= same;
           }
-          if (copied) store_strip(plane, px, py, copied, colors);
           const unsigned shaded = covered & ~copied;
-          if (fill && !(LaneShader<S> && shaded)) fill_strip(plane, px, py, fill);
-          if (!shaded) continue;
-          if constexpr (LaneShader<S>) {
-            alignas(64) std::uint32_t own[simd::kLanes];
-            for (int k = 0; k < simd::kLanes; ++k) own[k] = (shaded >> k) & 1 ? refs[k] : kNoTriangle;
-            FragmentLanes<typename S::Varyings> fragment;
-            prepare_strip_lanes(shade, plane, px, py, own, nullptr, fragment);
-            finish_strip_lanes(shade, plane, px, py, shaded, fill, fragment);
-          } else {
-            for (unsigned pending = shaded; pending;) {
-              const std::uint32_t ref = refs[std::countr_zero(pending)];
-              const unsigned same = strip_lanes_equal(refs, ref) & shaded;
-              pending &= ~same;
-              shade_block_quads(shade, triangle_at(work, ref), plane, px, py, std::uint64_t{same});
+          if (shaded) {
+            if constexpr (LaneShader<S>) {
+              alignas(64) std::uint32_t own[simd::kLanes];
+              for (int k = 0; k < simd::kLanes; ++k) own[k] = (shaded >> k) & 1 ? refs[k] : kNoTriangle;
+              FragmentLanes<typename S::Varyings> fragment;
+              prepare_strip_lanes(shade, plane, px, py, own, nullptr, fragment);
+              alignas(64) std::uint32_t lanes[simd::kLanes];
+              simd::store(lanes, simd::pack_rgba8(ctx.shader->fragment_lanes(fragment)));
+              for (int k = 0; k < simd::kLanes; ++k) out[k] = (shaded >> k) & 1 ? lanes[k] : out[k];
+            } else {
+              for (unsigned pending = shaded; pending;) {
+                const std::uint32_t ref = refs[std::countr_zero(pending)];
+                const unsigned same = strip_lanes_equal(refs, ref) & shaded;
+                pending &= ~same;
+                shade_block_quads(shade, triangle_at(work, ref), plane, px, py, std::uint64_t{same});
+              }
+              for (unsigned b = shaded; b; b &= b - 1) {
+                const int k = std::countr_zero(b);
+                out[k] = plane.color[static_cast<std::size_t>(py + (k >> 3)) * work.stride + px + (k & 7)];
+              }
             }
           }
+          for (int k = 0; k < simd::kLanes; ++k) out[k] = (fill >> k) & 1 ? work.clear.color_value : out[k];
+          store_strip(plane, px, py, covered | fill, out);
         }
-  }
+      }
 
   if (work.clear.depth || (state.depth_test && state.depth_write))
     for (int s = 0; s < n; ++s)
