@@ -118,6 +118,17 @@ run_ok "sphere:16 single-threaded" threads=0 -- --sphere 16 --resolution 64,48 -
 run_ok "repeated flags take the last value" frames=3 warmup=0 width=32 height=20 -- \
   --sphere 8 --frames 1 --resolution 64,48 --warmup 2 --frames 3 --warmup 0 --resolution 32,20
 
+# --- multisampling: the result line names the samples, and the image is the same at any thread count ---
+if run_ok "sphere:16 with 4 samples" scene=sphere:16 samples=4 -- --sphere 16 --resolution 64,48 --frames 1 \
+     --warmup 0 --samples 4 --threads 2 --png "$scratch/sphere16-s4.png" &&
+   run_ok "sphere:16 with 4 samples, one thread" samples=4 -- --sphere 16 --resolution 64,48 --frames 1 --warmup 0 \
+     --samples 4 --threads 1 --png "$scratch/sphere16-s4-t1.png"; then
+  cmp -s "$scratch/sphere16-s4.png" "$scratch/sphere16-s4-t1.png" && ok "4 samples: same image on 1 and 2 threads" ||
+    bad "4 samples: same image on 1 and 2 threads"
+  cmp -s "$scratch/sphere16-s4.png" "$png" && bad "4 samples differ from 1" "the images are equal" ||
+    ok "4 samples differ from 1"
+fi
+
 # --- the quads: both orders draw the same picture ---
 if run_ok "quads:4:b2f result line" scene=quads:4:b2f triangles=8 width=96 height=54 -- \
      --quads 4 --resolution 96,54 --frames 1 --warmup 0 --png "$scratch/quads-b2f.png" &&
@@ -157,6 +168,8 @@ run_bad "--warmup -1" --sphere 16 --warmup -1
 run_bad "--threads -1" --sphere 16 --threads -1
 run_bad "--scale 0" --sphere 16 --scale 0
 run_bad "--order sideways" --quads 4 --order sideways
+run_bad "--samples 3" --sphere 16 --samples 3
+run_bad "--samples 16" --sphere 16 --samples 16
 run_bad "missing value" --sphere
 run_bad "missing mesh file" --mesh "$scratch/no-such-mesh.obj"
 printf 'v 0 0 0\nv 1 0 0\n' >"$scratch/no-faces.obj"

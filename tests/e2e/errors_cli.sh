@@ -130,6 +130,9 @@ expect resolution_one_number 2 render "$box" --resolution 640
 expect resolution_too_big 2 render "$box" --resolution 100000,10
 expect resolution_negative 2 render "$box" --resolution=-5,10
 expect resolution_fraction 2 render "$box" --resolution 64.5,48
+expect samples_three 2 render "$box" --samples 3
+expect samples_zero 2 render "$box" --samples 0
+expect demo_samples_sixteen 2 demo cube --samples 16
 expect position_two_numbers 2 render "$box" --camera-position 1,2
 expect camera_index_none 2 render "$box" --camera-index 0
 expect several_models_one_name 2 render "$box" "$box" --output "$scratch/several_models_one_name.png"
