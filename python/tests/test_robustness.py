@@ -92,7 +92,7 @@ def test_two_threads_render_in_parallel():
         scene.add(facet.Mesh(positions, faces, normals=normals))
         scene.add(facet.PerspectiveCamera(yfov=0.8), pose=look_at((0, 0, 3)))
         scenes.append(scene)
-        renderers.append(facet.OffscreenRenderer(320, 240, threads=1))
+        renderers.append(facet.OffscreenRenderer(320, 240, threads=1, samples=1))
     frames = 30
 
     def work(k):

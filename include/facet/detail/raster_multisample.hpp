@@ -178,12 +178,18 @@ template <Shader S>
         }
       }
 
-  if (work.clear.depth || (state.depth_test && state.depth_write))
+  // As raster_tile_deferred: after the draw's last batch the depth leaves with streaming stores, fenced.
+  if (work.clear.depth || (state.depth_test && state.depth_write)) {
     for (int s = 0; s < n; ++s)
       for_each_depth_row(
           planes[s], [&](float* local, float* global, auto count) __attribute__((always_inline)) {
-            std::memcpy(global, local, static_cast<std::size_t>(count) * sizeof(float));
+            if (!(work.last_batch && stream_depth_row(global, local, count)))
+              std::memcpy(global, local, static_cast<std::size_t>(count) * sizeof(float));
           });
+#if defined(__x86_64__)
+    if (work.last_batch) _mm_sfence();
+#endif
+  }
 }
 
 }  // namespace facet::detail
