@@ -1,9 +1,11 @@
 // raster_multisample.hpp - rasterization of one tile with several samples per pixel, immediate and deferred.
 #pragma once
 
+#include <algorithm>
 #include <bit>
 #include <cstddef>
 #include <cstdint>
+#include <cstring>
 
 #include "facet/detail/multisample.hpp"
 #include "facet/detail/raster.hpp"
@@ -121,8 +123,9 @@ template <Shader S>
   resolved.depth_test = false;
   const ShadeContext<S> shade{ctx.shader, &resolved};
   const int width = work.x1 - work.x0, height = work.y1 - work.y0;
-  // Per strip, the samples in order; each sample's 16 colours stay here for the later samples to copy.
-  alignas(64) std::uint32_t colors[kMaxSamples][simd::kLanes];
+  // Per strip, the samples in order; each sample's 16 colours stay here for the later samples to copy. Lanes a
+  // sample neither covers nor fills keep an older strip's values, which nothing reads.
+  alignas(64) std::uint32_t colors[kMaxSamples][simd::kLanes] = {};
   for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
     for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
       for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
