@@ -11,7 +11,7 @@ const char* const kHelpText =
     "1-7  unlit, flat, Gouraud, Phong, Blinn-Phong, normals, depth\n"
     "0  the model's own shading\n"
     "o  orthographic/perspective\n"
-    "a  anti-aliasing (2x2 supersampling)\n"
+    "a  anti-aliasing (4x multisampling)\n"
     "r  reset the camera     space  pause\n"
     "h  this help            q, Esc  quit\n"
     "mouse: left-drag orbits, right- or shift-drag pans, wheel zooms\n"

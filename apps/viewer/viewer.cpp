@@ -82,25 +82,12 @@ class Window {
   SDL_Window* window_ = nullptr;
 };
 
-// The framebuffer as RGBA bytes in `out`, at its size, or averaged 2x2 block by block to half its size.
-void compose(const Framebuffer& fb, bool halve, std::vector<std::uint8_t>& out) {
+// The framebuffer's colour as RGBA bytes in `out`.
+void compose(const Framebuffer& fb, std::vector<std::uint8_t>& out) {
   const std::span<const std::uint32_t> color = fb.color();
-  const int width = halve ? fb.width() / 2 : fb.width(), height = halve ? fb.height() / 2 : fb.height();
-  out.resize(static_cast<std::size_t>(width) * height * 4);
-  const auto row = static_cast<std::size_t>(fb.width());
-  for (int y = 0; y < height; ++y)
-    for (int x = 0; x < width; ++x)
-      for (int c = 0; c < 4; ++c) {
-        const auto channel = [&](std::size_t i) { return (color[i] >> (8 * c)) & 0xffu; };
-        std::uint32_t value;
-        if (halve) {
-          const std::size_t p = static_cast<std::size_t>(2 * y) * row + static_cast<std::size_t>(2 * x);
-          value = (channel(p) + channel(p + 1) + channel(p + row) + channel(p + row + 1) + 2) / 4;
-        } else {
-          value = channel(static_cast<std::size_t>(y) * row + static_cast<std::size_t>(x));
-        }
-        out[(static_cast<std::size_t>(y) * width + x) * 4 + c] = static_cast<std::uint8_t>(value);
-      }
+  out.resize(color.size() * 4);
+  for (std::size_t i = 0; i < color.size(); ++i)
+    for (std::size_t c = 0; c < 4; ++c) out[i * 4 + c] = static_cast<std::uint8_t>(color[i] >> (8 * c));
 }
 
 // A block of text on a dark box at the top left.
@@ -196,19 +183,19 @@ int run_viewer(const ViewerOptions& options) {
       animation = options.frames ? frames / 60.0 : animation + std::chrono::duration<double>(now - last).count();
     last = now;
     window.size(width, height);
-    const int factor = toggles.antialias ? 2 : 1;
-    if (!target || target->width() != width * factor || target->height() != height * factor)
-      target.emplace(width * factor, height * factor);
+    const int samples = toggles.antialias ? 4 : 1;
+    if (!target || target->width() != width || target->height() != height || target->samples() != samples)
+      target.emplace(width, height, samples);
 
     const Showing::Frame frame =
         showing.frame(animation, static_cast<float>(width) / static_cast<float>(height), toggles, orbit);
     renderer.clear(*target, frame.clear, 1.0f);
     frame.scene->render(renderer, *target, frame.view, frame.options);
     renderer.finish(*target);
-    // The framebuffer goes to the window as it is, unless it is halved or written over.
-    composed = factor == 2 || toggles.help || !error.empty();
+    // The framebuffer goes to the window as it is, unless it is written over.
+    composed = toggles.help || !error.empty();
     if (composed) {
-      compose(*target, factor == 2, shown);
+      compose(*target, shown);
       if (toggles.help) overlay(shown, width, height, kHelpText, glm::vec4(1.0f));
       if (!error.empty()) overlay(shown, width, height, "cannot open: " + error, glm::vec4(1.0f, 0.5f, 0.4f, 1.0f));
       window.present(shown.data(), false, width, height);

@@ -25,7 +25,7 @@ struct Toggles {
   int shuffles = 0;                // times the triangle order was shuffled (0: the file's order)
   std::optional<Shading> shading;  // unset: the model's own look
   bool orthographic = false;
-  bool antialias = false;  // 2x2 supersampling
+  bool antialias = false;  // 4x multisampling
   bool paused = false;
   bool help = false;
 };
