@@ -86,12 +86,13 @@ else
 fi
 
 # SIGTERM midway: the jobs in flight finish, nothing partial or temporary is left, and a rerun completes the set
-# with the bytes of an uninterrupted run. A sanitized build renders each job ten times slower, so fewer jobs
-# still leave the signal arriving midway.
-many=200
-[ -n "${FACET_E2E_SANITIZED:-}" ] && many=40
-python3 -c 'import sys
-for n in range(int(sys.argv[2])): print(sys.argv[1])' "$models/OBJ/WusonOBJ.obj" "$many" >many.txt
+# with the bytes of an uninterrupted run. A sanitized build renders each job ten times slower, so fewer jobs, of
+# one sample each (the sanitized unit tests cover multisampling), still leave the signal arriving midway.
+many=200 samples=4
+[ -n "${FACET_E2E_SANITIZED:-}" ] && many=40 samples=1
+python3 -c 'import json, sys
+for n in range(int(sys.argv[2])): print(json.dumps({"model": sys.argv[1], "samples": int(sys.argv[3])}))' \
+  "$models/OBJ/WusonOBJ.obj" "$many" "$samples" >many.txt
 mkdir -p stopped whole
 # interrupt FOLDER SIGNAL: runs the batch in FOLDER, sends SIGNAL once its first output exists (a fixed sleep is
 # too short on a loaded machine under the sanitizers), and returns the batch's exit status.

@@ -5,6 +5,7 @@
 #include <sys/resource.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -64,7 +65,10 @@ void read_as(const std::string& format, const fs::path& input) {
 }
 
 TEST(FuzzRegressions, EveryInputEndsCleanly) {
-  const fs::path root = fs::path(FACET_SOURCE_DIR) / "tests" / "fuzz" / "regressions";
+  // The checkout, from the environment (ctest sets it): not compiled in, so the object is the same in every clone.
+  const char* source = std::getenv("FACET_SOURCE_DIR");
+  ASSERT_TRUE(source && *source) << "FACET_SOURCE_DIR must name the source tree (ctest sets it)";
+  const fs::path root = fs::path(source) / "tests" / "fuzz" / "regressions";
   int inputs = 0;
   for (const fs::directory_entry& folder : fs::directory_iterator(root)) {
     if (!folder.is_directory() || folder.path().filename() == "batch") continue;  // jobs files: the CLI's tests
