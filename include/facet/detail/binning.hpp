@@ -135,4 +135,16 @@ struct TileWork {
   std::uint32_t* resolved = nullptr;  // the averaged colour (stride as color), which the tile pass keeps current
 };
 
+// Calls f(triangle, ref) for each triangle binned to the work's tile, in draw order (chunk by chunk).
+template <class F>
+[[gnu::always_inline]] inline void for_each_tile_triangle(const TileWork& work, F&& f) {
+  for (std::size_t c = 0; c < work.chunk_count; ++c) {
+    const SetupChunk& chunk = work.chunks[c];
+    for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i) {
+      const std::uint32_t index = chunk.binned[i];
+      f(chunk.triangles[index], triangle_ref(c, index));
+    }
+  }
+}
+
 }  // namespace facet::detail

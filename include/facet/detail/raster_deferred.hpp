@@ -223,20 +223,43 @@ template <class N>
   return false;
 }
 
+// The tile's depth into its scratch from the framebuffer, or the pending depth clear, and no triangle kept yet.
+[[gnu::always_inline]] inline void begin_tile_scratch(const TileWork& work, bool depth_test) {
+  if (depth_test || work.clear.depth)
+    for_each_depth_row(
+        work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
+          if (work.clear.depth) std::fill_n(local, static_cast<int>(n), work.clear.depth_value);
+          else std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
+        });
+  std::fill_n(work.scratch->triangle, kTileSize * kTileSize, kNoTriangle);
+}
+
+// The tile's depth back from its scratch to the framebuffer; after the draw's last batch with streaming stores,
+// which the caller fences (fence_streamed_depth) once its last plane is out.
+[[gnu::always_inline]] inline void store_tile_depth(const TileWork& work) {
+  for_each_depth_row(
+      work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
+        if (!(work.last_batch && stream_depth_row(global, local, n)))
+          std::memcpy(global, local, static_cast<std::size_t>(n) * sizeof(float));
+      });
+}
+
+// Streaming stores are weakly ordered: fence them before the pool's barrier hands the frame to other threads.
+inline void fence_streamed_depth(const TileWork& work) {
+#if defined(__x86_64__)
+  if (work.last_batch) _mm_sfence();
+#else
+  (void)work;
+#endif
+}
+
 template <Shader S>
 [[gnu::always_inline]] inline void raster_tile_deferred(const ShadeContext<S>& ctx, const TileWork& work) {
   const RenderState& state = *ctx.state;
   TileScratch& scratch = *work.scratch;
   const int width = work.x1 - work.x0, height = work.y1 - work.y0;
 
-  // The tile's depth comes in from the framebuffer unless it is being cleared.
-  if (state.depth_test || work.clear.depth)
-    for_each_depth_row(
-        work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
-          if (work.clear.depth) std::fill_n(local, static_cast<int>(n), work.clear.depth_value);
-          else std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
-        });
-  std::fill_n(scratch.triangle, kTileSize * kTileSize, kNoTriangle);
+  begin_tile_scratch(work, state.depth_test);
 
   with_depth_func(
       state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
@@ -293,15 +316,8 @@ template <Shader S>
     }
 
   if (work.clear.depth || (state.depth_test && state.depth_write)) {
-    for_each_depth_row(
-        work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
-          if (!(work.last_batch && stream_depth_row(global, local, n)))
-            std::memcpy(global, local, static_cast<std::size_t>(n) * sizeof(float));
-        });
-#if defined(__x86_64__)
-    // Streaming stores are weakly ordered: fence them before the pool's barrier hands the frame to other threads.
-    if (work.last_batch) _mm_sfence();
-#endif
+    store_tile_depth(work);
+    fence_streamed_depth(work);
   }
 }
 

@@ -94,29 +94,18 @@ template <Shader S>
   TileWork planes[kMaxSamples];
   for (int s = 0; s < n; ++s) {
     planes[s] = sample_work(work, s);
-    if (state.depth_test || work.clear.depth)
-      for_each_depth_row(
-          planes[s], [&](float* local, float* global, auto count) __attribute__((always_inline)) {
-            if (work.clear.depth) std::fill_n(local, static_cast<int>(count), work.clear.depth_value);
-            else std::memcpy(local, global, static_cast<std::size_t>(count) * sizeof(float));
-          });
-    std::fill_n(planes[s].scratch->triangle, kTileSize * kTileSize, kNoTriangle);
+    begin_tile_scratch(planes[s], state.depth_test);
   }
 
   with_depth_func(
       state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
-        for (std::size_t c = 0; c < work.chunk_count; ++c) {
-          const SetupChunk& chunk = work.chunks[c];
-          for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i) {
-            const std::uint32_t index = chunk.binned[i];
-            const TriangleSetup& tri = chunk.triangles[index];
-            for (int s = 0; s < n; ++s) {
-              const TriangleSetup view = at_sample(tri, pattern.offset[s]);
-              if (state.depth_test) raster_triangle_visibility<kFunc, true>(view, state, planes[s], triangle_ref(c, index));
-              else raster_triangle_visibility<kFunc, false>(view, state, planes[s], triangle_ref(c, index));
-            }
+        for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
+          for (int s = 0; s < n; ++s) {
+            const TriangleSetup view = at_sample(tri, pattern.offset[s]);
+            if (state.depth_test) raster_triangle_visibility<kFunc, true>(view, state, planes[s], ref);
+            else raster_triangle_visibility<kFunc, false>(view, state, planes[s], ref);
           }
-        }
+        });
       });
 
   RenderState resolved = state;
@@ -181,17 +170,9 @@ template <Shader S>
         }
       }
 
-  // As raster_tile_deferred: after the draw's last batch the depth leaves with streaming stores, fenced.
   if (work.clear.depth || (state.depth_test && state.depth_write)) {
-    for (int s = 0; s < n; ++s)
-      for_each_depth_row(
-          planes[s], [&](float* local, float* global, auto count) __attribute__((always_inline)) {
-            if (!(work.last_batch && stream_depth_row(global, local, count)))
-              std::memcpy(global, local, static_cast<std::size_t>(count) * sizeof(float));
-          });
-#if defined(__x86_64__)
-    if (work.last_batch) _mm_sfence();
-#endif
+    for (int s = 0; s < n; ++s) store_tile_depth(planes[s]);
+    fence_streamed_depth(work);
   }
 }
 

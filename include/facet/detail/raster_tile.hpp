@@ -28,11 +28,9 @@ void raster_tile(const void* draw, const TileWork& work) {
     raster_tile_deferred(ctx, work);
     return;
   }
-  for (std::size_t c = 0; c < work.chunk_count; ++c) {
-    const SetupChunk& chunk = work.chunks[c];
-    for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i)
-      raster_triangle(ctx, chunk.triangles[chunk.binned[i]], work);
-  }
+  for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
+    raster_triangle(ctx, tri, work);
+  });
 }
 
 // raster_tile for a multisampled target (TileWork::samples > 1). A function of its own, not a branch in
@@ -45,11 +43,9 @@ void raster_tile_multisample(const void* draw, const TileWork& work) {
   if (shades_deferred<S>(*ctx.state)) {
     raster_tile_deferred_multisample(ctx, work);
   } else {
-    for (std::size_t c = 0; c < work.chunk_count; ++c) {
-      const SetupChunk& chunk = work.chunks[c];
-      for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i)
-        raster_triangle_multisample(ctx, chunk.triangles[chunk.binned[i]], work);
-    }
+    for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
+      raster_triangle_multisample(ctx, tri, work);
+    });
   }
   resolve_tile(work);
 }

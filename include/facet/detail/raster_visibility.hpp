@@ -178,13 +178,9 @@ template <DepthFunc kFunc, bool kDepthTest>
 // triangle that passed last.
 template <DepthFunc kFunc, bool kDepthTest>
 [[gnu::always_inline]] inline void raster_tile_visibility(const RenderState& state, const TileWork& work) {
-  for (std::size_t c = 0; c < work.chunk_count; ++c) {
-    const SetupChunk& chunk = work.chunks[c];
-    for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i) {
-      const std::uint32_t index = chunk.binned[i];
-      raster_triangle_visibility<kFunc, kDepthTest>(chunk.triangles[index], state, work, triangle_ref(c, index));
-    }
-  }
+  for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
+    raster_triangle_visibility<kFunc, kDepthTest>(tri, state, work, ref);
+  });
 }
 
 }  // namespace facet::detail
