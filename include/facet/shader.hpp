@@ -2,7 +2,6 @@
 #pragma once
 
 #include <array>
-#include <bit>
 #include <concepts>
 #include <cstddef>
 #include <cstdint>
@@ -10,6 +9,8 @@
 #include <type_traits>
 
 #include <glm/glm.hpp>
+
+#include "facet/detail/bits.hpp"
 
 namespace facet {
 
@@ -78,11 +79,11 @@ constexpr bool needs_derivatives() {
 
 template <Interpolatable V>
 inline FloatArray<V> to_floats(const V& v) {
-  return std::bit_cast<FloatArray<V>>(v);
+  return detail::bit_cast<FloatArray<V>>(v);
 }
 template <Interpolatable V>
 inline V from_floats(const FloatArray<V>& f) {
-  return std::bit_cast<V>(f);
+  return detail::bit_cast<V>(f);
 }
 
 }  // namespace facet

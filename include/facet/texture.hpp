@@ -2,7 +2,6 @@
 #pragma once
 
 #include <array>
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -11,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "facet/detail/bits.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/sampler.hpp"
 #include "facet/simd.hpp"
@@ -229,7 +229,7 @@ class Texture {
     std::uint64_t bottom, top;
     std::memcpy(&bottom, t00, sizeof bottom);
     std::memcpy(&top, t00 + l.stride, sizeof top);
-    if constexpr (std::endian::native == std::endian::big) {  // keep the left texel in the low half
+    if constexpr (!detail::kLittleEndian) {  // keep the left texel in the low half
       bottom = bottom << 32 | bottom >> 32;
       top = top << 32 | top >> 32;
     }
@@ -345,7 +345,7 @@ inline simd::Color Texture::bilinear_repeat_pow2_lanes(const simd::Vec2& uv) con
   const UInt b0 = load<UInt>(bottom), b1 = load<UInt>(bottom + kLanes / 2);
   const UInt u0 = load<UInt>(top), u1 = load<UInt>(top + kLanes / 2);
   // On a little-endian machine the left texel of each pair is the lower 32 bits, i.e. the even lane.
-  constexpr bool little = std::endian::native == std::endian::little;
+  constexpr bool little = detail::kLittleEndian;
   const Int even = kLaneIndex * 2 + (little ? 0 : 1), odd = kLaneIndex * 2 + (little ? 1 : 0);
   const UInt t00 = shuffle(b0, b1, even), t10 = shuffle(b0, b1, odd);
   const UInt t01 = shuffle(u0, u1, even), t11 = shuffle(u0, u1, odd);

@@ -1,10 +1,10 @@
 // framebuffer.cpp - colour/depth storage and the deferred per-tile clear.
 #include "facet/framebuffer.hpp"
 
+#include "facet/detail/bits.hpp"
 #include "facet/detail/dispatch.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <stdexcept>
 #include <string>
@@ -75,9 +75,10 @@ void Framebuffer::request_clear(glm::vec4 color, float depth, bool clear_color, 
   pending_ = {clear_color, clear_depth, pack_rgba8(color), depth};
   // Tiles keep their mark only for a clear of both channels to the very values they hold, and only if nobody
   // could have written to them since. Depths compare bit for bit.
-  const bool same_as_held = !contents_exposed_ && clear_color && clear_depth && held_.color && held_.depth &&
-                            held_.color_value == pending_.color_value &&
-                            std::bit_cast<std::uint32_t>(held_.depth_value) == std::bit_cast<std::uint32_t>(depth);
+  const bool same_as_held =
+      !contents_exposed_ && clear_color && clear_depth && held_.color && held_.depth &&
+      held_.color_value == pending_.color_value &&
+      detail::bit_cast<std::uint32_t>(held_.depth_value) == detail::bit_cast<std::uint32_t>(depth);
   if (!same_as_held) std::fill(tile_holds_clear_.begin(), tile_holds_clear_.end(), std::uint8_t{0});
   held_ = clear_color && clear_depth ? pending_ : detail::PendingClear{};
   contents_exposed_ = false;
@@ -137,7 +138,7 @@ void Framebuffer::resolve_clear_tile_row(int tile_row) {
         const std::size_t offset = sample_offset(s) + static_cast<std::size_t>(y) * width_ + x0;
         if (pending_.color) fill_words(color_.data() + offset, count, pending_.color_value);
         if (pending_.depth)
-          fill_words(depth_.data() + offset, count, std::bit_cast<std::uint32_t>(pending_.depth_value));
+          fill_words(depth_.data() + offset, count, detail::bit_cast<std::uint32_t>(pending_.depth_value));
         if (pending_.color && samples_ > 1 && s == 0)
           fill_words(resolved_.data() + offset, count, pending_.color_value);
       }

@@ -2,13 +2,13 @@
 #include "facet/image_io.hpp"
 
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <memory>
 #include <stdexcept>
 #include <string>
 
+#include "facet/detail/bits.hpp"
 #include "facet/error.hpp"
 #include "facet/framebuffer.hpp"
 #include "io/exr.hpp"
@@ -74,7 +74,7 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
 }
 
 void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha) {
-  if constexpr (std::endian::native == std::endian::little) {
+  if constexpr (detail::kLittleEndian) {
     // Packed pixels are R, G, B, A in memory on a little-endian machine: encoded where they lie, without a copy.
     const std::span<const std::uint32_t> color = framebuffer.color();
     write_png(path, framebuffer.width(), framebuffer.height(),
@@ -116,7 +116,7 @@ void write_npy_words(const std::filesystem::path& path, const char* descr, int w
   std::memcpy(bytes.data() + 10, header.data(), header.size());
   std::uint8_t* out = bytes.data() + 10 + header.size();
   for (const T v : values) {
-    const auto bits = std::bit_cast<std::uint32_t>(v);
+    const auto bits = detail::bit_cast<std::uint32_t>(v);
     for (int b = 0; b < 4; ++b) *out++ = static_cast<std::uint8_t>(bits >> (8 * b));  // little-endian
   }
   write_output(path, bytes);

@@ -1,12 +1,12 @@
 // ply_loader.cpp - load_ply(): PLY in ASCII and both binary byte orders; vertices and faces read, other data skipped.
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <optional>
 #include <string>
 #include <vector>
 
+#include "facet/detail/bits.hpp"
 #include "facet/error.hpp"
 #include "io/loaders.hpp"
 #include "io/ply_header.hpp"
@@ -36,8 +36,8 @@ class BinaryReader {
 
   double scalar(Type t) {
     switch (t) {
-      case Type::kFloat32: return std::bit_cast<float>(load<std::uint32_t>());
-      case Type::kFloat64: return std::bit_cast<double>(load<std::uint64_t>());
+      case Type::kFloat32: return detail::bit_cast<float>(load<std::uint32_t>());
+      case Type::kFloat64: return detail::bit_cast<double>(load<std::uint64_t>());
       default: return static_cast<double>(integer(t));
     }
   }
@@ -408,7 +408,7 @@ Mesh load_ply(std::string_view bytes, const std::string& source) {
   using ply::Encoding;
   if (header.encoding == Encoding::kAscii) {
     mesh = read_body(header, *vertex, *face, bytes.size(), AsciiReader(body, end, header.body_line), source);
-  } else if ((header.encoding == Encoding::kBinaryLittleEndian) == (std::endian::native == std::endian::little)) {
+  } else if ((header.encoding == Encoding::kBinaryLittleEndian) == detail::kLittleEndian) {
     mesh = read_body(header, *vertex, *face, bytes.size(), BinaryReader<false>(begin, body, end), source);
   } else {
     mesh = read_body(header, *vertex, *face, bytes.size(), BinaryReader<true>(begin, body, end), source);

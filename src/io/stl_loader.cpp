@@ -1,10 +1,10 @@
 // stl_loader.cpp - load_stl(): binary and ASCII STL, facets kept in order, equal positions welded into shared vertices.
-#include <bit>
 #include <cmath>
 #include <cstring>
 #include <string>
 #include <vector>
 
+#include "facet/detail/bits.hpp"
 #include "facet/error.hpp"
 #include "io/loaders.hpp"
 #include "io/text_scan.hpp"
@@ -58,9 +58,10 @@ class Welder {
 
  private:
   static std::uint64_t hash(const glm::vec3& p) {
-    std::uint64_t h = (std::uint64_t{std::bit_cast<std::uint32_t>(p.x)} << 32 | std::bit_cast<std::uint32_t>(p.y)) *
-                      0x9e3779b97f4a7c15ull;
-    h ^= (h >> 29) + std::uint64_t{std::bit_cast<std::uint32_t>(p.z)} * 0xc2b2ae3d27d4eb4full;
+    std::uint64_t h =
+        (std::uint64_t{detail::bit_cast<std::uint32_t>(p.x)} << 32 | detail::bit_cast<std::uint32_t>(p.y)) *
+        0x9e3779b97f4a7c15ull;
+    h ^= (h >> 29) + std::uint64_t{detail::bit_cast<std::uint32_t>(p.z)} * 0xc2b2ae3d27d4eb4full;
     h *= 0xd6e8feb86659fd93ull;
     return h ^ (h >> 32);
   }
@@ -83,13 +84,13 @@ class Welder {
 std::uint32_t read_u32_le(const char* p) {
   std::uint32_t v;
   std::memcpy(&v, p, sizeof v);
-  if constexpr (std::endian::native == std::endian::big) v = __builtin_bswap32(v);
+  if constexpr (!detail::kLittleEndian) v = __builtin_bswap32(v);
   return v;
 }
 
 glm::vec3 read_corner(const char* p) {
-  return {std::bit_cast<float>(read_u32_le(p)), std::bit_cast<float>(read_u32_le(p + 4)),
-          std::bit_cast<float>(read_u32_le(p + 8))};
+  return {detail::bit_cast<float>(read_u32_le(p)), detail::bit_cast<float>(read_u32_le(p + 4)),
+          detail::bit_cast<float>(read_u32_le(p + 8))};
 }
 
 // Welds corners 0 .. n-1 (three per facet, in order) into mesh.positions and mesh.indices. The corners are all known

@@ -1,6 +1,7 @@
 // text_scan.hpp - whitespace-separated tokens and strict numbers for the ASCII model readers (PLY, STL).
 #pragma once
 
+#include <cctype>
 #include <charconv>
 #include <cstdint>
 #include <cstdlib>
@@ -68,6 +69,7 @@ inline std::string_view without_plus(std::string_view token) {
 template <class Real>
 bool parse_real(std::string_view token, Real& out) {
   token = without_plus(token);
+#if defined(__cpp_lib_to_chars)
   const char* end = token.data() + token.size();
   const auto [ptr, ec] = std::from_chars(token.data(), end, out);
   if (ptr != end) return false;
@@ -78,6 +80,20 @@ bool parse_real(std::string_view token, Real& out) {
     return true;
   }
   return ec == std::errc();
+#else
+  // A libc++ without floating-point from_chars (Emscripten's): strtod on a copy, refusing what from_chars refuses
+  // and strtod takes (leading space or '+', hexadecimal).
+  const std::size_t sign = !token.empty() && token[0] == '-' ? 1 : 0;
+  if (token.size() <= sign || token[sign] == '+' || token[sign] == '-' ||
+      std::isspace(static_cast<unsigned char>(token[sign])) ||
+      (token.size() > sign + 1 && token[sign] == '0' && (token[sign + 1] == 'x' || token[sign + 1] == 'X')))
+    return false;
+  const std::string copy(token);
+  char* stop = nullptr;
+  if constexpr (sizeof(Real) == sizeof(float)) out = std::strtof(copy.c_str(), &stop);
+  else out = std::strtod(copy.c_str(), &stop);
+  return stop == copy.c_str() + copy.size();
+#endif
 }
 
 // A double as the nearest float, infinite beyond float's range (a plain conversion would be undefined there).

@@ -1,6 +1,5 @@
 // topology.cpp - connectivity work on meshes: edges, smooth and crease normals, strips, fans, polygon triangulation.
 #include <algorithm>
-#include <bit>
 #include <cmath>
 #include <limits>
 #include <span>
@@ -8,6 +7,7 @@
 #include <string>
 #include <unordered_map>
 
+#include "facet/detail/bits.hpp"
 #include "facet/error.hpp"
 #include "facet/mesh.hpp"
 
@@ -30,7 +30,7 @@ void add_edge(std::vector<Edge>& edges, std::uint32_t a, std::uint32_t b) {
 struct PositionKey {
   std::uint32_t bits[3];
   explicit PositionKey(const glm::vec3& p) {
-    for (int k = 0; k < 3; ++k) bits[k] = std::bit_cast<std::uint32_t>(p[k] == 0.0f ? 0.0f : p[k]);
+    for (int k = 0; k < 3; ++k) bits[k] = detail::bit_cast<std::uint32_t>(p[k] == 0.0f ? 0.0f : p[k]);
   }
   bool operator==(const PositionKey& o) const {
     return bits[0] == o.bits[0] && bits[1] == o.bits[1] && bits[2] == o.bits[2];
@@ -102,7 +102,8 @@ namespace {
 using NormalBits = std::array<std::uint32_t, 3>;
 
 NormalBits bits_of(const glm::vec3& v) {
-  return {std::bit_cast<std::uint32_t>(v.x), std::bit_cast<std::uint32_t>(v.y), std::bit_cast<std::uint32_t>(v.z)};
+  return {detail::bit_cast<std::uint32_t>(v.x), detail::bit_cast<std::uint32_t>(v.y),
+          detail::bit_cast<std::uint32_t>(v.z)};
 }
 
 // The same grouping as compute_smooth_normals (kept separate so that function stays exactly as the reference
@@ -236,7 +237,7 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
     std::sort(bucketed.data() + start[v], bucketed.data() + start[v + 1], normal_less);
     for (Corner i = start[v] + 1; i < start[v + 1]; ++i) total += !same_normal(bucketed[i], bucketed[i - 1]);
   }
-  if (total > std::size_t{std::numeric_limits<std::uint32_t>::max()} + 1)
+  if (std::uint64_t{total} > std::uint64_t{std::numeric_limits<std::uint32_t>::max()} + 1)
     throw std::length_error("compute_crease_normals: more vertices than 32-bit indices can address");
 
   // Attributes with one entry per vertex are copied along; a wrongly sized one is left alone (the mesh was already

@@ -1,9 +1,9 @@
 // project.cpp - outcodes, w-divide, viewport transform and snapping of a block of vertices, vectorised.
-#include <bit>
 #include <cstddef>
 #include <cstdint>
 
 #include "clip/clip.hpp"
+#include "facet/detail/bits.hpp"
 #include "facet/detail/dispatch.hpp"
 #include "facet/detail/triangle_setup.hpp"
 #include "setup/project.hpp"
@@ -11,7 +11,7 @@
 namespace facet::detail {
 namespace {
 
-std::uint32_t non_finite(float v) { return (std::bit_cast<std::uint32_t>(v) & 0x7fffffffu) >= 0x7f800000u; }
+std::uint32_t non_finite(float v) { return (detail::bit_cast<std::uint32_t>(v) & 0x7fffffffu) >= 0x7f800000u; }
 
 }  // namespace
 
