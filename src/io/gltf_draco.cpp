@@ -1,7 +1,10 @@
 // gltf_draco.cpp - glTF's KHR_draco_mesh_compression: a primitive's compressed buffer view decoded with Draco.
 #include <tiny_gltf.h>
 
+// A build without Draco (the browser page's, FACET_NO_DRACO) refuses compressed primitives with that reason.
+#ifndef FACET_NO_DRACO
 #include <draco/compression/decode.h>
+#endif
 #include <nlohmann/json.hpp>
 
 #include <cstring>
@@ -81,6 +84,10 @@ PrimitiveArrays decode_draco(const tinygltf::Model& model, const tinygltf::Primi
   if (view.byteOffset > buffer.size() || view.byteLength > buffer.size() - view.byteOffset)
     fail("buffer view " + std::to_string(view_index) + " reaches past the end of its buffer");
 
+#ifdef FACET_NO_DRACO
+  fail("this build of facet has no Draco decoder (" + std::to_string(max_vertices) + " vertices allowed)");
+  return {};
+#else
   draco::DecoderBuffer data;
   data.Init(reinterpret_cast<const char*>(buffer.data() + view.byteOffset), view.byteLength);
   const auto type = draco::Decoder::GetEncodedGeometryType(&data);
@@ -123,6 +130,7 @@ PrimitiveArrays decode_draco(const tinygltf::Model& model, const tinygltf::Primi
   for (draco::FaceIndex f(0); f < mesh->num_faces(); ++f)
     for (int k = 0; k < 3; ++k) out.corners.push_back(mesh->face(f)[k].value());
   return out;
+#endif
 }
 
 }  // namespace facet

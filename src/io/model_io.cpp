@@ -30,14 +30,21 @@ namespace {
 
 enum class Format { kObj, kPly, kStl, kGltf, kAssimp, kUnknown };
 
+// A build without Assimp (the browser page's, FACET_NO_ASSIMP) reads facet's own four formats alone.
+#ifndef FACET_NO_ASSIMP
 constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf, .glb and the formats Assimp reads";
+#else
+constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf and .glb";
+#endif
 
 Format format_of_extension(const std::string& extension) {
   if (extension == ".obj") return Format::kObj;
   if (extension == ".ply") return Format::kPly;
   if (extension == ".stl") return Format::kStl;
   if (extension == ".gltf" || extension == ".glb") return Format::kGltf;
+#ifndef FACET_NO_ASSIMP
   if (assimp_reads(extension)) return Format::kAssimp;
+#endif
   return Format::kUnknown;
 }
 
@@ -107,7 +114,11 @@ Model read_any_model(const fs::path& path, std::string& format_name, const LoadO
       case Format::kPly: return one_mesh(load_ply(bytes, source));
       case Format::kStl: return one_mesh(load_stl(bytes, source));
       case Format::kGltf: return load_gltf(path, bytes, source, options);
+#ifndef FACET_NO_ASSIMP
       case Format::kAssimp: return load_with_assimp(path, bytes, source, options);
+#else
+      case Format::kAssimp: break;
+#endif
       case Format::kUnknown: break;
     }
   } catch (const std::bad_alloc&) {

@@ -24,43 +24,6 @@
 
 namespace facet {
 
-SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_world, Shading default_shading,
-                           glm::vec3 background) {
-  SceneOptions options;
-  options.shading = look.shading.value_or(default_shading);
-  glm::vec3 light;
-  if (look.light_direction) {
-    if (*look.light_direction == glm::vec3(0.0f)) throw std::invalid_argument("light direction: must not be zero");
-    light = *look.light_direction;
-  } else {
-    // A headlight fixed to the camera, from above left as in illustrations, lights whatever side the camera looks
-    // at and gives the three faces of a box seen in a 3/4 view three distinct tones.
-    light = glm::transpose(glm::mat3(view_from_world)) * glm::vec3(-0.3f, 0.5f, 0.8f);
-  }
-  options.lights = {Light{Light::Kind::directional, light, glm::vec3(1.0f), 1.0f}};
-  if (look.color) options.color = glm::vec4(*look.color, 1.0f);
-  options.cull = look.cull.value_or(CullMode::none);
-  options.cull_single_sided = !look.cull;
-  options.depth_test = look.depth_test;
-  options.painter = look.painter;
-  options.wireframe = look.wireframe;
-  options.edges = look.edges;
-  // Wireframe lines take the colour asked for, else white; on a light background white lines would vanish.
-  const float luminance = glm::dot(background, glm::vec3(0.2126f, 0.7152f, 0.0722f));
-  if (look.wireframe && !options.color && luminance > 0.5f) options.color = glm::vec4(0.1f, 0.1f, 0.1f, 1.0f);
-  return options;
-}
-
-void apply_look_color(Mesh& mesh, const LookSpec& look) {
-  if (!look.color) return;
-  mesh.colors.clear();
-  mesh.face_colors.clear();
-}
-
-glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback) {
-  return {look.background.value_or(fallback), look.transparent_background ? 0.0f : 1.0f};
-}
-
 namespace {
 
 // Seconds since it was made or last asked.

@@ -1,8 +1,12 @@
 // image_decode.cpp - PNG through libspng, JPEG through TurboJPEG, TGA and BMP through stb_image, all bounded.
 #include "texture/image_decode.hpp"
 
+// A build without libspng and TurboJPEG (the browser page's, FACET_NO_IMAGE_CODECS) decodes every image with
+// stb_image, within the same bounds.
+#ifndef FACET_NO_IMAGE_CODECS
 #include <spng.h>
 #include <turbojpeg.h>
+#endif
 
 #include <algorithm>
 #include <climits>
@@ -33,6 +37,7 @@ void check_size(int width, int height, int max_size, std::size_t file_bytes, con
                                  " texels, more than its " + std::to_string(file_bytes) + " bytes can hold");
 }
 
+#ifndef FACET_NO_IMAGE_CODECS
 DecodedImage decode_png(std::span<const unsigned char> bytes, int max_size, const std::string& source) {
   std::unique_ptr<spng_ctx, void (*)(spng_ctx*)> png(spng_ctx_new(0), &spng_ctx_free);
   if (!png) throw std::bad_alloc();
@@ -83,14 +88,17 @@ DecodedImage decode_jpeg(std::span<const unsigned char> bytes, int max_size, con
   return out;
 }
 
-DecodedImage decode_with_stb(std::span<const unsigned char> bytes, int max_size, const std::string& source) {
+#endif
+
+DecodedImage decode_with_stb(std::span<const unsigned char> bytes, int max_size, const std::string& source,
+                             std::uint64_t max_texels_per_byte) {
   if (bytes.size() > INT_MAX) throw InputError(source, "image file too large");
   const int length = static_cast<int>(bytes.size());
   int width = 0, height = 0, channels = 0;
   if (!stbi_info_from_memory(bytes.data(), length, &width, &height, &channels))
     throw InputError(
         source, std::string("not a readable PNG, JPEG, TGA or BMP image (stb_image: ") + stbi_failure_reason() + ")");
-  check_size(width, height, max_size, bytes.size(), source, kMaxTexelsPerByteRle);
+  check_size(width, height, max_size, bytes.size(), source, max_texels_per_byte);
   std::unique_ptr<stbi_uc, void (*)(void*)> pixels(
       stbi_load_from_memory(bytes.data(), length, &width, &height, &channels, 4), &stbi_image_free);
   if (!pixels) throw InputError(source, std::string("cannot decode image (stb_image: ") + stbi_failure_reason() + ")");
@@ -110,12 +118,18 @@ bool is_jpeg(std::span<const unsigned char> bytes) {
 }  // namespace
 
 DecodedImage decode_image(std::span<const unsigned char> bytes, int max_size, const std::string& source) {
+#ifndef FACET_NO_IMAGE_CODECS
   if (is_png(bytes)) return decode_png(bytes, max_size, source);
   if (is_jpeg(bytes)) return decode_jpeg(bytes, max_size, source);
-  return decode_with_stb(bytes, max_size, source);
+  return decode_with_stb(bytes, max_size, source, kMaxTexelsPerByteRle);
+#else
+  const bool compressed = is_png(bytes) || is_jpeg(bytes);
+  return decode_with_stb(bytes, max_size, source, compressed ? kMaxTexelsPerByte : kMaxTexelsPerByteRle);
+#endif
 }
 
 std::optional<std::pair<int, int>> image_size(std::span<const unsigned char> bytes) {
+#ifndef FACET_NO_IMAGE_CODECS
   if (is_png(bytes)) {
     std::unique_ptr<spng_ctx, void (*)(spng_ctx*)> png(spng_ctx_new(0), &spng_ctx_free);
     spng_ihdr header{};
@@ -133,6 +147,7 @@ std::optional<std::pair<int, int>> image_size(std::span<const unsigned char> byt
       return std::nullopt;
     return std::pair{width, height};
   }
+#endif
   int width = 0, height = 0, channels = 0;
   if (bytes.size() > INT_MAX ||
       !stbi_info_from_memory(bytes.data(), static_cast<int>(bytes.size()), &width, &height, &channels))
