@@ -7,11 +7,14 @@
 #include <cstring>
 
 #include <glm/vec3.hpp>
+#if defined(__wasm_simd128__)
+#include <wasm_simd128.h>
+#endif
 
 // The lane types are GCC/Clang vector extensions rather than intrinsics: the compiler lowers each operation for
 // the instruction set of the function it ends up in, so the same shader code becomes one AVX-512 instruction in
-// the x86-64-v4 clone of the tile loop, two AVX2 instructions in the v3 clone and four SSE2 instructions in the
-// baseline (see detail/dispatch.hpp). Passing such vectors by value between functions compiled for different
+// the x86-64-v4 clone of the tile loop, two AVX2 instructions in the v3 clone, four SSE2 instructions in the
+// baseline (see detail/dispatch.hpp) and four WebAssembly SIMD instructions in the browser build. Passing such vectors by value between functions compiled for different
 // ISAs would change the ABI, hence -Wpsabi is silenced here and everything is always inlined. GCC 12 lowers a
 // few idioms element by element when they are inlined from the baseline into a clone; docs/ARCHITECTURE.md
 // ("Lane shaders") lists them and what the pipeline uses instead.
@@ -59,6 +62,23 @@ FACET_LANES_INLINE Float clamp(Float v, float lo, float hi) {
   return select(v < lo, splat(lo), select(hi < v, splat(hi), v));
 }
 
+#if defined(__wasm_simd128__)
+// WebAssembly: Clang leaves the plain loops below scalar there, so each quarter of the lanes takes one instruction.
+template <class Op>
+FACET_LANES_INLINE Float by_quarter(Float v, Op op) {
+  v128_t quarters[kLanes / 4];
+  std::memcpy(quarters, &v, sizeof v);
+  for (v128_t& q : quarters) q = op(q);
+  std::memcpy(&v, quarters, sizeof v);
+  return v;
+}
+FACET_LANES_INLINE Float sqrt(Float v) {
+  return by_quarter(v, [](v128_t q) { return wasm_f32x4_sqrt(q); });
+}
+FACET_LANES_INLINE Float floor(Float v) {
+  return by_quarter(v, [](v128_t q) { return wasm_f32x4_floor(q); });
+}
+#else
 // A plain loop over the lanes: with -fno-math-errno (set for every facet user) it compiles to one vector sqrt.
 FACET_LANES_INLINE Float sqrt(Float v) {
   Float r;
@@ -72,6 +92,7 @@ FACET_LANES_INLINE Float floor(Float v) {
   for (int k = 0; k < kLanes; ++k) r[k] = std::floor(v[k]);
   return r;
 }
+#endif
 
 FACET_LANES_INLINE Float to_float(Int v) { return __builtin_convertvector(v, Float); }
 FACET_LANES_INLINE Int truncate(Float v) { return __builtin_convertvector(v, Int); }
@@ -116,6 +137,22 @@ FACET_LANES_INLINE V shuffle(V a, V b, Int pattern) {
   return __builtin_shuffle(a, b, pattern);
 }
 #endif
+
+// Bit k set where lane k of m is -1 (true).
+FACET_LANES_INLINE unsigned lane_bits(Mask m) {
+#if defined(__wasm_simd128__)
+  v128_t quarters[kLanes / 4];
+  std::memcpy(quarters, &m, sizeof m);
+  unsigned bits = 0;
+  for (int q = 0; q < kLanes / 4; ++q) bits |= static_cast<unsigned>(wasm_i32x4_bitmask(quarters[q])) << (4 * q);
+  return bits;
+#else
+  unsigned bits = 0;
+#pragma GCC unroll 1  // a loop for the vectoriser: one mask extraction in each clone
+  for (int k = 0; k < kLanes; ++k) bits |= static_cast<unsigned>(m[k] & 1) << k;
+  return bits;
+#endif
+}
 
 // Swaps lanes within each 2x2 quad: coarse derivatives are differences between a quad's pixels.
 FACET_LANES_INLINE Float quad_broadcast(Float v, Int pattern) { return shuffle(v, pattern); }

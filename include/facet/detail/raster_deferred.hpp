@@ -66,10 +66,14 @@ inline unsigned strip_inside(const TileWork& work, int px, int py) {
 
 // The bits of the lanes of a strip whose triangle reference is `ref` (a loop, vectorised in the clone's ISA).
 [[gnu::always_inline]] inline unsigned strip_lanes_equal(const std::uint32_t* refs, std::uint32_t ref) {
+#if defined(__clang__)
+  return simd::lane_bits(simd::load<simd::UInt>(refs) == ref);  // Clang keeps the loop below scalar
+#else
   unsigned bits = 0;
 #pragma GCC unroll 1  // kept a loop for the vectoriser: fully unrolled early, it would stay 16 scalar compares
   for (int k = 0; k < simd::kLanes; ++k) bits |= static_cast<unsigned>(refs[k] == ref) << k;
   return bits;
+#endif
 }
 
 // One lane per triangle of the strip, for the loop over its triangles: the lanes that start a run of one triangle in
@@ -80,13 +84,15 @@ inline unsigned strip_inside(const TileWork& work, int px, int py) {
 // triangle at a time, the loop over these bits carries no chain of vector compares from one triangle to the next.
 [[gnu::always_inline]] inline unsigned strip_triangle_starts(simd::UInt refs) {
   using namespace simd;
+#if defined(__clang__)
+  // Clang folds shuffle()'s loop into a shuffle only when it sees literal lane numbers.
+  const UInt left = __builtin_shufflevector(refs, refs, 15, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14);
+  const UInt above = __builtin_shufflevector(refs, refs, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 4, 5, 6, 7);
+#else
   const UInt left = shuffle(refs, (kLaneIndex - 1) & 15), above = shuffle(refs, kLaneIndex ^ 8);
+#endif
   const Mask row_start = (kLaneIndex & 7) == 0, row_1 = kLaneIndex >= 8;
-  const Mask start = (refs != kNoTriangle) & ((refs != left) | row_start) & ~((refs == above) & row_1);
-  unsigned bits = 0;
-#pragma GCC unroll 1  // a loop for the vectoriser, as strip_lanes_equal
-  for (int k = 0; k < kLanes; ++k) bits |= static_cast<unsigned>(start[k] & 1) << k;
-  return bits;
+  return lane_bits((refs != kNoTriangle) & ((refs != left) | row_start) & ~((refs == above) & row_1));
 }
 
 inline const TriangleSetup& triangle_at(const TileWork& work, std::uint32_t ref) {
@@ -122,10 +128,15 @@ template <LaneShader S>
       if constexpr (kFirst) {
         slot = value;
       } else {
+#if defined(__clang__)
+        // Clang keeps the loop below scalar; the lane types' bitwise blend is the same choice, in vector code.
+        slot = simd::blend(strip_refs == ref, value, slot);
+#else
         using Lane = std::remove_reference_t<decltype(slot[0])>;
         Lane* lanes = reinterpret_cast<Lane*>(&slot);
 #pragma GCC unroll 1
         for (int k = 0; k < kLanes; ++k) lanes[k] = refs[k] == ref ? value[k] : lanes[k];
+#endif
       }
     };
     const Float dx = fragment.screen_x - tri.origin_x, dy = fragment.screen_y - tri.origin_y;

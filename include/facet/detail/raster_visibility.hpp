@@ -42,6 +42,19 @@ template <DepthFunc kFunc>
   return 0;
 }
 
+// depth_test_passes for 16 lanes: -1 where the test passes, 0 where it fails.
+template <DepthFunc kFunc>
+[[gnu::always_inline]] inline simd::Mask depth_test_passes(simd::Float z, simd::Float stored) {
+  if constexpr (kFunc == DepthFunc::less) return z < stored;
+  else if constexpr (kFunc == DepthFunc::equal) return z == stored;
+  else if constexpr (kFunc == DepthFunc::lequal) return z <= stored;
+  else if constexpr (kFunc == DepthFunc::greater) return z > stored;
+  else if constexpr (kFunc == DepthFunc::notequal) return z != stored;
+  else if constexpr (kFunc == DepthFunc::gequal) return z >= stored;
+  else if constexpr (kFunc == DepthFunc::always) return simd::splat(-1);
+  return simd::Mask{};
+}
+
 // An edge value the strip loop treats as "inside everywhere": far above any offset within a block (|a|, |b| < 2^22,
 // so offsets stay within 2^26) and far below overflow.
 inline constexpr std::int32_t kEdgeInside = 1 << 30;
@@ -76,6 +89,9 @@ template <DepthFunc kFunc, bool kDepthTest>
     const std::int32_t a0 = step_x[0], b0 = step_y[0], a1 = step_x[1], b1 = step_y[1], a2 = step_x[2], b2 = step_y[2];
     const std::size_t block = scratch_index((bx - work.x0) / kScratchBlock, (by - work.y0) / kScratchBlock);
     unsigned any = 0;
+#if defined(__clang__)
+    simd::Mask passed{};
+#endif
     for (int strip = j0 / 2; strip <= j1 / 2; ++strip) {
       const unsigned bits = static_cast<unsigned>(rect >> (strip * simd::kLanes)) & 0xffffu;
       float* depth = work.scratch->depth + block + static_cast<std::size_t>(strip) * simd::kLanes;
@@ -84,6 +100,31 @@ template <DepthFunc kFunc, bool kDepthTest>
       // Only locals inside the loops: the triangle's fields, read there, might alias the stores through depth[]
       // and triangle[] as far as GCC knows, and that keeps it from vectorising.
       const std::int32_t e0 = base[0] + 2 * strip * b0, e1 = base[1] + 2 * strip * b1, e2 = base[2] + 2 * strip * b2;
+#if defined(__clang__)
+      // Clang keeps the per-lane loops below scalar, and turns the lane types into vector code: the same tests and
+      // arithmetic, in the same order, on 16 lanes at once.
+      {
+        using namespace simd;
+        const Int signs = (e0 + a0 * kLaneX + b0 * kLaneY) | (e1 + a1 * kLaneX + b1 * kLaneY) |
+                          (e2 + a2 * kLaneX + b2 * kLaneY);
+        Mask pass = (((Int{} + static_cast<std::int32_t>(bits)) >> kLaneIndex) & 1) != 0;
+        pass &= signs >= 0;
+        Float z{};
+        const Float stored = load<Float>(depth);
+        if constexpr (kDepthTest) {
+          const Float dx = to_float(kLaneX + bx) + 0.5f - origin_x;
+          const Float dy = to_float(kLaneY + py) + 0.5f - origin_y;
+          z = plane.at_origin + plane.ddx * dx + plane.ddy * dy + offset;
+          z = select(z < 0.0f, splat(0.0f), select(1.0f < z, splat(1.0f), z));  // as the scalar clamp
+          pass &= depth_test_passes<kFunc>(z, stored);
+        }
+        if (depth_write) {
+          passed |= pass;
+          store(depth, simd::blend(pass, z, stored));
+        }
+        store(triangle, simd::blend(pass, UInt{} + ref, load<UInt>(triangle)));
+      }
+#else
       // Branch-free, so that the loops vectorise: bitwise &, selects, and stores of the old value where nothing
       // passes.
       const auto lane_pass = [&](int k, float& z) __attribute__((always_inline)) {
@@ -115,7 +156,11 @@ template <DepthFunc kFunc, bool kDepthTest>
           triangle[k] = lane_pass(k, z) ? ref : triangle[k];
         }
       }
+#endif
     }
+#if defined(__clang__)
+    for (int k = 0; k < simd::kLanes; ++k) any |= static_cast<unsigned>(passed[k]) & 1u;
+#endif
     return any;
   };
 
