@@ -112,9 +112,10 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
 
   // Vertex stage. Meshes whose index order is coherent (grids, strips, any optimised mesh) reference a narrow band
   // of vertices per batch, so each batch shades just its band and post-transform memory follows the batch, not the
-  // mesh. One batch, the painter's order (its sort reads every vertex first), or bands that overlap too much (a
-  // shuffled index order) shade the whole vertex span once instead. Either way the post-transform cache never
-  // misses: each vertex is shaded at most once per batch.
+  // mesh. One batch, or bands that overlap too much (a shuffled index order), shade the draw's whole band once
+  // instead: a mesh drawn in several parts (one per material) shades each part's vertices, not the whole array
+  // each time. The painter's order shades every vertex (its sort reads them all first). Either way the
+  // post-transform cache never misses: each vertex is shaded at most once per batch.
   // A draw's last part shorter than a batch joins the batch before it: one batch boundary fewer, i.e. one round of
   // barriers and one visit of the tiles both batches touch, for at most twice a batch's setup memory.
   const std::size_t batch = kSetupChunk * kChunksPerBatch;
@@ -127,7 +128,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     stats_.vertices_held = std::max(stats_.vertices_held, band.end - band.first);
     w.shade_vertex_range(request, outputs, band.first, band.end, stats_);
   };
-  if (!banded) shade_band({0, n});
+  if (!banded) shade_band(painter ? VertexRange{0, n} : w.batch_vertex_band(request, 0, count));
 
   const std::uint32_t* order = nullptr;
   if (painter) {

@@ -87,7 +87,41 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
     if (has_face_colors) g.face_colors.push_back(mesh.face_colors[t]);
   }
 
-  for (const auto& edge : unique_edges(mesh)) out.edge_indices.insert(out.edge_indices.end(), {edge[0], edge[1]});
+  // Each group's vertices, contiguous and in order of first use. A draw shades the band of vertices its indices
+  // span, so groups whose vertices interleave in the array (a glTF's primitives merged by material) would each
+  // shade most of it. A vertex that several groups use is copied into each; edges take its first copy.
+  const auto edges = unique_edges(mesh);
+  if (out.groups.size() > 1) {
+    constexpr std::uint32_t kNone = 0xffffffffu;
+    std::vector<MeshVertex> ordered;
+    ordered.reserve(n);
+    std::vector<std::uint32_t> first_copy(n, kNone), copy_in_group(n, kNone), group_of_copy(n, kNone);
+    const auto copy = [&](std::uint32_t index) {
+      const auto at = static_cast<std::uint32_t>(ordered.size());
+      ordered.push_back(out.vertices[index]);
+      if (first_copy[index] == kNone) first_copy[index] = at;
+      return at;
+    };
+    for (std::uint32_t g = 0; g < out.groups.size(); ++g) {
+      for (std::uint32_t& index : out.groups[g].indices) {
+        if (index >= n) {
+          index = kNone;  // stays out of range however many copies are added
+          continue;
+        }
+        if (group_of_copy[index] != g) {
+          group_of_copy[index] = g;
+          copy_in_group[index] = copy(index);
+        }
+        index = copy_in_group[index];
+      }
+    }
+    for (const auto& edge : edges)
+      for (const std::uint32_t end : edge)
+        out.edge_indices.push_back(end >= n ? kNone : first_copy[end] != kNone ? first_copy[end] : copy(end));
+    out.vertices = std::move(ordered);
+  } else {
+    for (const auto& edge : edges) out.edge_indices.insert(out.edge_indices.end(), {edge[0], edge[1]});
+  }
 
   // Only materials some triangle uses are loaded, so unused ones cannot cost time or warnings.
   out.textures.assign(mesh.materials.size(), nullptr);
