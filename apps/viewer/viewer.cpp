@@ -147,19 +147,12 @@ int run_viewer(const ViewerOptions& options) {
         case SDL_MOUSEMOTION: {
           const bool shift = (sdl().SDL_GetModState() & KMOD_SHIFT) != 0;
           const Uint32 buttons = event.motion.state;
-          if ((buttons & SDL_BUTTON_RMASK) || ((buttons & SDL_BUTTON_LMASK) && shift)) {
-            orbit.pan +=
-                glm::vec2(event.motion.xrel, -event.motion.yrel) * (2.0f / static_cast<float>(height)) / orbit.zoom;
-          } else if (buttons & SDL_BUTTON_LMASK) {
-            orbit.azimuth_degrees -= 0.4f * static_cast<float>(event.motion.xrel);
-            orbit.elevation_degrees =
-                std::clamp(orbit.elevation_degrees + 0.4f * static_cast<float>(event.motion.yrel), -89.0f, 89.0f);
-          }
+          const glm::vec2 drag(static_cast<float>(event.motion.xrel), static_cast<float>(event.motion.yrel));
+          if ((buttons & SDL_BUTTON_RMASK) || ((buttons & SDL_BUTTON_LMASK) && shift)) pan_by(orbit, drag, height);
+          else if (buttons & SDL_BUTTON_LMASK) turn_by(orbit, drag);
           break;
         }
-        case SDL_MOUSEWHEEL:
-          orbit.zoom = std::clamp(orbit.zoom * std::pow(1.1f, static_cast<float>(event.wheel.y)), 0.05f, 50.0f);
-          break;
+        case SDL_MOUSEWHEEL: zoom_by(orbit, static_cast<float>(event.wheel.y)); break;
         case SDL_DROPFILE: {
           const std::string path = event.drop.file;
           sdl().SDL_free(event.drop.file);
@@ -183,15 +176,7 @@ int run_viewer(const ViewerOptions& options) {
       animation = options.frames ? frames / 60.0 : animation + std::chrono::duration<double>(now - last).count();
     last = now;
     window.size(width, height);
-    const int samples = toggles.antialias ? 4 : 1;
-    if (!target || target->width() != width || target->height() != height || target->samples() != samples)
-      target.emplace(width, height, samples);
-
-    const Showing::Frame frame =
-        showing.frame(animation, static_cast<float>(width) / static_cast<float>(height), toggles, orbit);
-    renderer.clear(*target, frame.clear, 1.0f);
-    frame.scene->render(renderer, *target, frame.view, frame.options);
-    renderer.finish(*target);
+    draw_frame(renderer, target, width, height, showing, animation, toggles, orbit);
     // The framebuffer goes to the window as it is, unless it is written over.
     composed = toggles.help || !error.empty();
     if (composed) {

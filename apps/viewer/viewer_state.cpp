@@ -39,6 +39,19 @@ Mesh shuffled(const Mesh& mesh, int seed) {
   return out;
 }
 
+void turn_by(Orbit& orbit, glm::vec2 drag) {
+  orbit.azimuth_degrees -= 0.4f * drag.x;
+  orbit.elevation_degrees = std::clamp(orbit.elevation_degrees + 0.4f * drag.y, -89.0f, 89.0f);
+}
+
+void pan_by(Orbit& orbit, glm::vec2 drag, int height) {
+  orbit.pan += glm::vec2(drag.x, -drag.y) * (2.0f / static_cast<float>(std::max(height, 1))) / orbit.zoom;
+}
+
+void zoom_by(Orbit& orbit, float wheel_steps) {
+  orbit.zoom = std::clamp(orbit.zoom * std::pow(1.1f, wheel_steps), 0.05f, 50.0f);
+}
+
 Showing Showing::model(const std::string& path, const LoadOptions& load) {
   Showing s;
   s.mesh_ = std::make_shared<const Mesh>(load_model(path, load));
@@ -111,6 +124,18 @@ Showing::Frame Showing::frame(double seconds, float aspect, const Toggles& toggl
   view.clip_from_view = scale(glm::vec3(orbit.zoom, orbit.zoom, 1.0f)) * view.clip_from_view;
   const glm::vec4 clear = clear_color(look, background);
   return Frame{&scene_, view, scene_options(look, view.view_from_world, own, glm::vec3(clear)), clear};
+}
+
+void draw_frame(Renderer& renderer, std::optional<Framebuffer>& target, int width, int height, Showing& showing,
+                double seconds, const Toggles& toggles, const Orbit& orbit) {
+  const int samples = toggles.antialias ? 4 : 1;
+  if (!target || target->width() != width || target->height() != height || target->samples() != samples)
+    target.emplace(width, height, samples);
+  const Showing::Frame frame =
+      showing.frame(seconds, static_cast<float>(width) / static_cast<float>(height), toggles, orbit);
+  renderer.clear(*target, frame.clear, 1.0f);
+  frame.scene->render(renderer, *target, frame.view, frame.options);
+  renderer.finish(*target);
 }
 
 }  // namespace facet::viewer

@@ -8,8 +8,10 @@
 #include <glm/glm.hpp>
 
 #include "facet/demo_scenes.hpp"
+#include "facet/framebuffer.hpp"
 #include "facet/model_io.hpp"
 #include "facet/render_job.hpp"
+#include "facet/renderer.hpp"
 #include "facet/scene.hpp"
 #include "facet/view_spec.hpp"
 
@@ -37,6 +39,11 @@ struct Orbit {
   glm::vec2 pan{0.0f};             // in units of the model's framing radius, across the view
   float zoom = 1.0f;               // magnification of the view
 };
+
+// The mouse's gestures, in pixels, on a view `height` pixels high (the viewer and the browser page share them).
+void turn_by(Orbit& orbit, glm::vec2 drag);             // left-drag: turn about the model
+void pan_by(Orbit& orbit, glm::vec2 drag, int height);  // right- or shift-drag: move across the view
+void zoom_by(Orbit& orbit, float wheel_steps);          // the wheel, one step a notch: 10% each
 
 // What is shown: a model file or a demo, its meshes prepared in a Scene.
 class Showing {
@@ -69,6 +76,11 @@ class Showing {
   Scene scene_;
   int scene_shuffles_ = -1;  // the shuffle the scene was built with
 };
+
+// Draws what is shown at `seconds` of its animation into `target`, first (re)made at width x height with the
+// samples the toggles ask for.
+void draw_frame(Renderer& renderer, std::optional<Framebuffer>& target, int width, int height, Showing& showing,
+                double seconds, const Toggles& toggles, const Orbit& orbit);
 
 // A copy of mesh with its triangles in a pseudo-random order fixed by `seed` (every per-triangle array moved
 // with them), for showing what drawing order does without a depth test.
