@@ -5,11 +5,15 @@ set -euo pipefail
 packages=(g++ cmake ninja-build pkg-config libglm-dev libstb-dev libtinyobjloader-dev libtinygltf-dev libassimp-dev libopenexr-dev libdraco-dev libdeflate-dev libcli11-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels python3 time ccache clang parallel
           python3-dev pybind11-dev python3-numpy python3-pytest python3-setuptools python3-pip
-          libsdl2-dev xvfb xauth libgif-dev libspng-dev libturbojpeg0-dev libavcodec-dev libavformat-dev libswscale-dev ffmpeg)
+          libsdl2-dev xvfb xauth libgif-dev libspng-dev libturbojpeg0-dev libavcodec-dev libavformat-dev libswscale-dev ffmpeg
+          emscripten chromium)
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")
 done
+# npm (for the browser test's playwright-core) comes with Debian's nodejs as its own package, or inside another
+# Node.js build (NodeSource's conflicts with Debian's npm): ask for Debian's only when no npm is there.
+command -v npm >/dev/null || missing+=(nodejs npm)
 [ ${#missing[@]} -eq 0 ] && exit 0
 
 echo "deps.sh: installing ${missing[*]}" >&2

@@ -1,0 +1,113 @@
+// web_page.mjs - drives the built page in headless Chromium: it draws, animates, pauses, takes keys and dropped files.
+// Usage: node web_page.mjs BUILD_WEB_DIR OUT_DIR. One line per check; exits 1 if any fails. Leaves the canvas
+// showing the sample model in OUT_DIR/page_wuson.png.
+import fs from 'node:fs';
+import path from 'node:path';
+
+import { launch, openPage, serve } from './lib/web_harness.mjs';
+
+const [buildDir, outDir] = process.argv.slice(2);
+fs.mkdirSync(outDir, { recursive: true });
+let passed = 0, failed = 0;
+function check(ok, name, detail = '') {
+  console.log(`${ok ? 'ok  ' : 'FAIL'} ${name}${!ok && detail ? ': ' + detail : ''}`);
+  if (ok) ++passed;
+  else ++failed;
+}
+
+// The canvas's pixels: a hash, how many distinct colours (up to 64) it holds, and the share of pixels that differ
+// from the top left one (the background).
+const snapshot = (page) => page.evaluate(() => {
+  const canvas = document.getElementById('view');
+  const data = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+  let hash = 2166136261;
+  const colours = new Set();
+  const background = (data[0] | data[1] << 8 | data[2] << 16 | data[3] << 24) >>> 0;
+  let drawn = 0;
+  for (let i = 0; i < data.length; i += 4) {
+    const rgba = (data[i] | data[i + 1] << 8 | data[i + 2] << 16 | data[i + 3] << 24) >>> 0;
+    hash = Math.imul(hash ^ rgba, 16777619) >>> 0;
+    if (colours.size < 64) colours.add(rgba);
+    drawn += rgba !== background;
+  }
+  return { hash, colours: colours.size, drawn: drawn / (data.length / 4) };
+});
+const text = (page, id) => page.evaluate((id) => document.getElementById(id).textContent, id);
+const visible = (page, id) => page.evaluate((id) => !document.getElementById(id).hidden, id);
+// Two animation frames: whatever a key or a drop asked for is on the canvas.
+const settle = (page) => page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
+
+// A file dropped on the canvas as a user's drag from their disk delivers it.
+async function drop(page, name, bytes) {
+  await page.evaluate(({ name, data }) => {
+    const transfer = new DataTransfer();
+    transfer.items.add(new File([new Uint8Array(data)], name));
+    document.getElementById('view').dispatchEvent(
+      new DragEvent('drop', { dataTransfer: transfer, bubbles: true, cancelable: true }));
+  }, { name, data: Array.from(bytes) });
+}
+
+const { server, url } = await serve(buildDir);
+const browser = await launch(buildDir);
+try {
+  const { page, errors } = await openPage(browser, url, '?size=640x480');
+
+  const first = await snapshot(page);
+  check(first.colours >= 2 && first.drawn > 0.05, 'the canvas is not blank (the spinning cube)',
+        `${first.colours} colours, ${(100 * first.drawn).toFixed(1)}% drawn`);
+  await page.waitForTimeout(1000);
+  check((await snapshot(page)).hash !== first.hash, 'the picture changes over a second');
+
+  await page.keyboard.press('Space');
+  await settle(page);
+  const paused = await snapshot(page);
+  await page.waitForTimeout(500);
+  check((await snapshot(page)).hash === paused.hash, 'space pauses the animation');
+  check((await text(page, 'status')).includes('paused'), 'the status line says paused');
+
+  await page.keyboard.press('w');
+  await settle(page);
+  const wire = await snapshot(page);
+  check(wire.hash !== paused.hash, 'w changes the paused picture (wireframe)');
+  check((await page.getAttribute('button[data-key="w"]', 'aria-pressed')) === 'true', 'the wireframe button shows it');
+  await page.keyboard.press('w');
+
+  await page.selectOption('#scene', 'model:models/WusonOBJ.obj');
+  await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('WusonOBJ.obj'));
+  await settle(page);
+  const sample = await snapshot(page);
+  check(sample.colours >= 8 && sample.drawn > 0.05 && sample.hash !== paused.hash, 'the menu opens the sample model');
+  // The page's picture of the sample model, for web_page.sh to compare with the CLI's.
+  const png = await page.evaluate(() => document.getElementById('view').toDataURL('image/png'));
+  fs.writeFileSync(path.join(outDir, 'page_wuson.png'), Buffer.from(png.split(',')[1], 'base64'));
+
+  const spider = fs.readFileSync('/usr/share/assimp/models/STL/Spider_binary.stl');
+  await drop(page, 'Spider_binary.stl', spider);
+  await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('Spider_binary.stl'),
+                             null, { timeout: 10000 }).catch(() => {});
+  await settle(page);
+  const dropped = await snapshot(page);
+  check((await text(page, 'status')).startsWith('Spider_binary.stl') && dropped.hash !== sample.hash &&
+        dropped.drawn > 0.02, 'a dropped model file replaces what was shown', await text(page, 'status'));
+  check(!(await visible(page, 'error')), 'no error is shown after a good file');
+
+  await drop(page, 'broken.ply', Buffer.from('ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1 2'));
+  await page.waitForFunction(() => !document.getElementById('error').hidden, null, { timeout: 10000 }).catch(() => {});
+  const error = await text(page, 'error');
+  check((await visible(page, 'error')) && error.startsWith('broken.ply: ') && !error.includes('\n'),
+        'a malformed file shows its one-line error', JSON.stringify(error));
+  await settle(page);
+  check((await text(page, 'status')).startsWith('Spider_binary.stl') && (await snapshot(page)).hash === dropped.hash,
+        'the previous model stays on screen');
+
+  const fps = await page.evaluate(() => Number(document.getElementById('fps').dataset.fps));
+  check(fps > 0 && /fps/.test(await text(page, 'fps')), '#fps reports the frame rate', `${fps}`);
+
+  await page.screenshot({ path: path.join(outDir, 'page.png') });
+  check(errors.length === 0, 'no console error or exception', errors.join(' | '));
+} finally {
+  await browser.close();
+  server.close();
+}
+console.log(`${passed} passed, ${failed} failed`);
+process.exit(failed === 0 ? 0 : 1);
