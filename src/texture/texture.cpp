@@ -14,11 +14,16 @@
 #include "texture/image_decode.hpp"
 
 // The one stb_image implementation in facet, for TGA and BMP only: PNG and JPEG go through libspng and
-// libjpeg-turbo (image_decode.hpp), which fuzzing showed to be the safer readers of malformed files. The dimension
-// cap rejects absurd files early.
+// libjpeg-turbo (image_decode.hpp), which fuzzing showed to be the safer readers of malformed files. A build
+// without those (FACET_NO_IMAGE_CODECS) decodes PNG and JPEG with stb too. The dimension cap rejects absurd files
+// early.
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_ONLY_TGA
 #define STBI_ONLY_BMP
+#ifdef FACET_NO_IMAGE_CODECS
+#define STBI_ONLY_PNG
+#define STBI_ONLY_JPEG
+#endif
 #define STBI_MAX_DIMENSIONS 16384
 #include "io/stb.hpp"
 

@@ -37,15 +37,19 @@ const visible = (page, id) => page.evaluate((id) => !document.getElementById(id)
 // Two animation frames: whatever a key or a drop asked for is on the canvas.
 const settle = (page) => page.evaluate(() => new Promise((done) => requestAnimationFrame(() => requestAnimationFrame(done))));
 
-// A file dropped on the canvas as a user's drag from their disk delivers it.
-async function drop(page, name, bytes) {
-  await page.evaluate(({ name, data }) => {
+// Files dropped on the canvas together, as a user's drag from their disk delivers them: [[name, bytes], ...].
+async function dropFiles(page, files) {
+  await page.evaluate((files) => {
     const transfer = new DataTransfer();
-    transfer.items.add(new File([new Uint8Array(data)], name));
+    for (const [name, data] of files) transfer.items.add(new File([new Uint8Array(data)], name));
     document.getElementById('view').dispatchEvent(
       new DragEvent('drop', { dataTransfer: transfer, bubbles: true, cancelable: true }));
-  }, { name, data: Array.from(bytes) });
+  }, files.map(([name, bytes]) => [name, Array.from(bytes)]));
 }
+const drop = (page, name, bytes) => dropFiles(page, [[name, bytes]]);
+const statusStarts = (page, name) =>
+  page.waitForFunction((name) => document.getElementById('status').textContent.startsWith(name), name,
+                       { timeout: 10000 }).catch(() => {});
 
 const { server, url } = await serve(buildDir);
 const browser = await launch(buildDir);
@@ -83,13 +87,43 @@ try {
 
   const spider = fs.readFileSync('/usr/share/assimp/models/STL/Spider_binary.stl');
   await drop(page, 'Spider_binary.stl', spider);
-  await page.waitForFunction(() => document.getElementById('status').textContent.startsWith('Spider_binary.stl'),
-                             null, { timeout: 10000 }).catch(() => {});
+  await statusStarts(page, 'Spider_binary.stl');
   await settle(page);
   const dropped = await snapshot(page);
   check((await text(page, 'status')).startsWith('Spider_binary.stl') && dropped.hash !== sample.hash &&
         dropped.drawn > 0.02, 'a dropped model file replaces what was shown', await text(page, 'status'));
   check(!(await visible(page, 'error')), 'no error is shown after a good file');
+
+  const box = await page.locator('#view').boundingBox();
+  await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+  await page.mouse.down();
+  await page.mouse.move(box.x + box.width / 2 + 80, box.y + box.height / 2 + 20, { steps: 4 });
+  await page.mouse.up();
+  await settle(page);
+  const turned = await snapshot(page);
+  check(turned.hash !== dropped.hash && turned.drawn > 0.02, 'dragging orbits the model');
+  await page.mouse.wheel(0, -300);
+  await settle(page);
+  const zoomed = await snapshot(page);
+  check(zoomed.hash !== turned.hash && zoomed.drawn > turned.drawn, 'the wheel zooms in',
+        `${(100 * turned.drawn).toFixed(1)}% -> ${(100 * zoomed.drawn).toFixed(1)}% drawn`);
+  await page.keyboard.press('r');
+
+  // A glTF with its buffer and texture image, dropped together: the texture is decoded in the tab.
+  const folder = '/usr/share/assimp/models/glTF2/BoxTextured-glTF';
+  await dropFiles(page, ['BoxTextured.gltf', 'BoxTextured0.bin', 'CesiumLogoFlat.png'].map(
+    (name) => [name, fs.readFileSync(path.join(folder, name))]));
+  await statusStarts(page, 'BoxTextured.gltf');
+  await settle(page);
+  const textured = await snapshot(page);
+  check((await text(page, 'status')).startsWith('BoxTextured.gltf') && !(await visible(page, 'error')) &&
+        textured.colours >= 32, 'a glTF dropped with its buffer and texture opens textured',
+        `${await text(page, 'status')}; ${textured.colours} colours`);
+
+  await drop(page, 'Spider_binary.stl', spider);
+  await statusStarts(page, 'Spider_binary.stl');
+  await settle(page);
+  const shown = await snapshot(page);
 
   await drop(page, 'broken.ply', Buffer.from('ply\nformat ascii 1.0\nelement vertex 3\nproperty float x\nend_header\n1 2'));
   await page.waitForFunction(() => !document.getElementById('error').hidden, null, { timeout: 10000 }).catch(() => {});
@@ -97,7 +131,7 @@ try {
   check((await visible(page, 'error')) && error.startsWith('broken.ply: ') && !error.includes('\n'),
         'a malformed file shows its one-line error', JSON.stringify(error));
   await settle(page);
-  check((await text(page, 'status')).startsWith('Spider_binary.stl') && (await snapshot(page)).hash === dropped.hash,
+  check((await text(page, 'status')).startsWith('Spider_binary.stl') && (await snapshot(page)).hash === shown.hash,
         'the previous model stays on screen');
 
   const fps = await page.evaluate(() => Number(document.getElementById('fps').dataset.fps));
