@@ -1,6 +1,9 @@
 // prepare.cpp - turns a Mesh into what the stock shaders draw: complete vertices, material groups, edges, textures.
+#include <array>
+#include <cstdint>
 #include <exception>
 #include <optional>
+#include <vector>
 
 #include "facet/error.hpp"
 #include "facet/warnings.hpp"
@@ -24,6 +27,9 @@ const Texture* TextureCache::get(const std::string& path) {
 }
 
 namespace {
+
+// An index no vertex has: one out of range stays so, and a vertex not yet placed is marked with it.
+constexpr std::uint32_t kNoVertex = 0xffffffffu;
 
 // Faces more than this angle apart get separate normals at a shared corner (compute_crease_normals). 30 degrees
 // (VTK's feature angle, Blender's auto smooth) is too tight for coarse organic models: WusonOBJ with its normals
@@ -90,37 +96,33 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   // Each group's vertices, contiguous and in order of first use. A draw shades the band of vertices its indices
   // span, so groups whose vertices interleave in the array (a glTF's primitives merged by material) would each
   // shade most of it. A vertex that several groups use is copied into each; edges take its first copy.
-  const auto edges = unique_edges(mesh);
   if (out.groups.size() > 1) {
-    constexpr std::uint32_t kNone = 0xffffffffu;
     std::vector<MeshVertex> ordered;
     ordered.reserve(n);
-    std::vector<std::uint32_t> first_copy(n, kNone), copy_in_group(n, kNone), group_of_copy(n, kNone);
-    const auto copy = [&](std::uint32_t index) {
-      const auto at = static_cast<std::uint32_t>(ordered.size());
-      ordered.push_back(out.vertices[index]);
-      if (first_copy[index] == kNone) first_copy[index] = at;
-      return at;
-    };
+    out.first_copy.assign(n, kNoVertex);
+    std::vector<std::uint32_t> copy_in_group(n, kNoVertex), group_of_copy(n, kNoVertex);
     for (std::uint32_t g = 0; g < out.groups.size(); ++g) {
       for (std::uint32_t& index : out.groups[g].indices) {
         if (index >= n) {
-          index = kNone;  // stays out of range however many copies are added
+          index = kNoVertex;  // stays out of range however many copies are added
           continue;
         }
         if (group_of_copy[index] != g) {
           group_of_copy[index] = g;
-          copy_in_group[index] = copy(index);
+          copy_in_group[index] = static_cast<std::uint32_t>(ordered.size());
+          ordered.push_back(out.vertices[index]);
+          if (out.first_copy[index] == kNoVertex) out.first_copy[index] = copy_in_group[index];
         }
         index = copy_in_group[index];
       }
     }
-    for (const auto& edge : edges)
-      for (const std::uint32_t end : edge)
-        out.edge_indices.push_back(end >= n ? kNone : first_copy[end] != kNone ? first_copy[end] : copy(end));
+    // A vertex no triangle uses keeps a place, for an edge that might name it.
+    for (std::size_t v = 0; v < n; ++v) {
+      if (out.first_copy[v] != kNoVertex) continue;
+      out.first_copy[v] = static_cast<std::uint32_t>(ordered.size());
+      ordered.push_back(out.vertices[v]);
+    }
     out.vertices = std::move(ordered);
-  } else {
-    for (const auto& edge : edges) out.edge_indices.insert(out.edge_indices.end(), {edge[0], edge[1]});
   }
 
   // Only materials some triangle uses are loaded, so unused ones cannot cost time or warnings.
@@ -137,6 +139,17 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   out.center = box.center();
   out.radius = box.radius();
   return out;
+}
+
+void prepare_edges(PreparedMesh& prepared, const Mesh& mesh) {
+  if (prepared.edges_prepared) return;
+  const std::vector<std::array<std::uint32_t, 2>> edges = unique_edges(mesh);
+  const std::vector<std::uint32_t>& moved = prepared.first_copy;
+  prepared.edge_indices.reserve(2 * edges.size());
+  for (const auto& edge : edges)
+    for (const std::uint32_t end : edge)
+      prepared.edge_indices.push_back(moved.empty() ? end : end < moved.size() ? moved[end] : kNoVertex);
+  prepared.edges_prepared = true;
 }
 
 }  // namespace facet::detail

@@ -28,7 +28,12 @@ struct TriangleGroup {
 struct PreparedMesh {
   std::vector<MeshVertex> vertices;
   std::vector<TriangleGroup> groups;
-  std::vector<std::uint32_t> edge_indices;  // 2 per unique edge
+  // 2 per unique edge, listed by prepare_edges the first time a frame draws edges or a wireframe: sorting a large
+  // mesh's edges costs more than drawing it.
+  std::vector<std::uint32_t> edge_indices;
+  bool edges_prepared = false;
+  // Where each of the mesh's vertices went when the groups' vertices were laid out apart (empty: nowhere else).
+  std::vector<std::uint32_t> first_copy;
   std::vector<const Texture*> textures;     // per material; nullptr = none or failed to load
   glm::vec3 center{0.0f};                   // bounding sphere, object space
   float radius = 0.0f;
@@ -45,5 +50,8 @@ class TextureCache {
 };
 
 PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures);
+
+// Lists the edges of the mesh the prepared data came from (once; later calls return at once).
+void prepare_edges(PreparedMesh& prepared, const Mesh& mesh);
 
 }  // namespace facet::detail

@@ -81,7 +81,7 @@ std::vector<std::size_t> Scene::Impl::visible(const detail::FrameContext& frame)
   std::vector<std::pair<float, std::size_t>> found;
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const detail::PreparedMesh& mesh = prepared_of(instances[i]);
-    if (mesh.vertices.empty() || (mesh.groups.empty() && mesh.edge_indices.empty())) continue;
+    if (mesh.vertices.empty() || mesh.groups.empty()) continue;
     const glm::vec4 center = instances[i].world_from_object * glm::vec4(mesh.center, 1.0f);
     const float radius = mesh.radius * detail::max_scale(instances[i].world_from_object);
     if (!sphere_in_frustum(frame.clip_from_world, glm::vec3(center), radius)) continue;
@@ -112,6 +112,11 @@ std::vector<std::size_t> Scene::Impl::blended(const detail::FrameContext& frame,
 std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options) {
   const detail::FrameContext frame = detail::frame_context(view, options);
   const std::vector<std::size_t> order = impl_->visible(frame);
+  if (options.wireframe || options.edges)
+    for (const std::size_t i : order) {
+      const Mesh& mesh = *impl_->instances[i].mesh;
+      detail::prepare_edges(impl_->prepared.at(&mesh), mesh);
+    }
   for (const std::size_t i : order) {
     const Instance& instance = impl_->instances[i];
     detail::draw_instance(renderer, target, frame, instance, impl_->prepared_of(instance), detail::DrawPass::opaque);
