@@ -170,10 +170,17 @@ class MeshBuilder {
     if (v < 0 || static_cast<std::size_t>(v) >= positions_) out_of_range("vertex", v, positions_);
     if (vt < -1 || (vt >= 0 && static_cast<std::size_t>(vt) >= uvs_)) out_of_range("texture coordinate", vt, uvs_);
     if (vn < -1 || (vn >= 0 && static_cast<std::size_t>(vn) >= normals_)) out_of_range("normal", vn, normals_);
-    const auto [it, added] = index_.try_emplace(CornerKey{v, vt, vn}, static_cast<std::uint32_t>(index_.size()));
-    if (!added) return it->second;
-    if (index_.size() > std::numeric_limits<std::uint32_t>::max())
-      throw InputError(source_, "too many distinct vertices for 32-bit indices");
+    // A corner with only a position ("f 1 2 3") is looked up by position in an array; the others by all three.
+    std::uint32_t* slot;
+    if (vt < 0 && vn < 0) {
+      if (by_position_.empty()) by_position_.assign(positions_, kNoVertex);
+      slot = &by_position_[static_cast<std::size_t>(v)];
+    } else {
+      slot = &index_.try_emplace(CornerKey{v, vt, vn}, kNoVertex).first->second;
+    }
+    if (*slot != kNoVertex) return *slot;
+    if (mesh_.positions.size() >= kNoVertex) throw InputError(source_, "too many distinct vertices for 32-bit indices");
+    *slot = static_cast<std::uint32_t>(mesh_.positions.size());
 
     const auto& a = attrib_;
     const std::size_t pv = 3 * static_cast<std::size_t>(v);
@@ -188,8 +195,10 @@ class MeshBuilder {
     mesh_.normals.push_back(vn >= 0 ? glm::vec3(a.normals[pn], a.normals[pn + 1], a.normals[pn + 2]) : glm::vec3(0));
     mesh_.uvs.push_back(vt >= 0 ? glm::vec2(a.texcoords[pt], a.texcoords[pt + 1]) : glm::vec2(0));
     if (has_colors_) mesh_.colors.push_back({a.colors[pv], a.colors[pv + 1], a.colors[pv + 2], 1.0f});
-    return it->second;
+    return *slot;
   }
+
+  static constexpr std::uint32_t kNoVertex = 0xffffffffu;
 
   const tinyobj::attrib_t& attrib_;
   std::size_t positions_, normals_, uvs_;
@@ -198,6 +207,7 @@ class MeshBuilder {
   std::string source_;
   bool all_normals_ = true, all_uvs_ = true;
   std::unordered_map<CornerKey, std::uint32_t, CornerKeyHash> index_;
+  std::vector<std::uint32_t> by_position_;
   std::vector<std::int32_t> face_materials_;
   FaceNumbering faces_;
   Mesh mesh_;
