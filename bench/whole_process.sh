@@ -2,7 +2,9 @@
 # whole_process.sh - `facet render MODEL --output f.png` as a user times it, against the reference renderer doing
 # the same job (Assimp loads the file, llvmpipe draws one frame, the PNG is written), as whole processes.
 # Usage: bench/whole_process.sh FACET GLREF [ROUNDS]. 1920x1080, 2 threads each; the two alternate in every round
-# (the host is noisy); prints every round, the medians and the ratio glref / facet per model.
+# (the host is noisy); prints every round, the medians and the ratio glref / facet per model. Where f3d and Xvfb
+# are installed, f3d's offscreen render of the same file (--output, on Mesa in an Xvfb started once) is a third
+# column.
 set -euo pipefail
 facet=$(realpath "$1")
 glref=$(realpath "$2")
@@ -35,20 +37,34 @@ with open(sys.argv[1] + '/sphere870k.ply', 'w') as out:
     out.writelines(f'3 {a} {b} {c}\n' for a, b, c in f)
 PY
 
+f3d_display=
+if command -v f3d >/dev/null && command -v Xvfb >/dev/null; then
+  Xvfb :97 -screen 0 1920x1080x24 -nolisten tcp >/dev/null 2>&1 &
+  xvfb=$!
+  trap 'kill $xvfb 2>/dev/null; rm -rf "$work"' EXIT
+  f3d_display=:97
+  sleep 1
+fi
+
 ms() { local start end; start=$(date +%s%N); "$@" >/dev/null 2>&1; end=$(date +%s%N); echo $(((end - start) / 1000)); }
 median() { sort -n | awk '{v[NR]=$1} END {print (NR % 2) ? v[(NR+1)/2] : (v[NR/2] + v[NR/2+1]) / 2}'; }
 for model in /usr/share/assimp/models/OBJ/WusonOBJ.obj "$work/sphere200k.obj" "$work/sphere870k.ply"; do
-  f=() g=()
+  f=() g=() d=()
   echo "### $(basename "$model")"
-  printf '%-6s %12s %12s %8s\n' round "facet (ms)" "glref (ms)" ratio
+  printf '%-6s %12s %12s %8s %12s\n' round "facet (ms)" "glref (ms)" ratio "f3d (ms)"
   for r in $(seq "$rounds"); do
-    a=$(ms "$facet" render "$model" --output "$work/f.png" --resolution 1920,1080 --threads 2)
+    # One sample, as glref draws: the same job (facet render's default of 4 samples is timed in PERFORMANCE.md's
+    # multisampling table).
+    a=$(ms "$facet" render "$model" --output "$work/f.png" --resolution 1920,1080 --threads 2 --samples 1)
     b=$(ms "$glref" --mesh "$model" --warmup 0 --frames 1 --threads 2 --resolution 1920,1080 --png "$work/g.png")
-    f+=("$a") g+=("$b")
-    printf '%-6s %12.1f %12.1f %8.2f\n' "$r" "$(echo "$a / 1000" | bc -l)" "$(echo "$b / 1000" | bc -l)" \
-      "$(echo "$b / $a" | bc -l)"
+    c=0
+    [ -n "$f3d_display" ] && c=$(DISPLAY=$f3d_display ms f3d "$model" --output="$work/d.png" --resolution=1920,1080)
+    f+=("$a") g+=("$b") d+=("$c")
+    printf '%-6s %12.1f %12.1f %8.2f %12.1f\n' "$r" "$(echo "$a / 1000" | bc -l)" "$(echo "$b / 1000" | bc -l)" \
+      "$(echo "$b / $a" | bc -l)" "$(echo "$c / 1000" | bc -l)"
   done
   mf=$(printf '%s\n' "${f[@]}" | median) mg=$(printf '%s\n' "${g[@]}" | median)
-  printf '%-6s %12.1f %12.1f %8.2f\n' median "$(echo "$mf / 1000" | bc -l)" "$(echo "$mg / 1000" | bc -l)" \
-    "$(echo "$mg / $mf" | bc -l)"
+  md=$(printf '%s\n' "${d[@]}" | median)
+  printf '%-6s %12.1f %12.1f %8.2f %12.1f\n' median "$(echo "$mf / 1000" | bc -l)" "$(echo "$mg / 1000" | bc -l)" \
+    "$(echo "$mg / $mf" | bc -l)" "$(echo "$md / 1000" | bc -l)"
 done

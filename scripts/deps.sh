@@ -1,12 +1,13 @@
 #!/usr/bin/env bash
 # deps.sh - installs the Debian packages facet needs to build, test and benchmark, skipping those already present.
+# Usage: scripts/deps.sh [PACKAGE...]   (extra packages a script needs besides these, e.g. perf.sh's f3d)
 set -euo pipefail
 
 packages=(g++ cmake ninja-build pkg-config libglm-dev libstb-dev libtinyobjloader-dev libtinygltf-dev libassimp-dev libopenexr-dev libdraco-dev libdeflate-dev libcli11-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels python3 time ccache clang parallel
           python3-dev pybind11-dev python3-numpy python3-pytest python3-setuptools python3-pip
           libsdl2-dev xvfb xauth libgif-dev libspng-dev libturbojpeg0-dev libavcodec-dev libavformat-dev libswscale-dev ffmpeg
-          emscripten chromium)
+          emscripten chromium "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")

@@ -7,7 +7,7 @@ cd "$(dirname "${BASH_SOURCE[0]}")/.."
 rounds=${1:-3}
 peers=../shared/peers
 [ -x "$peers/compare.sh" ] || { echo "perf.sh: $peers/compare.sh not found" >&2; exit 1; }
-scripts/deps.sh
+scripts/deps.sh f3d  # f3d (VTK, on Mesa under Xvfb) for the whole-process table
 cmake --preset release >/dev/null
 cmake --build --preset release -j "$(nproc)" --target facet_cli facet_microbench
 
@@ -65,3 +65,6 @@ build/bench/facet_shader_rate_bench --benchmark_repetitions=3 --benchmark_report
 
 echo "## the browser page in headless Chromium, 800x600"
 bash bench/web_fps.sh "$rounds" 5
+
+echo "## whole processes: facet render against glref (load, draw, write the PNG), every round"
+bash bench/whole_process.sh build/tools/facet build/peers/glref "$rounds"
