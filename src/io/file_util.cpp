@@ -59,8 +59,8 @@ Bytes read_regular_file_as(const std::filesystem::path& path, std::uintmax_t max
 
 }  // namespace
 
-std::string read_regular_file(const std::filesystem::path& path, std::uintmax_t max_bytes, const std::string& source) {
-  return read_regular_file_as<std::string>(path, max_bytes, source);
+FileBytes read_regular_file(const std::filesystem::path& path, std::uintmax_t max_bytes, const std::string& source) {
+  return read_regular_file_as<FileBytes>(path, max_bytes, source);
 }
 
 std::vector<unsigned char> read_image_file(const std::filesystem::path& path) {

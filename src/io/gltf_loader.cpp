@@ -587,7 +587,7 @@ bool file_exists(const std::string& path, void*) {
 
 bool read_whole_file(std::vector<unsigned char>* out, std::string* error, const std::string& path, void*) {
   try {
-    const std::string bytes = read_regular_file(path, kMaxModelFileBytes, path);
+    const FileBytes bytes = read_regular_file(path, kMaxModelFileBytes, path);
     out->assign(bytes.begin(), bytes.end());
     return true;
   } catch (const InputError& e) {

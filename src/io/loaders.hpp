@@ -11,6 +11,7 @@
 #include "facet/model.hpp"
 #include "facet/model_io.hpp"
 #include "facet/warnings.hpp"
+#include "io/file_util.hpp"
 #include "io/references.hpp"
 
 namespace facet {
@@ -20,7 +21,7 @@ namespace facet {
 // validated mesh (or model, each of its meshes validated) with at least one triangle placed, or throws
 // InputError(source, one-line problem).
 // The readers of formats that name other files read them as options allow (references.hpp).
-Mesh load_obj(const std::filesystem::path& path, std::string& bytes, const std::string& source,
+Mesh load_obj(const std::filesystem::path& path, FileBytes& bytes, const std::string& source,
               const LoadOptions& options);
 Mesh load_ply(std::string_view bytes, const std::string& source);
 Mesh load_stl(std::string_view bytes, const std::string& source);

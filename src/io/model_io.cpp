@@ -102,7 +102,7 @@ Model read_any_model(const fs::path& path, std::string& format_name, const LoadO
   const std::string source = path.string();
   const std::string extension = path.extension().string();
   Format format = format_of_extension(lower_extension(path));
-  std::string bytes = read_regular_file(path, kMaxModelFileBytes, source);
+  FileBytes bytes = read_regular_file(path, kMaxModelFileBytes, source);
   if (format == Format::kUnknown) format = format_of_content(bytes);
   constexpr const char* kNames[] = {"OBJ", "PLY", "STL", "glTF", "Assimp", ""};
   format_name = kNames[static_cast<int>(format)];

@@ -26,7 +26,7 @@ namespace {
 // Lets tinyobj read the file's bytes in place; an istringstream would copy them.
 class ViewBuffer : public std::streambuf {
  public:
-  explicit ViewBuffer(std::string& text) { setg(text.data(), text.data(), text.data() + text.size()); }
+  explicit ViewBuffer(FileBytes& text) { setg(text.data(), text.data(), text.data() + text.size()); }
 };
 
 // Reads MTL files from the .obj's folder tree (references.hpp). tinyobj's own reader splits its search path at
@@ -45,7 +45,7 @@ class MtlReader final : public tinyobj::MaterialReader {
       warn(source_, what + ": " + printable(found.problem) + "; faces keep no material");
       return false;
     }
-    std::string text;
+    FileBytes text;
     try {
       text = read_regular_file(*found.path, kMaxModelFileBytes, found.path->string());
     } catch (const InputError& e) {
@@ -255,7 +255,7 @@ std::string parse_problem(const std::string& errors) {
 
 }  // namespace
 
-Mesh load_obj(const fs::path& path, std::string& text, const std::string& source, const LoadOptions& options) {
+Mesh load_obj(const fs::path& path, FileBytes& text, const std::string& source, const LoadOptions& options) {
   reject_non_finite_spellings(text, source);
 
   const ReferencePolicy policy{path.parent_path(), options.allow_external_files};

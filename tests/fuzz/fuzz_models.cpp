@@ -25,7 +25,7 @@ namespace {
 }  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  std::string bytes(reinterpret_cast<const char*>(data), size);
+  facet::FileBytes bytes(reinterpret_cast<const char*>(data), size);
   [[maybe_unused]] const facet::LoadOptions options;
   return facet::fuzz::run([&] {
     const std::string source = "input";
