@@ -21,7 +21,7 @@ namespace facet {
 // validated mesh (or model, each of its meshes validated) with at least one triangle placed, or throws
 // InputError(source, one-line problem).
 // The readers of formats that name other files read them as options allow (references.hpp).
-Mesh load_obj(const std::filesystem::path& path, FileBytes& bytes, const std::string& source,
+Mesh load_obj(const std::filesystem::path& path, std::string_view bytes, const std::string& source,
               const LoadOptions& options);
 Mesh load_ply(std::string_view bytes, const std::string& source);
 Mesh load_stl(std::string_view bytes, const std::string& source);

@@ -54,10 +54,7 @@ void read_as(const std::string& format, const fs::path& input) {
   std::string bytes = input_bytes(input);
   const LoadOptions options;
   const std::string source = input.string();
-  if (format == "obj") {
-    FileBytes text(bytes.begin(), bytes.end());
-    (void)load_obj(input, text, source, options);
-  }
+  if (format == "obj") (void)load_obj(input, bytes, source, options);
   else if (format == "ply") (void)load_ply(bytes, source);
   else if (format == "stl") (void)load_stl(bytes, source);
   else if (format == "gltf") (void)load_gltf(input, bytes, source, options);
