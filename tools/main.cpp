@@ -1,7 +1,11 @@
 // main.cpp - entry point of the facet command-line tool: subcommand dispatch and the one-line error contract.
 #include <malloc.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
+#include <cstdint>
 #include <cstdio>
+#include <cstdlib>
 #include <exception>
 #include <new>
 #include <stdexcept>
@@ -35,6 +39,27 @@ int fail(std::string message, int status) {
   return status;
 }
 
+// Puts the heap's next 64 MiB on transparent huge pages. Loading and preparing a model fills fresh heap memory
+// (arrays of positions, corners, indices), and on a virtual machine each fresh 4 KiB page is a fault that can cost
+// 10 us: a 200k-triangle OBJ touched 20,000 of them, most of its loading time. With 2 MiB pages that memory takes
+// a fault per 2 MiB. glibc does this itself only when asked through GLIBC_TUNABLES; here the heap is grown once by
+// a block larger than anything it holds and the new range is advised.
+void heap_on_huge_pages() {
+  constexpr std::uintptr_t kHugePage = std::uintptr_t{2} << 20;
+  constexpr std::size_t kReserve = std::size_t{64} << 20;
+  mallopt(M_TOP_PAD, static_cast<int>(kReserve));
+  const auto before = reinterpret_cast<std::uintptr_t>(sbrk(0));
+  // The heap grows by this block and the pad, and keeps them (trim threshold above). Through a volatile pointer,
+  // or the compiler drops the unused allocation.
+  void* volatile block = std::malloc(kHugePage);
+  std::free(block);
+  const auto after = reinterpret_cast<std::uintptr_t>(sbrk(0));
+  const std::uintptr_t start = (before + kHugePage - 1) & ~(kHugePage - 1);
+  // Only a hint: without transparent huge pages the heap keeps ordinary pages.
+  if (after > start) ::madvise(reinterpret_cast<void*>(start), after - start, MADV_HUGEPAGE);
+  mallopt(M_TOP_PAD, 0);
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -44,6 +69,7 @@ int main(int argc, char** argv) {
   // freed memory kept for reuse (up to 512 MiB free at the top of the heap; only blocks over 256 MiB are mapped).
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
+  heap_on_huge_pages();
   CLI::App app{"facet: a CPU 3D rendering pipeline", "facet"};
   app.set_version_flag("--version", std::string("facet ") + facet::kVersion);
   facet::cli::RenderArgs render_args;
