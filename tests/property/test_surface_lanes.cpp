@@ -1,4 +1,4 @@
-// test_surface_lanes.cpp - the surface shaders' lane paths draw exactly what the scalar fragment() draws.
+// test_surface_lanes.cpp - the lit stock shaders' lane paths draw exactly what their scalar fragment() draws.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -7,6 +7,7 @@
 #include <cstdint>
 #include <random>
 #include <span>
+#include <string>
 #include <vector>
 
 #include "facet/draw.hpp"
@@ -20,24 +21,26 @@ namespace {
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-// SurfaceShader without its lane function: the scalar definition of the same picture.
-struct ScalarSurfaceShader {
-  using Vertex = SurfaceShader::Vertex;
-  using Varyings = SurfaceShader::Varyings;
+// A lit stock shader without its lane function: the scalar definition of the same picture.
+template <class S>
+struct ScalarOf {
+  using Vertex = typename S::Vertex;
+  using Varyings = typename S::Varyings;
   static constexpr bool may_discard = false;
   static constexpr bool needs_derivatives = true;
-  SurfaceShader inner;
+  S inner;
   VertexOut<Varyings> vertex(const Vertex& v) const { return inner.vertex(v); }
   glm::vec4 fragment(const Fragment<Varyings>& f) const { return inner.fragment(f); }
 };
-static_assert(LaneShader<SurfaceShader>);
-static_assert(!LaneShader<ScalarSurfaceShader>);
+static_assert(LaneShader<SurfaceShader> && LaneShader<GouraudShader> && LaneShader<FlatShader>);
+static_assert(!LaneShader<ScalarOf<SurfaceShader>>);
 
 // An open hemisphere-and-a-bit, so back faces show through the opening, with varied vertex colours and uvs.
 struct Geometry {
   std::vector<MeshVertex> vertices;
   std::vector<std::uint32_t> indices;
   std::vector<glm::vec4> face_colors;
+  std::vector<glm::vec3> face_normals;
 };
 
 Geometry open_sphere() {
@@ -58,6 +61,11 @@ Geometry open_sphere() {
                        {at(i, j), at(i, j + 1), at(i + 1, j), at(i, j + 1), at(i + 1, j + 1), at(i + 1, j)});
       for (int t = 0; t < 2; ++t) g.face_colors.emplace_back(unit(rng), unit(rng), unit(rng), unit(rng));
     }
+  for (std::size_t t = 0; t < g.indices.size(); t += 3) {
+    const glm::vec3 a = g.vertices[g.indices[t]].position, b = g.vertices[g.indices[t + 1]].position,
+                    c = g.vertices[g.indices[t + 2]].position;
+    g.face_normals.push_back(glm::cross(b - a, c - a));
+  }
   return g;
 }
 
@@ -71,6 +79,15 @@ Framebuffer draw_with(const auto& shader, const Geometry& g) {
   renderer.draw(fb, shader, std::span<const MeshVertex>(g.vertices), g.indices, state);
   renderer.finish(fb);
   return fb;
+}
+
+// The shader's lane path draws what its scalar fragment() draws, bit for bit.
+template <class S>
+void expect_lanes_match(const S& lanes, const Geometry& g, const std::string& name) {
+  const Framebuffer expected = draw_with(ScalarOf<S>{lanes}, g);
+  const auto drawn = std::count_if(expected.depth().begin(), expected.depth().end(), [](float z) { return z < 1.0f; });
+  ASSERT_GT(drawn, 203 * 151 / 5) << name;
+  expect_same(expected, draw_with(lanes, g), name.c_str());
 }
 
 TEST(SurfaceLanes, EveryMaterialAndLightMatchesTheScalarFragment) {
@@ -107,28 +124,34 @@ TEST(SurfaceLanes, EveryMaterialAndLightMatchesTheScalarFragment) {
        false},
   };
   for (const Case& c : cases) {
-    SurfaceShader lanes;
-    lanes.transforms = ObjectTransforms::make(clip_from_world, c.world_from_object);
-    lanes.surface.diffuse = glm::vec4(0.9f, 0.8f, 1.0f, 0.75f);
-    lanes.surface.face_colors = c.face_colors ? g.face_colors.data() : nullptr;
-    lanes.surface.texture = c.texture;
-    lanes.surface.sampler = c.sampler;
-    lanes.surface.opaque = c.opaque;
-    lanes.lights.add_directional(glm::vec3(-0.3f, 0.5f, 0.8f), glm::vec3(0.8f, 0.9f, 1.0f));
-    lanes.lights.add_point(glm::vec3(1.5f, 2.0f, 1.0f), glm::vec3(0.6f, 0.3f, 0.2f));
-    lanes.lights.ambient = glm::vec3(0.12f);
-    lanes.specular = c.specular;
-    lanes.shininess = 24.0f;
-    lanes.specular_model = c.model;
-    lanes.eye = eye;
-    const ScalarSurfaceShader scalar{lanes};
-    const Framebuffer expected = draw_with(scalar, g);
-    const auto drawn =
-        std::count_if(expected.depth().begin(), expected.depth().end(), [](float z) { return z < 1.0f; });
-    ASSERT_GT(drawn, 203 * 151 / 5) << c.name;
-    expect_same(expected, draw_with(lanes, g), c.name);
+    LitUniforms lit;
+    lit.transforms = ObjectTransforms::make(clip_from_world, c.world_from_object);
+    lit.surface.diffuse = glm::vec4(0.9f, 0.8f, 1.0f, 0.75f);
+    lit.surface.face_colors = c.face_colors ? g.face_colors.data() : nullptr;
+    lit.surface.texture = c.texture;
+    lit.surface.sampler = c.sampler;
+    lit.surface.opaque = c.opaque;
+    lit.lights.add_directional(glm::vec3(-0.3f, 0.5f, 0.8f), glm::vec3(0.8f, 0.9f, 1.0f));
+    lit.lights.add_point(glm::vec3(1.5f, 2.0f, 1.0f), glm::vec3(0.6f, 0.3f, 0.2f));
+    lit.lights.ambient = glm::vec3(0.12f);
+    lit.specular = c.specular;
+    lit.shininess = 24.0f;
+    lit.specular_model = c.model;
+    lit.eye = eye;
+    SurfaceShader surface;
+    static_cast<LitUniforms&>(surface) = lit;
+    expect_lanes_match(surface, g, std::string("surface, ") + c.name);
     // Without a texture the derivative-free variant the scene draws untextured materials with is the same too.
-    if (!c.texture) expect_same(expected, draw_with(UntexturedSurfaceShader{lanes}, g), c.name);
+    if (!c.texture)
+      expect_same(draw_with(ScalarOf<SurfaceShader>{surface}, g), draw_with(UntexturedSurfaceShader{surface}, g),
+                  c.name);
+    GouraudShader gouraud;
+    static_cast<LitUniforms&>(gouraud) = lit;
+    expect_lanes_match(gouraud, g, std::string("Gouraud, ") + c.name);
+    FlatShader flat;
+    static_cast<LitUniforms&>(flat) = lit;
+    flat.face_normals = g.face_normals.data();
+    expect_lanes_match(flat, g, std::string("flat, ") + c.name);
   }
 }
 

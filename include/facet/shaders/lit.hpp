@@ -1,10 +1,14 @@
 // lit.hpp - LitUniforms: the material, light and camera uniforms the lit stock shaders (flat, Gouraud, surface) share.
 #pragma once
 
+#include <cmath>
+
+#include "facet/fragment_lanes.hpp"
 #include "facet/shader.hpp"
 #include "facet/shaders/lighting.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
 #include "facet/shaders/surface_color.hpp"
+#include "facet/simd.hpp"
 
 namespace facet {
 
@@ -38,6 +42,71 @@ struct LitUniforms {
   glm::vec4 shade(glm::vec4 albedo, glm::vec3 n, glm::vec3 world) const {
     return glm::vec4(shade_lit(lights, glm::vec3(albedo), specular, shininess, specular_model, n, world, eye - world),
                      albedo.a);
+  }
+
+  // albedo() for 16 pixels, the same operations in the same order: diffuse x vertex colour x face colour x
+  // texture, alpha 1 when opaque. Texture samples are taken lane by lane with the scalar function.
+  template <class V>
+  FACET_LANES_INLINE simd::Color albedo_lanes(const FragmentLanes<V>& f) const {
+    using namespace simd;
+    const Color vertex = f.get(&V::color);
+    const glm::vec4 d = surface.diffuse;
+    Color c{d.r * vertex.r, d.g * vertex.g, d.b * vertex.b, d.a * vertex.a};
+    if (surface.face_colors) {
+      for (int k = 0; k < kLanes; ++k) {
+        const glm::vec4 face = surface.face_colors[f.primitive[k]];
+        c.r[k] *= face.r, c.g[k] *= face.g, c.b[k] *= face.b, c.a[k] *= face.a;
+      }
+    }
+    if (surface.texture) {
+      const Vec2 uv = f.get(&V::uv);
+      const std::size_t u = FragmentLanes<V>::float_index(&V::uv);
+      for (int k = 0; k < kLanes; ++k) {
+        const glm::vec4 t =
+            surface.texture->sample(glm::vec2(uv.x[k], uv.y[k]), glm::vec2(f.ddx[u][k], f.ddx[u + 1][k]),
+                                    glm::vec2(f.ddy[u][k], f.ddy[u + 1][k]), surface.sampler);
+        c.r[k] *= t.r, c.g[k] *= t.g, c.b[k] *= t.b, c.a[k] *= t.a;
+      }
+    }
+    if (surface.opaque) c.a = splat(1.0f);
+    return c;
+  }
+
+  // shade() for 16 pixels, the same operations in the same order as light_terms() and shade_lit(), so both give
+  // identical images; the specular pow() is taken lane by lane with std::pow.
+  FACET_LANES_INLINE simd::Color shade_lanes(const simd::Color& albedo, const simd::Vec3& n,
+                                             const simd::Vec3& world) const {
+    using namespace simd;
+    const Vec3 v = normalize(eye - world);
+    const bool with_specular = specular != glm::vec3(0.0f);
+    Vec3 diffuse{splat(lights.ambient.x), splat(lights.ambient.y), splat(lights.ambient.z)};
+    Vec3 highlight{splat(0.0f), splat(0.0f), splat(0.0f)};
+    for (int i = 0; i < lights.count; ++i) {
+      const glm::vec4 vk = lights.vector_kind[static_cast<std::size_t>(i)];
+      const Vec3 l = vk.w == 0.0f ? Vec3{splat(vk.x), splat(vk.y), splat(vk.z)} : normalize(glm::vec3(vk) - world);
+      const Float n_dot_l = dot(n, l);
+      const glm::vec3 c = lights.color[static_cast<std::size_t>(i)];
+      const Float lambert = select(n_dot_l < 0.0f, splat(0.0f), n_dot_l);  // std::max(n_dot_l, 0.0f)
+      diffuse = diffuse + Vec3{lambert * c.x, lambert * c.y, lambert * c.z};
+      if (!with_specular) continue;
+      Float s;
+      if (specular_model == SpecularModel::phong) {
+        const Vec3 r = ((2.0f * n_dot_l) * n) - l;  // -l + 2 n.l n, as the scalar reflect
+        s = dot(r, v);
+      } else {
+        s = dot(n, normalize(l + v));
+      }
+      s = select(s < 0.0f, splat(0.0f), s);
+      for (int k = 0; k < kLanes; ++k) s[k] = std::pow(s[k], shininess);
+      highlight = highlight + Vec3{s * c.x, s * c.y, s * c.z};
+    }
+    return {albedo.r * diffuse.x + specular.x * highlight.x, albedo.g * diffuse.y + specular.y * highlight.y,
+            albedo.b * diffuse.z + specular.z * highlight.z, albedo.a};
+  }
+
+  // The lanes whose surface is lit from behind: front_side() is false there.
+  FACET_LANES_INLINE simd::Mask back_lanes(const simd::Mask& front_facing) const {
+    return transforms.mirrored ? front_facing : ~front_facing;
   }
 };
 

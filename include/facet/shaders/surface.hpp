@@ -4,9 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "facet/fragment_lanes.hpp"
 #include "facet/shaders/lit.hpp"
-#include "facet/simd.hpp"
 
 namespace facet {
 
@@ -53,62 +51,9 @@ struct SurfaceShader : LitUniforms {
       return out;
     }
     Vec3 n = normalize(f.get(&Varyings::normal));
-    // front_side(): front_facing != mirrored; the normal is reversed where that is false.
-    const Mask back = transforms.mirrored ? f.front_facing : ~f.front_facing;
+    const Mask back = back_lanes(f.front_facing);
     n = Vec3{select(back, -n.x, n.x), select(back, -n.y, n.y), select(back, -n.z, n.z)};
-    const Color albedo = albedo_lanes(f);
-    const Vec3 world = f.get(&Varyings::world);
-    const Vec3 v = normalize(eye - world);
-    const bool with_specular = specular != glm::vec3(0.0f);
-    Vec3 diffuse{splat(lights.ambient.x), splat(lights.ambient.y), splat(lights.ambient.z)};
-    Vec3 highlight{splat(0.0f), splat(0.0f), splat(0.0f)};
-    for (int i = 0; i < lights.count; ++i) {
-      const glm::vec4 vk = lights.vector_kind[static_cast<std::size_t>(i)];
-      const Vec3 l = vk.w == 0.0f ? Vec3{splat(vk.x), splat(vk.y), splat(vk.z)} : normalize(glm::vec3(vk) - world);
-      const Float n_dot_l = dot(n, l);
-      const glm::vec3 c = lights.color[static_cast<std::size_t>(i)];
-      const Float lambert = select(n_dot_l < 0.0f, splat(0.0f), n_dot_l);  // std::max(n_dot_l, 0.0f)
-      diffuse = diffuse + Vec3{lambert * c.x, lambert * c.y, lambert * c.z};
-      if (!with_specular) continue;
-      Float s;
-      if (specular_model == SpecularModel::phong) {
-        const Vec3 r = ((2.0f * n_dot_l) * n) - l;  // -l + 2 n.l n, as the scalar reflect
-        s = dot(r, v);
-      } else {
-        s = dot(n, normalize(l + v));
-      }
-      s = select(s < 0.0f, splat(0.0f), s);
-      for (int k = 0; k < kLanes; ++k) s[k] = std::pow(s[k], shininess);
-      highlight = highlight + Vec3{s * c.x, s * c.y, s * c.z};
-    }
-    return {albedo.r * diffuse.x + specular.x * highlight.x, albedo.g * diffuse.y + specular.y * highlight.y,
-            albedo.b * diffuse.z + specular.z * highlight.z, albedo.a};
-  }
-
-  // surface.albedo() lane by lane: diffuse x vertex colour x face colour x texture, alpha 1 when opaque.
-  FACET_LANES_INLINE simd::Color albedo_lanes(const FragmentLanes<Varyings>& f) const {
-    using namespace simd;
-    const Color vertex = f.get(&Varyings::color);
-    const glm::vec4 d = surface.diffuse;
-    Color c{d.r * vertex.r, d.g * vertex.g, d.b * vertex.b, d.a * vertex.a};
-    if (surface.face_colors) {
-      for (int k = 0; k < kLanes; ++k) {
-        const glm::vec4 face = surface.face_colors[f.primitive[k]];
-        c.r[k] *= face.r, c.g[k] *= face.g, c.b[k] *= face.b, c.a[k] *= face.a;
-      }
-    }
-    if (surface.texture) {
-      const Vec2 uv = f.get(&Varyings::uv);
-      const std::size_t u = FragmentLanes<Varyings>::float_index(&Varyings::uv);
-      for (int k = 0; k < kLanes; ++k) {
-        const glm::vec4 t =
-            surface.texture->sample(glm::vec2(uv.x[k], uv.y[k]), glm::vec2(f.ddx[u][k], f.ddx[u + 1][k]),
-                                    glm::vec2(f.ddy[u][k], f.ddy[u + 1][k]), surface.sampler);
-        c.r[k] *= t.r, c.g[k] *= t.g, c.b[k] *= t.b, c.a[k] *= t.a;
-      }
-    }
-    if (surface.opaque) c.a = splat(1.0f);
-    return c;
+    return shade_lanes(albedo_lanes(f), n, f.get(&Varyings::world));
   }
 
   glm::vec3 mapped_normal(glm::vec3 n, const Fragment<Varyings>& f) const {
