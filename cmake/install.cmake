@@ -26,7 +26,9 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/facet.pc DESTINATION ${CMAKE_INSTALL_L
 
 set(CPACK_PACKAGE_NAME facet)
 set(CPACK_PACKAGE_CONTACT "facet developers")
+# The -dev packages of the libraries libfacet.a links, for programs built against it; Assimp's run-time library alone,
+# which the facet program and the library open when a model needs it.
 set(CPACK_DEBIAN_PACKAGE_DEPENDS
-    "libtinyobjloader-dev, libtinygltf-dev, libassimp-dev, libglm-dev, libopenexr-dev, libdraco-dev, libdeflate-dev, libgif-dev")
+    "libtinyobjloader-dev, libtinygltf-dev, libassimp${assimp_VERSION_MAJOR}, libglm-dev, libopenexr-dev, libdraco-dev, libdeflate-dev, libgif-dev")
 set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
 include(CPack)

@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <string>
 
 #include "facet/error.hpp"
@@ -46,6 +47,27 @@ TEST(AssimpLoader, BrokenFilesAreRefusedNamingThePath) {
   std::ofstream(dir / "garbage.fbx") << "this is not an FBX file at all\n";
   for (const fs::path& p : {kModels / "OFF/invalid.off", dir / "broken.off", dir / "garbage.fbx"})
     EXPECT_FALSE(test::load_problem(p).empty()) << p;
+}
+
+// Assimp opens the parts a LightWave scene names through facet's confined files: one outside the model's folder is
+// looked for by its file name beside the model (a one-triangle OFF there), and read where it is (the 12-triangle
+// cube) only when external files are allowed. (A part found nowhere is not tried: Assimp's LWS reader leaks then.)
+TEST(AssimpLoader, PartsOutsideTheFolderAreNotRead) {
+  const fs::path dir = test::scratch_dir("assimp_parts");
+  std::ifstream cube_file(kModels / "OFF/Cube.off", std::ios::binary);
+  const std::string cube((std::istreambuf_iterator<char>(cube_file)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(cube.empty());
+  test::write_file(dir, "outside/cube.off", cube);
+  test::write_file(dir, "model/cube.off", "OFF\n3 1 0\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n");
+  const auto scene = [](const std::string& part) {
+    return "LWSC\n3\n\nFirstFrame 1\nLastFrame 60\nFrameStep 1\n\nLoadObjectLayer 1 " + part + "\nShowObject 6 2\n";
+  };
+  const fs::path climbs = test::write_file(dir, "model/climbs.lws", scene("../outside/cube.off"));
+  const fs::path absolute = test::write_file(dir, "model/absolute.lws", scene((dir / "outside/cube.off").string()));
+  for (const fs::path& model : {climbs, absolute}) {
+    EXPECT_EQ(load_model(model).triangle_count(), 1u) << model;
+    EXPECT_EQ(load_model(model, LoadOptions{.allow_external_files = true}).triangle_count(), 12u) << model;
+  }
 }
 
 // Every file of these format folders either loads (validated, at least one triangle) or is refused cleanly.
