@@ -20,6 +20,15 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/facetConfig.cmake ${CMAKE_CURRENT_BINA
 # links. The flags the templated stages need (see CMakeLists.txt) travel in Cflags.
 # The prefix is found from the .pc file's own place, so the tree works wherever `cmake --install --prefix` puts it.
 list(JOIN FACET_PUBLIC_FLAGS " " FACET_PC_FLAGS)
+# OpenEXR's C core has no pkg-config module of its own (OpenEXR.pc names the C++ libraries too, which facet does
+# not use), so facet.pc names it by the library CMake found.
+get_target_property(FACET_PC_EXR_CORE OpenEXR::OpenEXRCore LOCATION)
+get_filename_component(FACET_PC_EXR_CORE_DIR ${FACET_PC_EXR_CORE} DIRECTORY)
+get_filename_component(FACET_PC_EXR_CORE ${FACET_PC_EXR_CORE} NAME)
+string(REGEX REPLACE "^lib(.+)\\.so.*$" "-l\\1" FACET_PC_LIBS ${FACET_PC_EXR_CORE})
+if(NOT FACET_PC_EXR_CORE_DIR IN_LIST CMAKE_CXX_IMPLICIT_LINK_DIRECTORIES)
+  string(PREPEND FACET_PC_LIBS "-L${FACET_PC_EXR_CORE_DIR} ")
+endif()
 file(RELATIVE_PATH FACET_PC_PREFIX_FROM_PCFILEDIR /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
 configure_file(cmake/facet.pc.in ${CMAKE_CURRENT_BINARY_DIR}/facet.pc @ONLY)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/facet.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)

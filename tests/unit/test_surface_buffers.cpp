@@ -252,16 +252,18 @@ TEST(Render, EveryBufferAgreesOnWhereTheModelIs) {
   EXPECT_TRUE(fs::is_empty(wire));
 }
 
-// OpenEXR files hold the float values exactly, as Y or R G B channels.
+// OpenEXR files hold the float values exactly, as Y or R G B channels, ZIP-compressed; 41 rows make three chunks of
+// up to 16, the last one short.
 TEST(FloatImage, ExrHoldsTheValuesExactly) {
   const fs::path dir = test::scratch_dir("surface_buffers");
-  const int width = 5, height = 3;
+  const int width = 37, height = 41;
   for (const int channels : {1, 3}) {
     std::vector<float> values(static_cast<std::size_t>(width) * height * channels);
     for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::ldexp(static_cast<float>(i) + 0.1f, -3);
     const fs::path path = dir / ("values" + std::to_string(channels) + ".EXR");
     write_float_image(path, width, height, channels, values);
     Imf::InputFile file(path.c_str());
+    EXPECT_EQ(file.header().compression(), Imf::ZIP_COMPRESSION);
     const Imath::Box2i window = file.header().dataWindow();
     ASSERT_EQ(window.max.x - window.min.x + 1, width);
     ASSERT_EQ(window.max.y - window.min.y + 1, height);
