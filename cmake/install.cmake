@@ -20,15 +20,27 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/facetConfig.cmake ${CMAKE_CURRENT_BINA
 # links. The flags the templated stages need (see CMakeLists.txt) travel in Cflags.
 # The prefix is found from the .pc file's own place, so the tree works wherever `cmake --install --prefix` puts it.
 list(JOIN FACET_PUBLIC_FLAGS " " FACET_PC_FLAGS)
-# OpenEXR's C core has no pkg-config module of its own (OpenEXR.pc names the C++ libraries too, which facet does
-# not use), so facet.pc names it by the library CMake found.
+# Four libraries are named by file in Libs rather than as modules in Requires, in the order facet links them
+# (CMakeLists.txt says why stb's archive precedes Draco's; pkg-config would put Requires after Libs): tinygltf,
+# stb's archive, OpenEXR's C core (OpenEXR.pc names the C++ libraries too, which facet does not use) and Draco's static
+# archive (draco.pc names the shared library).
+get_target_property(FACET_PC_TINYGLTF TinyGLTF::TinyGLTF LOCATION)
 get_target_property(FACET_PC_EXR_CORE OpenEXR::OpenEXRCore LOCATION)
-get_filename_component(FACET_PC_EXR_CORE_DIR ${FACET_PC_EXR_CORE} DIRECTORY)
-get_filename_component(FACET_PC_EXR_CORE ${FACET_PC_EXR_CORE} NAME)
-string(REGEX REPLACE "^lib(.+)\\.so.*$" "-l\\1" FACET_PC_LIBS ${FACET_PC_EXR_CORE})
-if(NOT FACET_PC_EXR_CORE_DIR IN_LIST CMAKE_CXX_IMPLICIT_LINK_DIRECTORIES)
-  string(PREPEND FACET_PC_LIBS "-L${FACET_PC_EXR_CORE_DIR} ")
-endif()
+get_target_property(FACET_PC_DRACO draco::draco_static LOCATION)
+set(FACET_PC_LIBS "")
+foreach(file ${FACET_PC_TINYGLTF} ${FACET_STB_ARCHIVE} ${FACET_PC_EXR_CORE} ${FACET_PC_DRACO})
+  get_filename_component(folder ${file} DIRECTORY)
+  get_filename_component(file ${file} NAME)
+  if(NOT folder IN_LIST CMAKE_CXX_IMPLICIT_LINK_DIRECTORIES)
+    string(APPEND FACET_PC_LIBS " -L${folder}")
+  endif()
+  if(file MATCHES "^lib(.+)\\.so")
+    string(APPEND FACET_PC_LIBS " -l${CMAKE_MATCH_1}")
+  else()
+    string(APPEND FACET_PC_LIBS " -l:${file}")
+  endif()
+endforeach()
+string(STRIP "${FACET_PC_LIBS}" FACET_PC_LIBS)
 file(RELATIVE_PATH FACET_PC_PREFIX_FROM_PCFILEDIR /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
 configure_file(cmake/facet.pc.in ${CMAKE_CURRENT_BINARY_DIR}/facet.pc @ONLY)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/facet.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
