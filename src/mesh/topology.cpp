@@ -237,7 +237,11 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
   std::size_t largest = 0;
   for (std::size_t g = 0; g < group_count; ++g) largest = std::max<std::size_t>(largest, start[g + 1] - start[g]);
 
-  Scratch<glm::vec3> corner_normal(mesh.indices.size()), group_normal(group_count);
+  // Each corner's normal, as an index into `normals`: the groups' smooth normals first (the normal of nearly every
+  // corner), then the normals of crease-split corners as they are found. Four bytes a corner rather than twelve.
+  Scratch<std::uint32_t> corner_normal(mesh.indices.size());
+  Scratch<glm::vec3> normals(group_count);
+  normals.reserve(group_count + group_count / 8);
   std::vector<Corner> by_normal;  // one group's corners sorted by face normal; reserved once, reused
   by_normal.reserve(largest);
   for (std::size_t g = 0; g < group_count; ++g) {
@@ -246,15 +250,15 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
     // all within the crease angle gets exactly these bits, which is what keeps smooth regions' vertices shared.
     glm::vec3 sum(0);
     for (Corner c : members) sum += area[c / 3];
-    group_normal[g] = normalized_or(sum, glm::vec3(0, 0, 1));
+    normals[g] = normalized_or(sum, glm::vec3(0, 0, 1));
     if (members.empty()) continue;
     // If every face is within half the angle of the group's normal, every corner sees all of them: one sum for the
     // group, so high-valence smooth vertices (a sphere's poles) cost no more than at pi.
     bool all_within = everything || glm::dot(sum, sum) > 0;
     for (std::size_t i = 0; i < members.size() && all_within && !everything; ++i)
-      all_within = glm::dot(unit[members[i] / 3], group_normal[g]) >= min_dot_to_mean;
+      all_within = glm::dot(unit[members[i] / 3], normals[g]) >= min_dot_to_mean;
     if (all_within) {
-      for (Corner c : members) corner_normal[c] = group_normal[g];
+      for (Corner c : members) corner_normal[c] = static_cast<std::uint32_t>(g);
       continue;
     }
     // Otherwise each distinct face normal sums the faces within the angle of it: O(distinct x members), where the
@@ -269,8 +273,11 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
       glm::vec3 s(0);
       for (Corner c : members)
         if (glm::dot(own, unit[c / 3]) >= min_dot) s += area[c / 3];
-      const glm::vec3 normal = normalized_or(s, own);
-      for (std::size_t k = begin; k < end; ++k) corner_normal[by_normal[k]] = normal;
+      if (normals.size() >= std::numeric_limits<std::uint32_t>::max())
+        throw std::length_error("compute_crease_normals: more normals than 32-bit indices can address");
+      const auto id = static_cast<std::uint32_t>(normals.size());
+      normals.push_back(normalized_or(s, own));
+      for (std::size_t k = begin; k < end; ++k) corner_normal[by_normal[k]] = id;
     }
   }
 
@@ -278,11 +285,18 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
   // original index (so unsplit vertices, and edges listed by index, stay valid); each further run is a copy appended
   // after the original vertices.
   bucket(corners, n, start, bucketed, [&](Corner c) { return mesh.indices[c]; });
-  const auto normal_less = [&](Corner a, Corner b) { return bits_of(corner_normal[a]) < bits_of(corner_normal[b]); };
-  const auto same_normal = [&](Corner a, Corner b) { return bits_of(corner_normal[a]) == bits_of(corner_normal[b]); };
+  const auto bits = [&](Corner c) { return bits_of(normals[corner_normal[c]]); };
+  const auto normal_less = [&](Corner a, Corner b) { return bits(a) < bits(b); };
+  const auto same_normal = [&](Corner a, Corner b) {
+    return corner_normal[a] == corner_normal[b] || bits(a) == bits(b);
+  };
   std::size_t total = n;
   for (std::size_t v = 0; v < n; ++v) {
-    std::sort(bucketed.data() + start[v], bucketed.data() + start[v + 1], normal_less);
+    Corner* const first = bucketed.data() + start[v];
+    Corner* const last = bucketed.data() + start[v + 1];
+    // Most vertices' corners all share one normal: nothing to sort or split there.
+    if (std::all_of(first, last, [&](Corner c) { return corner_normal[c] == corner_normal[*first]; })) continue;
+    std::sort(first, last, normal_less);
     for (Corner i = start[v] + 1; i < start[v + 1]; ++i) total += !same_normal(bucketed[i], bucketed[i - 1]);
   }
   if (std::uint64_t{total} > std::uint64_t{std::numeric_limits<std::uint32_t>::max()} + 1)
@@ -299,16 +313,16 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
   for (std::size_t v = 0; v < n; ++v) {
     const Corner first = start[v], last = start[v + 1];
     // A vertex no usable triangle uses has no face of its own to compare with: it gets the smooth normal.
-    if (first == last) mesh.normals[v] = group_normal[group[v]];
+    if (first == last) mesh.normals[v] = normals[group[v]];
     for (Corner i = first; i < last; ++i) {
       const Corner c = bucketed[i];
       std::size_t target = v;
       if (i == first) {
-        mesh.normals[v] = corner_normal[c];
+        mesh.normals[v] = normals[corner_normal[c]];
       } else if (!same_normal(c, bucketed[i - 1])) {
         target = next++;
         mesh.positions[target] = mesh.positions[v];
-        mesh.normals[target] = corner_normal[c];
+        mesh.normals[target] = normals[corner_normal[c]];
         if (copy_uvs) mesh.uvs[target] = mesh.uvs[v];
         if (copy_colors) mesh.colors[target] = mesh.colors[v];
       } else {
