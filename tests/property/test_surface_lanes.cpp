@@ -1,4 +1,4 @@
-// test_surface_lanes.cpp - the lit stock shaders' lane paths draw exactly what their scalar fragment() draws.
+// test_surface_lanes.cpp - the stock shaders' lane paths draw exactly what their scalar fragment() draws.
 #include <gtest/gtest.h>
 
 #include <glm/gtc/matrix_transform.hpp>
@@ -32,7 +32,8 @@ struct ScalarOf {
   VertexOut<Varyings> vertex(const Vertex& v) const { return inner.vertex(v); }
   glm::vec4 fragment(const Fragment<Varyings>& f) const { return inner.fragment(f); }
 };
-static_assert(LaneShader<SurfaceShader> && LaneShader<GouraudShader> && LaneShader<FlatShader>);
+static_assert(LaneShader<SurfaceShader> && LaneShader<GouraudShader> && LaneShader<FlatShader> &&
+              LaneShader<UnlitShader> && LaneShader<NormalShader> && LaneShader<DepthShader>);
 static_assert(!LaneShader<ScalarOf<SurfaceShader>>);
 
 // An open hemisphere-and-a-bit, so back faces show through the opening, with varied vertex colours and uvs.
@@ -152,6 +153,13 @@ TEST(SurfaceLanes, EveryMaterialAndLightMatchesTheScalarFragment) {
     static_cast<LitUniforms&>(flat) = lit;
     flat.face_normals = g.face_normals.data();
     expect_lanes_match(flat, g, std::string("flat, ") + c.name);
+    expect_lanes_match(UnlitShader{lit.transforms.clip_from_object, lit.surface}, g, std::string("unlit, ") + c.name);
+    NormalShader normal;
+    normal.transforms = lit.transforms;
+    expect_lanes_match(normal, g, std::string("normals, ") + c.name);
+    const glm::mat4 view_from_object = glm::lookAt(eye, glm::vec3(0.0f), {0, 1, 0}) * c.world_from_object;
+    expect_lanes_match(DepthShader{lit.transforms.clip_from_object, view_from_object, 1.2f, 4.0f}, g,
+                       std::string("depth, ") + c.name);
   }
 }
 

@@ -3,8 +3,10 @@
 
 #include <algorithm>
 
+#include "facet/fragment_lanes.hpp"
 #include "facet/shader.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
+#include "facet/simd.hpp"
 
 namespace facet {
 
@@ -27,6 +29,14 @@ struct DepthShader {
     const float t = far > near ? (f.varyings.eye_depth - near) / (far - near) : 0.0f;
     const float grey = 1.0f - std::clamp(t, 0.0f, 1.0f);
     return glm::vec4(grey, grey, grey, 1.0f);
+  }
+  // fragment() for 16 pixels at once, identical lane for lane (std::clamp's comparisons, in its order).
+  static constexpr bool lanes_read_primitive = false;
+  FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
+    using namespace simd;
+    const Float t = far > near ? (f.get(&Varyings::eye_depth) - near) / (far - near) : splat(0.0f);
+    const Float grey = 1.0f - select(t < 0.0f, splat(0.0f), select(1.0f < t, splat(1.0f), t));
+    return {grey, grey, grey, splat(1.0f)};
   }
 };
 

@@ -44,32 +44,10 @@ struct LitUniforms {
                      albedo.a);
   }
 
-  // albedo() for 16 pixels, the same operations in the same order: diffuse x vertex colour x face colour x
-  // texture, alpha 1 when opaque. Texture samples are taken lane by lane with the scalar function.
+  // albedo() for 16 pixels (SurfaceColor::albedo_lanes).
   template <class V>
   FACET_LANES_INLINE simd::Color albedo_lanes(const FragmentLanes<V>& f) const {
-    using namespace simd;
-    const Color vertex = f.get(&V::color);
-    const glm::vec4 d = surface.diffuse;
-    Color c{d.r * vertex.r, d.g * vertex.g, d.b * vertex.b, d.a * vertex.a};
-    if (surface.face_colors) {
-      for (int k = 0; k < kLanes; ++k) {
-        const glm::vec4 face = surface.face_colors[f.primitive[k]];
-        c.r[k] *= face.r, c.g[k] *= face.g, c.b[k] *= face.b, c.a[k] *= face.a;
-      }
-    }
-    if (surface.texture) {
-      const Vec2 uv = f.get(&V::uv);
-      const std::size_t u = FragmentLanes<V>::float_index(&V::uv);
-      for (int k = 0; k < kLanes; ++k) {
-        const glm::vec4 t =
-            surface.texture->sample(glm::vec2(uv.x[k], uv.y[k]), glm::vec2(f.ddx[u][k], f.ddx[u + 1][k]),
-                                    glm::vec2(f.ddy[u][k], f.ddy[u + 1][k]), surface.sampler);
-        c.r[k] *= t.r, c.g[k] *= t.g, c.b[k] *= t.b, c.a[k] *= t.a;
-      }
-    }
-    if (surface.opaque) c.a = splat(1.0f);
-    return c;
+    return surface.albedo_lanes(f);
   }
 
   // shade() for 16 pixels, the same operations in the same order as light_terms() and shade_lit(), so both give

@@ -1,9 +1,11 @@
 // unlit.hpp - UnlitShader: albedo only (material x vertex colour x face colour x texture), no lighting.
 #pragma once
 
+#include "facet/fragment_lanes.hpp"
 #include "facet/shader.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
 #include "facet/shaders/surface_color.hpp"
+#include "facet/simd.hpp"
 
 namespace facet {
 
@@ -24,6 +26,10 @@ struct UnlitShader {
   }
   glm::vec4 fragment(const Fragment<Varyings>& f) const {
     return surface.albedo(f.varyings.color, f.primitive, f.varyings.uv, f.ddx.uv, f.ddy.uv);
+  }
+  // fragment() for 16 pixels at once, identical lane for lane.
+  FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
+    return surface.albedo_lanes(f);
   }
 };
 
