@@ -2,7 +2,8 @@
 # whole_process.sh - `facet render MODEL --output f.png` as a user times it, against the reference renderer doing
 # the same job (Assimp loads the file, llvmpipe draws one frame, the PNG is written), as whole processes.
 # Usage: bench/whole_process.sh FACET GLREF [ROUNDS]. 1920x1080, 2 threads each; the two alternate in every round
-# (the host is noisy); prints every round, the medians and the ratio glref / facet per model. Where f3d and Xvfb
+# (the host is noisy), each timed right after an untimed run of its own; prints every round, the medians and the
+# ratio glref / facet per model. Where f3d and Xvfb
 # are installed, f3d's offscreen render of the same file (--output, on Mesa in an Xvfb started once) is a third
 # column.
 set -euo pipefail
@@ -55,10 +56,24 @@ for model in /usr/share/assimp/models/OBJ/WusonOBJ.obj "$work/sphere200k.obj" "$
   for r in $(seq "$rounds"); do
     # One sample, as glref draws: the same job (facet render's default of 4 samples is timed in PERFORMANCE.md's
     # multisampling table).
-    a=$(ms "$facet" render "$model" --output "$work/f.png" --resolution 1920,1080 --threads 2 --samples 1)
-    b=$(ms "$glref" --mesh "$model" --warmup 0 --frames 1 --threads 2 --resolution 1920,1080 --png "$work/g.png")
+    # Each program runs once untimed right before its timed run, so each is timed in the state that a second run
+    # (a script's loop, a service) meets, and none pays for the idle host that the one before it left behind: on
+    # this virtual machine a process started after a second of idleness can take twice as long. The order of the
+    # two alternates from round to round.
+    run_facet() { ms "$facet" render "$model" --output "$work/f.png" --resolution 1920,1080 --threads 2 --samples 1; }
+    run_glref() {
+      ms "$glref" --mesh "$model" --warmup 0 --frames 1 --threads 2 --resolution 1920,1080 --png "$work/g.png"
+    }
+    if [ $((r % 2)) = 1 ]; then
+      run_facet >/dev/null; a=$(run_facet); run_glref >/dev/null; b=$(run_glref)
+    else
+      run_glref >/dev/null; b=$(run_glref); run_facet >/dev/null; a=$(run_facet)
+    fi
     c=0
-    [ -n "$f3d_display" ] && c=$(DISPLAY=$f3d_display ms f3d "$model" --output="$work/d.png" --resolution=1920,1080)
+    if [ -n "$f3d_display" ]; then
+      DISPLAY=$f3d_display ms f3d "$model" --output="$work/d.png" --resolution=1920,1080 >/dev/null
+      c=$(DISPLAY=$f3d_display ms f3d "$model" --output="$work/d.png" --resolution=1920,1080)
+    fi
     f+=("$a") g+=("$b") d+=("$c")
     printf '%-6s %12.1f %12.1f %8.2f %12.1f\n' "$r" "$(echo "$a / 1000" | bc -l)" "$(echo "$b / 1000" | bc -l)" \
       "$(echo "$b / $a" | bc -l)" "$(echo "$c / 1000" | bc -l)"
