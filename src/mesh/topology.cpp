@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <ranges>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -178,8 +179,8 @@ using Corner = std::uint32_t;
 
 // Counting sort of items by key (key(item) < buckets): start gets buckets + 1 offsets, sorted the items bucket by
 // bucket, each bucket keeping the items' order. Linear, and reuses the vectors' storage when called again.
-template <typename Key>
-void bucket(std::span<const Corner> items, std::size_t buckets, Scratch<Corner>& start, Scratch<Corner>& sorted,
+template <typename Items, typename Key>
+void bucket(const Items& items, std::size_t buckets, Scratch<Corner>& start, Scratch<Corner>& sorted,
             Key key) {
   start.assign(buckets + 1, 0);
   for (Corner item : items) ++start[key(item) + 1];
@@ -206,20 +207,43 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
   // Triangles with an index out of range, zero area or a non-finite normal are unusable: they add nothing and keep
   // their indices, so a degenerate triangle can neither split a vertex nor make a NaN.
   Scratch<glm::vec3> area(triangles), unit(triangles);
-  Scratch<Corner> corners;  // corners of the usable triangles, in triangle order
-  corners.reserve(mesh.indices.size());
+  Scratch<Corner> start, bucketed;  // counting sorts' output (bucket), reused
+  std::vector<std::size_t> unusable;  // in order; usually none
   for (std::size_t t = 0; t < triangles; ++t) {
     const std::uint32_t i0 = mesh.indices[3 * t], i1 = mesh.indices[3 * t + 1], i2 = mesh.indices[3 * t + 2];
-    if (i0 >= n || i1 >= n || i2 >= n) continue;
+    if (i0 >= n || i1 >= n || i2 >= n) {
+      unusable.push_back(t);
+      continue;
+    }
     const glm::vec3 e1 = mesh.positions[i1] - mesh.positions[i0];
     const glm::vec3 e2 = mesh.positions[i2] - mesh.positions[i0];
     area[t] = glm::vec3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
     const float len = std::sqrt(glm::dot(area[t], area[t]));
-    if (!(len > 0) || !std::isfinite(len)) continue;
+    if (!(len > 0) || !std::isfinite(len)) {
+      unusable.push_back(t);
+      continue;
+    }
     unit[t] = area[t] / len;
-    const auto c0 = static_cast<Corner>(3 * t);
-    corners.insert(corners.end(), {c0, c0 + 1, c0 + 2});
   }
+  // The corners of the usable triangles, in triangle order: every corner, counted rather than stored, unless some
+  // triangle is unusable.
+  Scratch<Corner> listed;
+  if (!unusable.empty()) {
+    listed.reserve(3 * (triangles - unusable.size()));
+    for (std::size_t t = 0, next = 0; t < triangles; ++t) {
+      if (next < unusable.size() && unusable[next] == t) {
+        ++next;
+        continue;
+      }
+      const auto c0 = static_cast<Corner>(3 * t);
+      listed.insert(listed.end(), {c0, c0 + 1, c0 + 2});
+    }
+  }
+  const auto every_corner = std::views::iota(Corner{0}, static_cast<Corner>(3 * triangles));
+  const auto bucket_corners = [&](std::size_t buckets, auto key) {
+    if (unusable.empty()) bucket(every_corner, buckets, start, bucketed, key);
+    else bucket(listed, buckets, start, bucketed, key);
+  };
 
   // The crease test is dot(own, other) >= cos(angle). The 1e-6 of slack keeps faces that are coplanar (or exactly at
   // the crease angle) but differ by rounding together; at 180 degrees or more every face counts.
@@ -232,8 +256,7 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
   const float min_dot_to_mean = std::cos(angle / 2) + 1e-5f;
 
   // Corners by position group; counting sort, so each group lists its corners in triangle order.
-  Scratch<Corner> start, bucketed;
-  bucket(corners, group_count, start, bucketed, [&](Corner c) { return group[mesh.indices[c]]; });
+  bucket_corners(group_count, [&](Corner c) { return group[mesh.indices[c]]; });
   std::size_t largest = 0;
   for (std::size_t g = 0; g < group_count; ++g) largest = std::max<std::size_t>(largest, start[g + 1] - start[g]);
 
@@ -284,7 +307,7 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
   // Corners by vertex, sorted by normal bits: each run of equal normals is one vertex. The first run keeps the
   // original index (so unsplit vertices, and edges listed by index, stay valid); each further run is a copy appended
   // after the original vertices.
-  bucket(corners, n, start, bucketed, [&](Corner c) { return mesh.indices[c]; });
+  bucket_corners(n, [&](Corner c) { return mesh.indices[c]; });
   const auto bits = [&](Corner c) { return bits_of(normals[corner_normal[c]]); };
   const auto normal_less = [&](Corner a, Corner b) { return bits(a) < bits(b); };
   const auto same_normal = [&](Corner a, Corner b) {
