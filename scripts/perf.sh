@@ -61,7 +61,8 @@ echo "## thumbnails: one facet batch against one facet render process each"
 bash bench/batch_bench.sh build/tools/facet 3 600
 
 echo "## stock shaders against the benchmark shader, sphere:224"
-build/bench/facet_shader_rate_bench --benchmark_repetitions=3 --benchmark_report_aggregates_only=true
+build/bench/facet_shader_rate_bench --benchmark_repetitions=7 --benchmark_enable_random_interleaving=true \
+  --benchmark_report_aggregates_only=true
 
 echo "## the browser page in headless Chromium, 800x600"
 bash bench/web_fps.sh "$rounds" 5
