@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
-#include <ranges>
 #include <span>
 #include <stdexcept>
 #include <string>
@@ -177,6 +176,24 @@ glm::vec3 normalized_or(const glm::vec3& s, const glm::vec3& fallback) {
 // memory this takes.
 using Corner = std::uint32_t;
 
+// The corners 0 .. count - 1 in order, as a range bucket() can walk without storing them. (std::views::iota is
+// missing from Emscripten's libc++, and Clang 14 cannot use libstdc++ 12's.)
+struct EveryCorner {
+  struct Iterator {
+    Corner c;
+    Corner operator*() const { return c; }
+    Iterator& operator++() {
+      ++c;
+      return *this;
+    }
+    bool operator!=(const Iterator& other) const { return c != other.c; }
+  };
+  Corner count;
+  Iterator begin() const { return {0}; }
+  Iterator end() const { return {count}; }
+  std::size_t size() const { return count; }
+};
+
 // Counting sort of items by key (key(item) < buckets): start gets buckets + 1 offsets, sorted the items bucket by
 // bucket, each bucket keeping the items' order. Linear, and reuses the vectors' storage when called again.
 template <typename Items, typename Key>
@@ -239,7 +256,7 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
       listed.insert(listed.end(), {c0, c0 + 1, c0 + 2});
     }
   }
-  const auto every_corner = std::views::iota(Corner{0}, static_cast<Corner>(3 * triangles));
+  const EveryCorner every_corner{static_cast<Corner>(3 * triangles)};
   const auto bucket_corners = [&](std::size_t buckets, auto key) {
     if (unusable.empty()) bucket(every_corner, buckets, start, bucketed, key);
     else bucket(listed, buckets, start, bucketed, key);
