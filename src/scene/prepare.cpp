@@ -101,8 +101,16 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
     }
     ++group_size[last_group];
   }
+  // One group takes the triangles' indices whole: moved from the creased copy, which is done with them.
+  const bool one_group = out.groups.size() == 1;
+  if (one_group) {
+    std::vector<std::uint32_t>& indices = out.groups[0].indices;
+    indices = creased ? std::move(creased->indices) : mesh.indices;
+    indices.resize(3 * triangles);
+  }
+  const std::vector<std::uint32_t>& corner_indices = one_group ? out.groups[0].indices : source.indices;
   for (std::size_t g = 0; g < out.groups.size(); ++g) {
-    out.groups[g].indices.reserve(3 * group_size[g]);
+    if (!one_group) out.groups[g].indices.reserve(3 * group_size[g]);
     out.groups[g].triangles.reserve(group_size[g]);
     out.groups[g].face_normals.reserve(group_size[g]);
     if (has_face_colors) out.groups[g].face_colors.reserve(group_size[g]);
@@ -114,8 +122,8 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
       last_group = group_of.find(material)->second;
     }
     TriangleGroup& g = out.groups[last_group];
-    const std::uint32_t a = source.indices[3 * t], b = source.indices[3 * t + 1], c = source.indices[3 * t + 2];
-    g.indices.insert(g.indices.end(), {a, b, c});
+    const std::uint32_t a = corner_indices[3 * t], b = corner_indices[3 * t + 1], c = corner_indices[3 * t + 2];
+    if (!one_group) g.indices.insert(g.indices.end(), {a, b, c});
     g.triangles.push_back(static_cast<std::uint32_t>(t));
     const bool in_range = a < n && b < n && c < n;
     g.face_normals.push_back(in_range ? face_normal(source.positions, a, b, c) : glm::vec3(0, 0, 1));
