@@ -31,11 +31,16 @@ peak() {
   [ "$(find out -name '*.png' | wc -l)" = "$1" ] || kib="missing images"
   echo "$kib"
 }
-# The lower of two runs each: which worker thread's allocator arena serves a job varies from run to run, and moves
-# a small batch's peak by a megabyte or two.
-lower() { if [[ $1 =~ ^[0-9]+$ && $2 =~ ^[0-9]+$ ]]; then echo $(($1 < $2 ? $1 : $2)); else echo "$1"; fi; }
-short=$(lower "$(peak 300)" "$(peak 300)")
-long=$(lower "$(peak 3000)" "$(peak 3000)")
+# The lowest of three runs each: which worker thread's allocator arena serves a job varies from run to run, and
+# moves a batch's peak by a megabyte or two (more than 10% of a 17 MiB peak when the machine is busy).
+# A run that did not make every image is reported, whichever it was.
+lower() {
+  if [[ ! $1 =~ ^[0-9]+$ ]]; then echo "$1"
+  elif [[ ! $2 =~ ^[0-9]+$ ]]; then echo "$2"
+  else echo $(($1 < $2 ? $1 : $2)); fi
+}
+short=$(lower "$(lower "$(peak 300)" "$(peak 300)")" "$(peak 300)")
+long=$(lower "$(lower "$(peak 3000)" "$(peak 3000)")" "$(peak 3000)")
 if [[ $short =~ ^[0-9]+$ && $long =~ ^[0-9]+$ ]] && [ $((long * 10)) -le $((short * 11)) ]; then
   ok "peak memory: 300 jobs $short KiB, 3000 jobs $long KiB"
 else
