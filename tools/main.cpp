@@ -3,14 +3,18 @@
 #include <sys/mman.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
+#include <filesystem>
 #include <new>
 #include <stdexcept>
 #include <string>
 #include <string_view>
+#include <system_error>
+#include <vector>
 
 #include <CLI/CLI.hpp>
 
@@ -39,15 +43,15 @@ int fail(std::string message, int status) {
   return status;
 }
 
-// Puts the heap's next 64 MiB on transparent huge pages (for `facet render`). Loading and preparing a model fills
-// fresh heap memory (arrays of positions, corners, indices), and on a virtual machine each fresh 4 KiB page is a
-// fault that can cost 10 us: a 200k-triangle OBJ touched 20,000 of them, most of its loading time. With 2 MiB
-// pages that memory takes a fault per 2 MiB. glibc does this itself only when asked through GLIBC_TUNABLES; here the heap is grown once by
-// a block larger than anything it holds and the new range is advised.
-void heap_on_huge_pages() {
+// Puts the heap's next `reserve` bytes on transparent huge pages (for `facet render`). Loading and preparing a model
+// fills fresh heap memory (the file, arrays of positions, corners, indices), and on a virtual machine each fresh
+// 4 KiB page is a fault that can cost 10 us: a 200k-triangle OBJ touched 20,000 of them, most of its loading time.
+// With 2 MiB pages that memory takes a fault per 2 MiB. glibc does this itself only when asked through
+// GLIBC_TUNABLES; here the heap is grown once by a block larger than anything it holds and the new range is advised.
+// Only address space is reserved: pages are touched, and counted, as they are used.
+void heap_on_huge_pages(std::size_t reserve) {
   constexpr std::uintptr_t kHugePage = std::uintptr_t{2} << 20;
-  constexpr std::size_t kReserve = std::size_t{64} << 20;
-  mallopt(M_TOP_PAD, static_cast<int>(kReserve));
+  mallopt(M_TOP_PAD, static_cast<int>(reserve));
   const auto before = reinterpret_cast<std::uintptr_t>(sbrk(0));
   // The heap grows by this block and the pad, and keeps them (trim threshold above). Through a volatile pointer,
   // or the compiler drops the unused allocation.
@@ -58,6 +62,20 @@ void heap_on_huge_pages() {
   // Only a hint: without transparent huge pages the heap keeps ordinary pages.
   if (after > start) ::madvise(reinterpret_cast<void*>(start), after - start, MADV_HUGEPAGE);
   mallopt(M_TOP_PAD, 0);
+}
+
+// The heap a render of these models may use: a model's preparation holds about eight times its file's size at its
+// peak (an 870k-triangle ASCII PLY: a 32 MB file, 130 MiB), and 64 MiB covers the small ones with their images. At
+// most 448 MiB, below the trim threshold, or free() would hand the reserve straight back.
+std::size_t render_heap_bytes(const std::vector<std::string>& models) {
+  std::uintmax_t largest = 0;
+  for (const std::string& model : models) {
+    std::error_code error;
+    const std::uintmax_t bytes = std::filesystem::file_size(model, error);
+    if (!error) largest = std::max(largest, bytes);
+  }
+  constexpr std::uintmax_t kLeast = std::uintmax_t{64} << 20, kMost = std::uintmax_t{448} << 20;
+  return static_cast<std::size_t>(std::clamp(8 * largest, kLeast, kMost));
 }
 
 }  // namespace
@@ -106,7 +124,7 @@ int main(int argc, char** argv) {
     // A single render meets all its memory fresh; a batch reuses one heap from job to job, and keeps the small
     // pages that let its peak follow what it holds.
     if (render->parsed()) {
-      heap_on_huge_pages();
+      heap_on_huge_pages(render_heap_bytes(render_args.models));
       return facet::cli::run_render(render_args);
     }
     if (demo->parsed()) return facet::cli::run_demo(demo_args);
