@@ -187,22 +187,38 @@ glm::vec3 normalized_or(const glm::vec3& s, const glm::vec3& fallback) {
 // memory this takes.
 using Corner = std::uint32_t;
 
-// The corners 0 .. count - 1 in order, as a range bucket() can walk without storing them. (std::views::iota is
-// missing from Emscripten's libc++, and Clang 14 cannot use libstdc++ 12's.)
-struct EveryCorner {
+// The corners of the usable triangles in order, as a range bucket() can walk without storing them: 0 .. 3 t - 1 but
+// for the corners of the triangles listed (in order) in `skipped`. A mesh with a few degenerate triangles (a UV
+// sphere's poles) would otherwise need its ten-megabyte list of corners.
+struct UsableCorners {
   struct Iterator {
     Corner c;
+    const std::size_t* skip;  // the next unusable triangle at or after c's
+    const std::size_t* skip_end;
     Corner operator*() const { return c; }
     Iterator& operator++() {
       ++c;
+      if (c % 3 == 0) settle();
       return *this;
+    }
+    // Moves c past any unusable triangles starting at it.
+    void settle() {
+      while (skip != skip_end && *skip == c / 3) {
+        c += 3;
+        ++skip;
+      }
     }
     bool operator!=(const Iterator& other) const { return c != other.c; }
   };
-  Corner count;
-  Iterator begin() const { return {0}; }
-  Iterator end() const { return {count}; }
-  std::size_t size() const { return count; }
+  std::span<const std::size_t> skipped;
+  Corner count;  // all corners, 3 t
+  Iterator begin() const {
+    Iterator it{0, skipped.data(), skipped.data() + skipped.size()};
+    it.settle();
+    return it;
+  }
+  Iterator end() const { return {count, nullptr, nullptr}; }
+  std::size_t size() const { return count - 3 * skipped.size(); }
 };
 
 // Counting sort of items by key (key(item) < buckets): start gets buckets + 1 offsets, sorted the items bucket by
@@ -231,10 +247,11 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
   const std::size_t group_count = group_by_position(mesh.positions, group);
 
   // Per triangle, the unnormalised face normal (twice the area long: the weight, computed as in
-  // compute_smooth_normals so a 180 degree crease reproduces it bit for bit) and the unit one for the angle test.
+  // compute_smooth_normals so a 180 degree crease reproduces it bit for bit). The unit normal for the angle test is
+  // computed from it where a group needs it (unit_of): stored, it would be ten more megabytes a million triangles.
   // Triangles with an index out of range, zero area or a non-finite normal are unusable: they add nothing and keep
   // their indices, so a degenerate triangle can neither split a vertex nor make a NaN.
-  Scratch<glm::vec3> area(triangles), unit(triangles);
+  Scratch<glm::vec3> area(triangles);
   Scratch<Corner> start, bucketed;  // counting sorts' output (bucket), reused
   std::vector<std::size_t> unusable;  // in order; usually none
   for (std::size_t t = 0; t < triangles; ++t) {
@@ -247,34 +264,14 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
     const glm::vec3 e2 = mesh.positions[i2] - mesh.positions[i0];
     area[t] = glm::vec3(e1.y * e2.z - e1.z * e2.y, e1.z * e2.x - e1.x * e2.z, e1.x * e2.y - e1.y * e2.x);
     const float len = std::sqrt(glm::dot(area[t], area[t]));
-    if (!(len > 0) || !std::isfinite(len)) {
-      unusable.push_back(t);
-      continue;
-    }
-    unit[t] = area[t] / len;
+    if (!(len > 0) || !std::isfinite(len)) unusable.push_back(t);
   }
-  // The corners of the usable triangles, in triangle order: every corner, counted rather than stored, unless some
-  // triangle is unusable.
-  Scratch<Corner> listed;
-  if (!unusable.empty()) {
-    listed.resize(3 * (triangles - unusable.size()));
-    Corner* out = listed.data();
-    for (std::size_t t = 0, next = 0; t < triangles; ++t) {
-      if (next < unusable.size() && unusable[next] == t) {
-        ++next;
-        continue;
-      }
-      const auto c0 = static_cast<Corner>(3 * t);
-      *out++ = c0;
-      *out++ = c0 + 1;
-      *out++ = c0 + 2;
-    }
-  }
-  const EveryCorner every_corner{static_cast<Corner>(3 * triangles)};
-  const auto bucket_corners = [&](std::size_t buckets, auto key) {
-    if (unusable.empty()) bucket(every_corner, buckets, start, bucketed, key);
-    else bucket(listed, buckets, start, bucketed, key);
+  const auto unit_of = [&](Corner c) {
+    const glm::vec3& a = area[c / 3];
+    return a / std::sqrt(glm::dot(a, a));
   };
+  const UsableCorners usable_corners{unusable, static_cast<Corner>(3 * triangles)};
+  start.reserve(std::max(n, std::size_t{1}) + 1);  // room for both sorts' offsets (group_count <= n)
 
   // The crease test is dot(own, other) >= cos(angle). The 1e-6 of slack keeps faces that are coplanar (or exactly at
   // the crease angle) but differ by rounding together; at 180 degrees or more every face counts.
@@ -287,16 +284,20 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
   const float min_dot_to_mean = std::cos(angle / 2) + 1e-5f;
 
   // Corners by position group; counting sort, so each group lists its corners in triangle order.
-  bucket_corners(group_count, [&](Corner c) { return group[mesh.indices[c]]; });
+  bucket(usable_corners, group_count, start, bucketed, [&](Corner c) { return group[mesh.indices[c]]; });
   std::size_t largest = 0;
   for (std::size_t g = 0; g < group_count; ++g) largest = std::max<std::size_t>(largest, start[g + 1] - start[g]);
 
   // Each corner's normal, as an index into `normals`: the groups' smooth normals first (the normal of nearly every
   // corner), then the normals of crease-split corners as they are found. Four bytes a corner rather than twelve.
   Scratch<std::uint32_t> corner_normal(mesh.indices.size());
-  Scratch<glm::vec3> normals(group_count);
+  Scratch<glm::vec3> normals;
   normals.reserve(group_count + group_count / 8);
-  std::vector<Corner> by_normal;  // one group's corners sorted by face normal; reserved once, reused
+  normals.resize(group_count);
+  // A creased group's unit face normals, one per member, and the members' places sorted by them; reused.
+  std::vector<glm::vec3> member_unit;
+  std::vector<std::uint32_t> by_normal;
+  member_unit.reserve(largest);
   by_normal.reserve(largest);
   for (std::size_t g = 0; g < group_count; ++g) {
     const std::span<const Corner> members(bucketed.data() + start[g], bucketed.data() + start[g + 1]);
@@ -308,37 +309,49 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
     if (members.empty()) continue;
     // If every face is within half the angle of the group's normal, every corner sees all of them: one sum for the
     // group, so high-valence smooth vertices (a sphere's poles) cost no more than at pi.
+    // The test dot(unit, mean) >= min is done as dot(area, mean)^2 >= min^2 |area|^2 (min is positive), without
+    // a square root or division per corner; the margin in min_dot_to_mean covers the different rounding.
     bool all_within = everything || glm::dot(sum, sum) > 0;
-    for (std::size_t i = 0; i < members.size() && all_within && !everything; ++i)
-      all_within = glm::dot(unit[members[i] / 3], normals[g]) >= min_dot_to_mean;
+    const float min_squared = min_dot_to_mean * min_dot_to_mean;
+    for (std::size_t i = 0; i < members.size() && all_within && !everything; ++i) {
+      const glm::vec3& a = area[members[i] / 3];
+      const float d = glm::dot(a, normals[g]);
+      all_within = d > 0 && d * d >= min_squared * glm::dot(a, a);
+    }
     if (all_within) {
       for (Corner c : members) corner_normal[c] = static_cast<std::uint32_t>(g);
       continue;
     }
     // Otherwise each distinct face normal sums the faces within the angle of it: O(distinct x members), where the
     // distinct normals are few except at the apex of a sharp cone-like fan.
-    by_normal.assign(members.begin(), members.end());
+    member_unit.clear();
+    by_normal.clear();
+    for (std::uint32_t i = 0; i < members.size(); ++i) {
+      member_unit.push_back(unit_of(members[i]));
+      by_normal.push_back(i);
+    }
+    const auto unit_bits = [&](std::uint32_t i) { return bits_of(member_unit[i]); };
     std::sort(by_normal.begin(), by_normal.end(),
-              [&](Corner a, Corner b) { return bits_of(unit[a / 3]) < bits_of(unit[b / 3]); });
+              [&](std::uint32_t a, std::uint32_t b) { return unit_bits(a) < unit_bits(b); });
     for (std::size_t begin = 0, end = 0; begin < by_normal.size(); begin = end) {
-      const glm::vec3 own = unit[by_normal[begin] / 3];
-      for (end = begin + 1; end < by_normal.size() && bits_of(unit[by_normal[end] / 3]) == bits_of(own);) ++end;
+      const glm::vec3 own = member_unit[by_normal[begin]];
+      for (end = begin + 1; end < by_normal.size() && unit_bits(by_normal[end]) == bits_of(own);) ++end;
       // In triangle order, so corners that see the same set of faces get the same bits and share a vertex.
       glm::vec3 s(0);
-      for (Corner c : members)
-        if (glm::dot(own, unit[c / 3]) >= min_dot) s += area[c / 3];
+      for (std::size_t i = 0; i < members.size(); ++i)
+        if (glm::dot(own, member_unit[i]) >= min_dot) s += area[members[i] / 3];
       if (normals.size() >= std::numeric_limits<std::uint32_t>::max())
         throw std::length_error("compute_crease_normals: more normals than 32-bit indices can address");
       const auto id = static_cast<std::uint32_t>(normals.size());
       normals.push_back(normalized_or(s, own));
-      for (std::size_t k = begin; k < end; ++k) corner_normal[by_normal[k]] = id;
+      for (std::size_t k = begin; k < end; ++k) corner_normal[members[by_normal[k]]] = id;
     }
   }
 
   // Corners by vertex, sorted by normal bits: each run of equal normals is one vertex. The first run keeps the
   // original index (so unsplit vertices, and edges listed by index, stay valid); each further run is a copy appended
   // after the original vertices.
-  bucket_corners(n, [&](Corner c) { return mesh.indices[c]; });
+  bucket(usable_corners, n, start, bucketed, [&](Corner c) { return mesh.indices[c]; });
   const auto bits = [&](Corner c) { return bits_of(normals[corner_normal[c]]); };
   const auto normal_less = [&](Corner a, Corner b) { return bits(a) < bits(b); };
   const auto same_normal = [&](Corner a, Corner b) {
