@@ -77,6 +77,7 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
   if (!args.views.empty()) base.views = parse_sheet_views(args.views);
   base.turntable = args.turntable;
   base.load = load_options(args.input);
+  base.load.threads = args.look.threads;
   const std::pair<const char*, const std::string*> outputs[] = {{"--output", &args.output.output},
                                                                 {"--output-depth", &args.output.output_depth},
                                                                 {"--output-normal", &args.output.output_normal},

@@ -29,6 +29,9 @@ struct LoadOptions {
   // Textures wider or taller than this (at most kMaxTextureSize, 16384) are not decoded: the material is drawn
   // untextured, with a warning.
   int max_texture_size = 16384;
+  // Threads a reader may use for one large file (an ASCII PLY's body is parsed in two halves); 0: as many as the
+  // machine has cores.
+  int threads = 0;
 };
 
 // Reads a model file into a Model (model.hpp): its indexed, triangulated, validated meshes in their own

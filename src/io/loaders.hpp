@@ -23,7 +23,12 @@ namespace facet {
 // The readers of formats that name other files read them as options allow (references.hpp).
 Mesh load_obj(const std::filesystem::path& path, std::string_view bytes, const std::string& source,
               const LoadOptions& options);
-Mesh load_ply(std::string_view bytes, const std::string& source);
+// An ASCII PLY body of one entry per line, from two_from bytes on, is parsed in two halves by two threads when
+// `threads` (0: the machine's cores) allows; the mesh, warnings and errors are the same either way. *in_two, if
+// given, tells whether it was.
+constexpr std::size_t kPlyTwoThreadsFrom = std::size_t{1} << 20;
+Mesh load_ply(std::string_view bytes, const std::string& source, int threads = 1,
+              std::size_t two_from = kPlyTwoThreadsFrom, bool* in_two = nullptr);
 Mesh load_stl(std::string_view bytes, const std::string& source);
 // glTF resolves external buffers and images against the path's folder; its meshes and node instances.
 Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source,

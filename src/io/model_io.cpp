@@ -111,7 +111,7 @@ Model read_any_model(const fs::path& path, std::string& format_name, const LoadO
   try {
     switch (format) {
       case Format::kObj: return one_mesh(load_obj(path, bytes, source, options));
-      case Format::kPly: return one_mesh(load_ply(bytes, source));
+      case Format::kPly: return one_mesh(load_ply(bytes, source, options.threads));
       case Format::kStl: return one_mesh(load_stl(bytes, source));
       case Format::kGltf: return load_gltf(path, bytes, source, options);
 #ifndef FACET_NO_ASSIMP

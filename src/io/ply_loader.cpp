@@ -1,9 +1,13 @@
 // ply_loader.cpp - load_ply(): PLY in ASCII and both binary byte orders; vertices and faces read, other data skipped.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstring>
 #include <optional>
 #include <string>
+#include <system_error>
+#include <thread>
+#include <type_traits>
 #include <vector>
 
 #include "facet/detail/bits.hpp"
@@ -154,6 +158,8 @@ class AsciiReader {
   }
 
   static std::size_t least_bytes(Type) { return 2; }
+  // Whether only whitespace is left.
+  bool exhausted() { return in_.at_end(); }
   std::string where() const { return "line " + std::to_string(in_.line()); }
   std::string trailing() { return in_.at_end() ? std::string() : "text after the last element, from " + where(); }
 
@@ -276,17 +282,14 @@ class BodyReader {
     if (vertex_plan_.normals) mesh_.normals.reserve(vertex_.count);
     if (vertex_plan_.colors) mesh_.colors.reserve(vertex_.count);
     if (vertex_plan_.uvs) mesh_.uvs.reserve(vertex_.count);
-    // A face's count and indices may be one byte each, so the count alone does not bound the triangles' memory.
-    std::uint64_t triangle_bytes = 3 * Reader::least_bytes(face_.properties[face_list_].type);
-    for (const Property& p : face_.properties) triangle_bytes += Reader::least_bytes(p.list ? p.count_type : p.type);
-    mesh_.indices.reserve(3 * std::min<std::uint64_t>(face_.count, body_bytes / triangle_bytes));
+    reserve_triangles(body_bytes);
     // Faces need the vertices' positions to triangulate; PLY allows them first, so they may be read after.
     std::optional<Reader> faces_at;
     for (const Element& e : header_.elements) {
       if (&e == &vertex_) {
-        for_each_entry(in, e, source_, [&] { read_vertex(in); });
+        for_each_entry(in, e, source_, [&] { push_vertex(vertex_values(in)); });
       } else if (&e == &face_ && mesh_.positions.size() == vertex_.count) {
-        for_each_entry(in, e, source_, [&] { read_face(in); });
+        for_each_entry(in, e, source_, [&] { read_face(in, mesh_, faces_, polygon_, dropped_); });
       } else {
         if (&e == &face_) faces_at = in;
         for_each_entry(in, e, source_, [&] {
@@ -295,14 +298,155 @@ class BodyReader {
       }
     }
     if (const std::string extra = in.trailing(); !extra.empty()) warn(source_, "ignored " + extra);
-    if (faces_at) for_each_entry(*faces_at, face_, source_, [&] { read_face(*faces_at); });
+    if (faces_at)
+      for_each_entry(*faces_at, face_, source_, [&] { read_face(*faces_at, mesh_, faces_, polygon_, dropped_); });
+    return finish();
+  }
+
+  // An ASCII body of one entry per line, the vertices' lines and then the faces', read in two halves on two threads:
+  // the vertices, then the faces (whose polygons need every position to triangulate). Empty when the body is not of
+  // that shape or anything in it is wrong; read() then reads it again on one thread and reports the problem where it
+  // is, so the mesh, warnings and errors are the same either way.
+  std::optional<Mesh> read_by_lines(const char* body, const char* end) {
+    if (header_.elements.size() != 2 || &header_.elements[0] != &vertex_) return std::nullopt;
+    const std::uint64_t vertices = vertex_.count, faces = face_.count;
+    // The second thread finds where its half begins by counting line breaks while the first parses.
+    const char* faces_begin = nullptr;
+    try {
+      mesh_.positions.resize(vertices);
+      if (vertex_plan_.normals) mesh_.normals.resize(vertices);
+      if (vertex_plan_.colors) mesh_.colors.resize(vertices);
+      if (vertex_plan_.uvs) mesh_.uvs.resize(vertices);
+      if (!in_two(
+              [&] {
+                const char* p = body;
+                return vertex_lines(p, end, 0, vertices / 2);
+              },
+              [&] {
+                const char* p = after_lines(body, end, vertices / 2);
+                if (!p || !vertex_lines(p, end, vertices / 2, vertices - vertices / 2)) return false;
+                faces_begin = p;
+                return true;
+              }))
+        return start_over();
+      reserve_triangles(static_cast<std::size_t>(end - faces_begin));
+      Mesh second;  // the second half's triangles and face numbers
+      second.indices.reserve(mesh_.indices.capacity() / 2 + 3);
+      FaceNumbering second_faces;
+      std::vector<std::uint32_t> second_polygon;
+      std::size_t second_dropped = 0;
+      const bool read = in_two(
+          [&] {
+            const char* p = faces_begin;
+            return each_line(p, end, faces / 2,
+                             [&](AsciiReader& in) { read_face(in, mesh_, faces_, polygon_, dropped_); });
+          },
+          [&] {
+            const char* p = after_lines(faces_begin, end, faces / 2);
+            return p &&
+                   each_line(
+                       p, end, faces - faces / 2,
+                       [&](AsciiReader& in) { read_face(in, second, second_faces, second_polygon, second_dropped); }) &&
+                   AsciiReader(p, end, 0).exhausted();
+          });
+      if (!read) return start_over();
+      append_faces(second, faces / 2);
+      dropped_ += second_dropped;
+    } catch (...) {
+      return start_over();
+    }
+    return finish();
+  }
+
+ private:
+  // A face's count and indices may be one byte each, so the count alone does not bound the triangles' memory.
+  void reserve_triangles(std::size_t body_bytes) {
+    std::uint64_t triangle_bytes = 3 * Reader::least_bytes(face_.properties[face_list_].type);
+    for (const Property& p : face_.properties) triangle_bytes += Reader::least_bytes(p.list ? p.count_type : p.type);
+    mesh_.indices.reserve(3 * std::min<std::uint64_t>(face_.count, body_bytes / triangle_bytes));
+  }
+
+  Mesh finish() {
     if (dropped_ > 0) warn(source_, "dropped " + std::to_string(dropped_) + " face(s) with fewer than 3 corners");
     return std::move(mesh_);
   }
 
- private:
-  void read_vertex(Reader& in) {
-    float v[kRoleCount] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0};
+  std::optional<Mesh> start_over() {
+    mesh_ = Mesh();
+    faces_ = FaceNumbering();
+    dropped_ = 0;
+    return std::nullopt;
+  }
+
+  // Where line k (from 0) begins, after k line breaks; null if the text has fewer. Counts line breaks a block at a
+  // time (vectorised), then finds the last block's with memchr.
+  static const char* after_lines(const char* p, const char* end, std::uint64_t k) {
+    constexpr std::size_t kBlock = std::size_t{1} << 16;
+    while (k > 0) {
+      const std::size_t n = std::min<std::size_t>(kBlock, static_cast<std::size_t>(end - p));
+      if (n == 0) return nullptr;
+      const auto breaks = static_cast<std::uint64_t>(std::count(p, p + n, '\n'));
+      if (breaks < k) {
+        k -= breaks;
+        p += n;
+        continue;
+      }
+      for (;; --k) {
+        p = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p))) + 1;
+        if (k == 1) return p;
+      }
+    }
+    return p;
+  }
+
+  // Reads `count` lines from p, each with read_one over a reader of that line alone, moving p past them. False
+  // unless every line holds exactly one entry (and throws what read_one throws).
+  template <class ReadOne>
+  static bool each_line(const char*& p, const char* end, std::uint64_t count, ReadOne&& read_one) {
+    for (std::uint64_t i = 0; i < count; ++i) {
+      if (p == end) return false;
+      const auto* line_end = static_cast<const char*>(std::memchr(p, '\n', static_cast<std::size_t>(end - p)));
+      if (!line_end) line_end = end;
+      AsciiReader in(p, line_end, 0);
+      read_one(in);
+      if (!in.exhausted()) return false;
+      p = line_end == end ? end : line_end + 1;
+    }
+    return true;
+  }
+
+  // Reads vertices first .. first + count - 1, one per line from p, moving p past them.
+  bool vertex_lines(const char*& p, const char* end, std::uint64_t first, std::uint64_t count) {
+    return each_line(p, end, count, [&](AsciiReader& in) { store_vertex(first++, vertex_values(in)); });
+  }
+
+  // Runs first here and second on another thread (or after first, when no thread can be started); true if both
+  // returned true. Whatever either throws counts as false.
+  template <class First, class Second>
+  static bool in_two(First&& first, Second&& second) {
+    const auto guarded = [](auto& task) {
+      try {
+        return task();
+      } catch (...) {
+        return false;
+      }
+    };
+    bool second_ok = false;
+    std::thread other;
+    try {
+      other = std::thread([&] { second_ok = guarded(second); });
+    } catch (const std::system_error&) {
+      return guarded(first) && guarded(second);
+    }
+    const bool first_ok = guarded(first);
+    other.join();
+    return first_ok && second_ok;
+  }
+
+  using Values = std::array<float, kRoleCount>;
+
+  Values vertex_values(Reader& in) {
+    Values v = {0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0};
     for (std::size_t j = 0; j < vertex_.properties.size(); ++j) {
       const Property& p = vertex_.properties[j];
       const Role role = vertex_plan_.roles[j];
@@ -314,14 +458,28 @@ class BodyReader {
       if (!std::isfinite(value)) throw Problem{"non-finite value of " + in_quotes(p.name)};
       v[role] = value;
     }
+    return v;
+  }
+
+  void push_vertex(const Values& v) {
     mesh_.positions.push_back({v[kX], v[kY], v[kZ]});
     if (vertex_plan_.normals) mesh_.normals.push_back({v[kNx], v[kNy], v[kNz]});
     if (vertex_plan_.colors) mesh_.colors.push_back({v[kRed], v[kGreen], v[kBlue], v[kAlpha]});
     if (vertex_plan_.uvs) mesh_.uvs.push_back({v[kU], v[kV]});
   }
 
-  void read_face(Reader& in) {
-    polygon_.clear();
+  void store_vertex(std::uint64_t i, const Values& v) {
+    mesh_.positions[i] = {v[kX], v[kY], v[kZ]};
+    if (vertex_plan_.normals) mesh_.normals[i] = {v[kNx], v[kNy], v[kNz]};
+    if (vertex_plan_.colors) mesh_.colors[i] = {v[kRed], v[kGreen], v[kBlue], v[kAlpha]};
+    if (vertex_plan_.uvs) mesh_.uvs[i] = {v[kU], v[kV]};
+  }
+
+  // Appends a face's triangles to out.indices (and its number to numbering); polygon is scratch. Positions come
+  // from mesh_, complete by now.
+  void read_face(Reader& in, Mesh& out, FaceNumbering& numbering, std::vector<std::uint32_t>& polygon,
+                 std::size_t& dropped) {
+    polygon.clear();
     for (std::size_t j = 0; j < face_.properties.size(); ++j) {
       const Property& p = face_.properties[j];
       if (j != face_list_) {
@@ -339,21 +497,35 @@ class BodyReader {
         if (index < 0 || static_cast<std::uint64_t>(index) >= vertex_.count)
           throw Problem{"references vertex " + std::to_string(index) + " but there are only " +
                         std::to_string(vertex_.count) + " vertices"};
-        polygon_.push_back(static_cast<std::uint32_t>(index));
+        polygon.push_back(static_cast<std::uint32_t>(index));
       }
     }
-    const std::size_t before = mesh_.indices.size() / 3;
-    if (polygon_.size() < 3) {
-      ++dropped_;
-      faces_.drop_face();
+    const std::size_t before = out.indices.size() / 3;
+    if (polygon.size() < 3) {
+      ++dropped;
+      numbering.drop_face();
       return;
     }
-    if (polygon_.size() == 3) {
-      mesh_.indices.insert(mesh_.indices.end(), polygon_.begin(), polygon_.end());
+    if (polygon.size() == 3) {
+      out.indices.insert(out.indices.end(), polygon.begin(), polygon.end());
     } else {
-      triangulate_polygon(mesh_.positions, polygon_, mesh_.indices);
+      triangulate_polygon(mesh_.positions, polygon, out.indices);
     }
-    faces_.add_face(mesh_, before);
+    numbering.add_face(out, before);
+  }
+
+  // Appends the triangles and face numbers read from the second half of the faces, which begins at face `first`.
+  void append_faces(Mesh& second, std::uint64_t first) {
+    if (!mesh_.face_ids.empty() || !second.face_ids.empty()) {
+      // An empty list numbers each triangle as its own face.
+      for (Mesh* part : {&mesh_, &second}) {
+        if (!part->face_ids.empty()) continue;
+        part->face_ids.resize(part->indices.size() / 3);
+        for (std::size_t t = 0; t < part->face_ids.size(); ++t) part->face_ids[t] = static_cast<std::uint32_t>(t);
+      }
+      for (std::uint32_t id : second.face_ids) mesh_.face_ids.push_back(static_cast<std::uint32_t>(id + first));
+    }
+    mesh_.indices.insert(mesh_.indices.end(), second.indices.begin(), second.indices.end());
   }
 
   const ply::Header& header_;
@@ -372,10 +544,18 @@ class BodyReader {
 // rather than that its data is missing.
 template <class Reader>
 Mesh read_body(const ply::Header& header, const Element& vertex, const Element& face, std::size_t file_bytes, Reader in,
-               const std::string& source) {
+               const std::string& source, std::string_view by_lines = {}, bool* in_two = nullptr) {
   BodyReader<Reader> reader(header, vertex, face, source);
   const std::size_t body_bytes = file_bytes - header.body_offset;
   ply::check_counts(header, body_bytes, source);
+  if constexpr (std::is_same_v<Reader, AsciiReader>) {
+    if (!by_lines.empty()) {
+      if (std::optional<Mesh> mesh = reader.read_by_lines(by_lines.data(), by_lines.data() + by_lines.size())) {
+        if (in_two) *in_two = true;
+        return std::move(*mesh);
+      }
+    }
+  }
   return reader.read(in, body_bytes);
 }
 
@@ -387,7 +567,8 @@ const Element* find(const ply::Header& header, std::string_view name) {
 
 }  // namespace
 
-Mesh load_ply(std::string_view bytes, const std::string& source) {
+Mesh load_ply(std::string_view bytes, const std::string& source, int threads, std::size_t two_from, bool* in_two) {
+  if (in_two) *in_two = false;
   const ply::Header header = ply::parse_header(bytes, source);
   const Element* vertex = find(header, "vertex");
   const Element* face = find(header, "face");
@@ -407,7 +588,11 @@ Mesh load_ply(std::string_view bytes, const std::string& source) {
   Mesh mesh;
   using ply::Encoding;
   if (header.encoding == Encoding::kAscii) {
-    mesh = read_body(header, *vertex, *face, bytes.size(), AsciiReader(body, end, header.body_line), source);
+    if (threads == 0) threads = static_cast<int>(std::thread::hardware_concurrency());
+    const bool by_lines = threads > 1 && static_cast<std::size_t>(end - body) >= two_from;
+    mesh =
+        read_body(header, *vertex, *face, bytes.size(), AsciiReader(body, end, header.body_line), source,
+                  by_lines ? std::string_view(body, static_cast<std::size_t>(end - body)) : std::string_view(), in_two);
   } else if ((header.encoding == Encoding::kBinaryLittleEndian) == detail::kLittleEndian) {
     mesh = read_body(header, *vertex, *face, bytes.size(), BinaryReader<false>(begin, body, end), source);
   } else {

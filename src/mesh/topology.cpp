@@ -144,7 +144,8 @@ NormalBits bits_of(const glm::vec3& v) {
 // each lookup lands at random in it: slots are prefetched a few vertices ahead, which halves the time here.
 std::size_t group_by_position(const std::vector<glm::vec3>& positions, Scratch<std::uint32_t>& group) {
   const std::size_t n = positions.size();
-  if (n >= 0xffffffffu) throw std::length_error("compute_crease_normals: more vertices than 32-bit indices can address");
+  if (n >= 0xffffffffu)
+    throw std::length_error("compute_crease_normals: more vertices than 32-bit indices can address");
   std::size_t capacity = 16;
   while (capacity < 2 * n) capacity *= 2;
   struct Slot {
@@ -224,8 +225,7 @@ struct UsableCorners {
 // Counting sort of items by key (key(item) < buckets): start gets buckets + 1 offsets, sorted the items bucket by
 // bucket, each bucket keeping the items' order. Linear, and reuses the vectors' storage when called again.
 template <typename Items, typename Key>
-void bucket(const Items& items, std::size_t buckets, Scratch<Corner>& start, Scratch<Corner>& sorted,
-            Key key) {
+void bucket(const Items& items, std::size_t buckets, Scratch<Corner>& start, Scratch<Corner>& sorted, Key key) {
   start.assign(buckets + 1, 0);
   for (Corner item : items) ++start[key(item) + 1];
   for (std::size_t b = 0; b < buckets; ++b) start[b + 1] += start[b];
@@ -252,7 +252,7 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
   // Triangles with an index out of range, zero area or a non-finite normal are unusable: they add nothing and keep
   // their indices, so a degenerate triangle can neither split a vertex nor make a NaN.
   Scratch<glm::vec3> area(triangles);
-  Scratch<Corner> start, bucketed;  // counting sorts' output (bucket), reused
+  Scratch<Corner> start, bucketed;    // counting sorts' output (bucket), reused
   std::vector<std::size_t> unusable;  // in order; usually none
   for (std::size_t t = 0; t < triangles; ++t) {
     const std::uint32_t i0 = mesh.indices[3 * t], i1 = mesh.indices[3 * t + 1], i2 = mesh.indices[3 * t + 2];

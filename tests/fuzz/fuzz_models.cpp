@@ -32,7 +32,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 #if FACET_FUZZ_FORMAT == 1
     (void)facet::load_obj(model_path(), bytes, source, options);
 #elif FACET_FUZZ_FORMAT == 2
-    (void)facet::load_ply(bytes, source);
+    // Two threads from the first byte: the two-half reader, and the one-thread reader it falls back to.
+    (void)facet::load_ply(bytes, source, 2, 0);
 #elif FACET_FUZZ_FORMAT == 3
     (void)facet::load_stl(bytes, source);
 #elif FACET_FUZZ_FORMAT == 4

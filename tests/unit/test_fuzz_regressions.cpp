@@ -55,7 +55,7 @@ void read_as(const std::string& format, const fs::path& input) {
   const LoadOptions options;
   const std::string source = input.string();
   if (format == "obj") (void)load_obj(input, bytes, source, options);
-  else if (format == "ply") (void)load_ply(bytes, source);
+  else if (format == "ply") (void)load_ply(bytes, source, 2, 0);  // both PLY readers (loaders.hpp)
   else if (format == "stl") (void)load_stl(bytes, source);
   else if (format == "gltf") (void)load_gltf(input, bytes, source, options);
   else if (format == "image")
