@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# batch_memory.sh - a long batch keeps memory flat: 3,000 jobs peak within 10% of 300 jobs of the same models.
+# batch_memory.sh - a long batch keeps memory flat: 3,000 jobs peak within 25% of 300 jobs of the same models.
 # Usage: batch_memory.sh FACET SCRATCH. Runs in the plain build only: a sanitizer's allocator keeps freed memory
 # in quarantine on purpose, which says nothing about facet's.
 set -uo pipefail
@@ -32,7 +32,7 @@ peak() {
   echo "$kib"
 }
 # The lowest of three runs each: which worker thread's allocator arena serves a job varies from run to run, and
-# moves a batch's peak by a megabyte or two (more than 10% of a 17 MiB peak when the machine is busy).
+# moves a batch's peak by a megabyte or two.
 # A run that did not make every image is reported, whichever it was.
 lower() {
   if [[ ! $1 =~ ^[0-9]+$ ]]; then echo "$1"
@@ -41,10 +41,12 @@ lower() {
 }
 short=$(lower "$(lower "$(peak 300)" "$(peak 300)")" "$(peak 300)")
 long=$(lower "$(lower "$(peak 3000)" "$(peak 3000)")" "$(peak 3000)")
-if [[ $short =~ ^[0-9]+$ && $long =~ ^[0-9]+$ ]] && [ $((long * 10)) -le $((short * 11)) ]; then
+# 25%: on a busy machine the arenas alone move the peak by up to 2.5 MiB (15% of it), while anything a job leaks
+# grows with the 2,700 extra jobs: its smallest buffer, the 64x64 image (16 KiB), would add 40 MiB.
+if [[ $short =~ ^[0-9]+$ && $long =~ ^[0-9]+$ ]] && [ $((long * 4)) -le $((short * 5)) ]; then
   ok "peak memory: 300 jobs $short KiB, 3000 jobs $long KiB"
 else
-  bad "peak memory" "300 jobs: $short KiB, 3000 jobs: $long KiB (more than 10% apart)"
+  bad "peak memory" "300 jobs: $short KiB, 3000 jobs: $long KiB (more than 25% apart)"
 fi
 
 finish
