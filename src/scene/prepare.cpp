@@ -38,8 +38,8 @@ constexpr std::uint32_t kNoVertex = 0xffffffffu;
 // either way.
 constexpr float kCreaseAngle = 60.0f * 3.14159265f / 180.0f;
 
-glm::vec3 face_normal(const std::vector<glm::vec3>& positions, std::uint32_t a, std::uint32_t b, std::uint32_t c) {
-  const glm::vec3 n = glm::cross(positions[b] - positions[a], positions[c] - positions[a]);
+glm::vec3 face_normal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
+  const glm::vec3 n = glm::cross(b - a, c - a);
   const float length = glm::length(n);
   // A degenerate triangle draws nothing, so any unit normal will do.
   return length > 0.0f ? n / length : glm::vec3(0, 0, 1);
@@ -112,7 +112,6 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   for (std::size_t g = 0; g < out.groups.size(); ++g) {
     if (!one_group) out.groups[g].indices.reserve(3 * group_size[g]);
     out.groups[g].triangles.reserve(group_size[g]);
-    out.groups[g].face_normals.reserve(group_size[g]);
     if (has_face_colors) out.groups[g].face_colors.reserve(group_size[g]);
   }
   for (std::size_t t = 0; t < triangles; ++t) {
@@ -125,8 +124,6 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
     const std::uint32_t a = corner_indices[3 * t], b = corner_indices[3 * t + 1], c = corner_indices[3 * t + 2];
     if (!one_group) g.indices.insert(g.indices.end(), {a, b, c});
     g.triangles.push_back(static_cast<std::uint32_t>(t));
-    const bool in_range = a < n && b < n && c < n;
-    g.face_normals.push_back(in_range ? face_normal(source.positions, a, b, c) : glm::vec3(0, 0, 1));
     if (has_face_colors) g.face_colors.push_back(mesh.face_colors[t]);
   }
 
@@ -176,6 +173,22 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   out.center = box.center();
   out.radius = box.radius();
   return out;
+}
+
+void prepare_face_normals(PreparedMesh& prepared) {
+  if (prepared.face_normals_prepared) return;
+  const std::vector<MeshVertex>& vertices = prepared.vertices;
+  const std::size_t n = vertices.size();
+  for (TriangleGroup& g : prepared.groups) {
+    g.face_normals.resize(g.indices.size() / 3);
+    for (std::size_t t = 0; t < g.face_normals.size(); ++t) {
+      const std::uint32_t a = g.indices[3 * t], b = g.indices[3 * t + 1], c = g.indices[3 * t + 2];
+      g.face_normals[t] = a < n && b < n && c < n
+                              ? face_normal(vertices[a].position, vertices[b].position, vertices[c].position)
+                              : glm::vec3(0, 0, 1);
+    }
+  }
+  prepared.face_normals_prepared = true;
 }
 
 void prepare_edges(PreparedMesh& prepared, const Mesh& mesh) {

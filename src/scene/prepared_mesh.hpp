@@ -21,7 +21,7 @@ struct TriangleGroup {
   std::int32_t material = -1;  // -1: the default material
   std::vector<std::uint32_t> indices;
   std::vector<std::uint32_t> triangles;  // the mesh's index of each triangle of the group
-  std::vector<glm::vec3> face_normals;   // object space, unit length
+  std::vector<glm::vec3> face_normals;   // object space, unit length; by prepare_face_normals
   std::vector<glm::vec4> face_colors;    // empty when the mesh has none (or has vertex colours, which win)
 };
 
@@ -32,10 +32,12 @@ struct PreparedMesh {
   // mesh's edges costs more than drawing it.
   std::vector<std::uint32_t> edge_indices;
   bool edges_prepared = false;
+  // Only flat shading reads the groups' face normals (12 bytes a triangle): listed the first time a frame needs them.
+  bool face_normals_prepared = false;
   // Where each of the mesh's vertices went when the groups' vertices were laid out apart (empty: nowhere else).
   std::vector<std::uint32_t> first_copy;
-  std::vector<const Texture*> textures;     // per material; nullptr = none or failed to load
-  glm::vec3 center{0.0f};                   // bounding sphere, object space
+  std::vector<const Texture*> textures;  // per material; nullptr = none or failed to load
+  glm::vec3 center{0.0f};                // bounding sphere, object space
   float radius = 0.0f;
 };
 
@@ -53,5 +55,8 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures);
 
 // Lists the edges of the mesh the prepared data came from (once; later calls return at once).
 void prepare_edges(PreparedMesh& prepared, const Mesh& mesh);
+
+// Computes each group's face normals from its vertices (once; later calls return at once).
+void prepare_face_normals(PreparedMesh& prepared);
 
 }  // namespace facet::detail

@@ -112,11 +112,11 @@ std::vector<std::size_t> Scene::Impl::blended(const detail::FrameContext& frame,
 std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options) {
   const detail::FrameContext frame = detail::frame_context(view, options);
   const std::vector<std::size_t> order = impl_->visible(frame);
-  if (options.wireframe || options.edges)
-    for (const std::size_t i : order) {
-      const Mesh& mesh = *impl_->instances[i].mesh;
-      detail::prepare_edges(impl_->prepared.at(&mesh), mesh);
-    }
+  for (const std::size_t i : order) {
+    const Mesh& mesh = *impl_->instances[i].mesh;
+    if (options.wireframe || options.edges) detail::prepare_edges(impl_->prepared.at(&mesh), mesh);
+    if (options.shading == Shading::flat) detail::prepare_face_normals(impl_->prepared.at(&mesh));
+  }
   for (const std::size_t i : order) {
     const Instance& instance = impl_->instances[i];
     detail::draw_instance(renderer, target, frame, instance, impl_->prepared_of(instance), detail::DrawPass::opaque);
