@@ -10,6 +10,7 @@
 #include <utility>
 
 #include "facet/detail/bits.hpp"
+#include "facet/detail/default_init.hpp"
 #include "facet/error.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/mesh.hpp"
@@ -111,25 +112,7 @@ using NormalBits = std::array<std::uint32_t, 3>;
 // elements are default-initialised (left unset, for these types) rather than zeroed: each is written before it is
 // read, and zeroing first would write every byte twice (a memset was 18% of an 870k-triangle PLY's render).
 template <class T>
-struct ScratchAllocator : CacheAlignedAllocator<T> {
-  template <class U>
-  struct rebind {
-    using other = ScratchAllocator<U>;
-  };
-  ScratchAllocator() = default;
-  template <class U>
-  ScratchAllocator(const ScratchAllocator<U>&) noexcept {}
-  template <class U>
-  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-template <class T>
-using Scratch = std::vector<T, ScratchAllocator<T>>;
+using Scratch = std::vector<T, detail::DefaultInitAllocator<CacheAlignedAllocator<T>>>;
 
 NormalBits bits_of(const glm::vec3& v) {
   return {detail::bit_cast<std::uint32_t>(v.x), detail::bit_cast<std::uint32_t>(v.y),

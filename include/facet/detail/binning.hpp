@@ -10,6 +10,7 @@
 #include <utility>
 #include <vector>
 
+#include "facet/detail/default_init.hpp"
 #include "facet/detail/triangle_setup.hpp"
 #include "facet/framebuffer.hpp"
 
@@ -32,32 +33,14 @@ inline std::size_t setup_chunk_size(std::size_t primitives) {
   return std::clamp<std::size_t>((primitives + 7) / 8, kMinSetupChunk, kSetupChunk);
 }
 
-// An allocator whose emplace_back() leaves a new element default-initialised: setup writes every field of a
-// TriangleSetup in place, and value-initialisation would first zero all 136 bytes of it.
-template <class T>
-struct DefaultInitAllocator : std::allocator<T> {
-  template <class U>
-  struct rebind {
-    using other = DefaultInitAllocator<U>;
-  };
-  using std::allocator<T>::allocator;
-  template <class U>
-  void construct(U* p) noexcept(std::is_nothrow_default_constructible_v<U>) {
-    ::new (static_cast<void*>(p)) U;
-  }
-  template <class U, class... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-};
-
 // A chunk's bins are one flat array sorted by tile (a counting sort after setup): tile t's triangles are
 // binned[first[t]] .. binned[first[t + 1] - 1], in draw order. Flat arrays only grow with the number of
 // (triangle, tile) pairs, so steady-state frames reuse their memory instead of allocating. Neighbouring chunks are
 // set up by different threads at once, and each bumps its own vectors' ends and counters per triangle: a chunk
 // starts a cache line so that those writes do not contend.
 struct alignas(64) SetupChunk {
-  std::vector<TriangleSetup, DefaultInitAllocator<TriangleSetup>> triangles;
+  // Setup writes every field of a TriangleSetup in place; value-initialisation would first zero all 136 bytes.
+  std::vector<TriangleSetup, DefaultInitAllocator<std::allocator<TriangleSetup>>> triangles;
   std::vector<std::uint32_t> pair_tile, pair_triangle;  // (tile, triangle) pairs in the order setup emits them
   std::vector<std::uint32_t> first;                     // per tile, plus one end marker
   std::vector<std::uint32_t> binned;
