@@ -40,8 +40,8 @@ template <Shader S>
     for (int bx = x0 & ~(kBlockSize - 1); bx <= x1; bx += kBlockSize) {
       const int i0 = std::max(x0 - bx, 0), i1 = std::min(x1 - bx, kBlockSize - 1);
       const int j0 = std::max(y0 - by, 0), j1 = std::min(y1 - by, kBlockSize - 1);
-      const std::size_t block =
-          static_cast<std::size_t>((by - work.y0) / kBlockSize * (kTileSize / kBlockSize) + (bx - work.x0) / kBlockSize);
+      const std::size_t block = static_cast<std::size_t>((by - work.y0) / kBlockSize * (kTileSize / kBlockSize) +
+                                                         (bx - work.x0) / kBlockSize);
       const auto range = [&](int s) __attribute__((always_inline)) {
         return raster_block_depth_range(views[s], state.depth_offset, bx + i0, by + j0, bx + i1, by + j1);
       };
@@ -99,21 +99,22 @@ template <Shader S>
 
   with_depth_func(
       state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
-        for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
-          for (int s = 0; s < n; ++s) {
-            const TriangleSetup view = at_sample(tri, pattern.offset[s]);
-            if (state.depth_test) raster_triangle_visibility<kFunc, true>(view, state, planes[s], ref);
-            else raster_triangle_visibility<kFunc, false>(view, state, planes[s], ref);
-          }
-        });
+        for_each_tile_triangle(
+            work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
+              for (int s = 0; s < n; ++s) {
+                const TriangleSetup view = at_sample(tri, pattern.offset[s]);
+                if (state.depth_test) raster_triangle_visibility<kFunc, true>(view, state, planes[s], ref);
+                else raster_triangle_visibility<kFunc, false>(view, state, planes[s], ref);
+              }
+            });
       });
 
   RenderState resolved = state;
   resolved.depth_test = false;
   const ShadeContext<S> shade{ctx.shader, &resolved};
   const int width = work.x1 - work.x0, height = work.y1 - work.y0;
-  // Per strip, the samples in order; each sample's 16 colours stay here for the later samples to copy. Lanes a
-  // sample neither covers nor fills keep an older strip's values, which nothing reads.
+  // Per strip, each sample's 16 colours. Lanes a sample neither covers nor fills keep an older strip's values, which
+  // nothing reads.
   alignas(64) std::uint32_t colors[kMaxSamples][simd::kLanes] = {};
   for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
     for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
@@ -121,52 +122,80 @@ template <Shader S>
         const std::size_t at = scratch_index(block_x, block_y) + static_cast<std::size_t>(strip) * simd::kLanes;
         const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
         const unsigned inside = work.clear.color ? strip_inside(work, px, py) : 0u;
+        const std::uint32_t* refs[kMaxSamples];
+        unsigned covered[kMaxSamples];
+        [[maybe_unused]] unsigned pending[kMaxSamples];  // lanes not yet shaded, for lane shaders
+        [[maybe_unused]] unsigned waiting = 0;
         for (int s = 0; s < n; ++s) {
-          const TileWork& plane = planes[s];
-          const std::uint32_t* refs = plane.scratch->triangle + at;
-          const unsigned covered = ~strip_lanes_equal(refs, kNoTriangle) & 0xffffu;
-          const unsigned fill = inside & ~covered;
-          if (!(covered | fill)) continue;
-          std::uint32_t* out = colors[s];
-          // Lanes whose triangle an earlier sample kept take that sample's colour; lanes without one, the clear.
-          unsigned copied = 0;
-          for (int t = 0; t < s && (covered & ~copied); ++t) {
-            const std::uint32_t* earlier = planes[t].scratch->triangle + at;
-            const std::uint32_t* from = colors[t];
-            unsigned same = 0;
+          refs[s] = planes[s].scratch->triangle + at;
+          covered[s] = pending[s] = ~strip_lanes_equal(refs[s], kNoTriangle) & 0xffffu;
+          waiting |= covered[s];
+        }
+        if constexpr (LaneShader<S>) {
+          // Each (pixel, triangle) pair of the strip is shaded once, whichever samples it covers: a round shades,
+          // in every lane, the triangle of the first sample still waiting there, and gives the colour to each
+          // sample holding that triangle in that lane. Inside a triangle that is one round; where edges cross the
+          // strip, one more for each further triangle a pixel meets.
+          const auto lanes_of = [](unsigned bits) __attribute__((always_inline)) {
+            return (((simd::Int{} + static_cast<std::int32_t>(bits)) >> simd::kLaneIndex) & 1) != 0;
+          };
+          while (waiting) {
+            simd::UInt own_refs = simd::UInt{} + kNoTriangle;
+            for (int s = n - 1; s >= 0; --s)
+              own_refs = simd::blend(lanes_of(pending[s]), simd::load<simd::UInt>(refs[s]), own_refs);
+            alignas(64) std::uint32_t own[simd::kLanes];
+            simd::store(own, own_refs);
+            FragmentLanes<typename S::Varyings> fragment;
+            prepare_strip_lanes(shade, planes[0], px, py, own, nullptr, fragment);
+            const simd::UInt shaded = simd::pack_rgba8(ctx.shader->fragment_lanes(fragment));
+            waiting = 0;
+            for (int s = 0; s < n; ++s) {
+              if (!pending[s]) continue;
+              const unsigned taken = simd::lane_bits(simd::load<simd::UInt>(refs[s]) == own_refs) & pending[s];
+              simd::store(colors[s], simd::blend(lanes_of(taken), shaded, simd::load<simd::UInt>(colors[s])));
+              waiting |= pending[s] &= ~taken;
+            }
+          }
+          for (int s = 0; s < n; ++s) {
+            const unsigned fill = inside & ~covered[s];
+            if (!(covered[s] | fill)) continue;
+            if (fill)
+              simd::store(colors[s], simd::blend(lanes_of(fill), simd::UInt{} + work.clear.color_value,
+                                                 simd::load<simd::UInt>(colors[s])));
+            store_strip(planes[s], px, py, covered[s] | fill, colors[s]);
+          }
+        } else {
+          for (int s = 0; s < n; ++s) {
+            const TileWork& plane = planes[s];
+            const unsigned fill = inside & ~covered[s];
+            if (!(covered[s] | fill)) continue;
+            std::uint32_t* out = colors[s];
+            // Lanes whose triangle an earlier sample kept take that sample's colour; the rest are shaded.
+            unsigned copied = 0;
+            for (int t = 0; t < s && (covered[s] & ~copied); ++t) {
+              unsigned same = 0;
 #pragma GCC unroll 1
-            for (int k = 0; k < simd::kLanes; ++k) {
-              const bool take = refs[k] == earlier[k] && !((copied >> k) & 1) && ((covered >> k) & 1);
-              out[k] = take ? from[k] : out[k];
-              same |= static_cast<unsigned>(take) << k;
-            }
-            copied |= same;
-          }
-          const unsigned shaded = covered & ~copied;
-          if (shaded) {
-            if constexpr (LaneShader<S>) {
-              alignas(64) std::uint32_t own[simd::kLanes];
-              for (int k = 0; k < simd::kLanes; ++k) own[k] = (shaded >> k) & 1 ? refs[k] : kNoTriangle;
-              FragmentLanes<typename S::Varyings> fragment;
-              prepare_strip_lanes(shade, plane, px, py, own, nullptr, fragment);
-              alignas(64) std::uint32_t lanes[simd::kLanes];
-              simd::store(lanes, simd::pack_rgba8(ctx.shader->fragment_lanes(fragment)));
-              for (int k = 0; k < simd::kLanes; ++k) out[k] = (shaded >> k) & 1 ? lanes[k] : out[k];
-            } else {
-              for (unsigned pending = shaded; pending;) {
-                const std::uint32_t ref = refs[std::countr_zero(pending)];
-                const unsigned same = strip_lanes_equal(refs, ref) & shaded;
-                pending &= ~same;
-                shade_block_quads(shade, triangle_at(work, ref), plane, px, py, std::uint64_t{same});
+              for (int k = 0; k < simd::kLanes; ++k) {
+                const bool take = refs[s][k] == refs[t][k] && !((copied >> k) & 1) && ((covered[s] >> k) & 1);
+                out[k] = take ? colors[t][k] : out[k];
+                same |= static_cast<unsigned>(take) << k;
               }
-              for (unsigned b = shaded; b; b &= b - 1) {
-                const int k = std::countr_zero(b);
-                out[k] = plane.color[static_cast<std::size_t>(py + (k >> 3)) * work.stride + px + (k & 7)];
-              }
+              copied |= same;
             }
+            const unsigned shaded = covered[s] & ~copied;
+            for (unsigned pending = shaded; pending;) {
+              const std::uint32_t ref = refs[s][std::countr_zero(pending)];
+              const unsigned same = strip_lanes_equal(refs[s], ref) & shaded;
+              pending &= ~same;
+              shade_block_quads(shade, triangle_at(work, ref), plane, px, py, std::uint64_t{same});
+            }
+            for (unsigned b = shaded; b; b &= b - 1) {
+              const int k = std::countr_zero(b);
+              out[k] = plane.color[static_cast<std::size_t>(py + (k >> 3)) * work.stride + px + (k & 7)];
+            }
+            for (int k = 0; k < simd::kLanes; ++k) out[k] = (fill >> k) & 1 ? work.clear.color_value : out[k];
+            store_strip(plane, px, py, covered[s] | fill, out);
           }
-          for (int k = 0; k < simd::kLanes; ++k) out[k] = (fill >> k) & 1 ? work.clear.color_value : out[k];
-          store_strip(plane, px, py, covered | fill, out);
         }
       }
 
