@@ -82,10 +82,11 @@ template <Shader S>
 }
 
 // Deferred shading with several samples: the visibility pass of every sample plane, triangle by triangle in draw
-// order, then one shading pass over the strips, each strip's samples in order. A pixel's sample whose triangle an
-// earlier sample of the pixel also kept takes that sample's colour (the shader runs at the centre either way, so it
-// is the same colour); only a triangle new to the pixel is shaded, with the strip's other lanes masked off. Inside
-// a triangle, that is one shading per pixel; on an edge, one per triangle meeting there.
+// order, then one shading pass over the strips. The shader runs at the pixel centre, so all samples of a pixel that
+// kept one triangle take one colour: a lane shader shades the strip in rounds, each giving every lane the triangle
+// of its first sample still waiting; other shaders shade the samples in order, each copying the colours of an
+// earlier sample's triangles and shading only the triangles new to the pixel. Inside a triangle that is one shading
+// per pixel; on an edge, one per triangle meeting there.
 template <Shader S>
 [[gnu::always_inline]] inline void raster_tile_deferred_multisample(const ShadeContext<S>& ctx, const TileWork& work) {
   const RenderState& state = *ctx.state;
