@@ -74,9 +74,9 @@ struct alignas(simd::kLaneAlign) FragmentLanes {
 //     simd::Color fragment_lanes(const FragmentLanes<Varyings>&) const;
 // computing, lane for lane, what fragment() computes. The pipeline then shades 16 fragments per call instead of
 // one; fragment() stays the definition (and the path for shaders without a lane version). Lane shading is used
-// only for shaders that cannot discard. Declare it FACET_LANES_INLINE, and mark any helper or lambda that takes or
-// returns lane types always_inline too: one left out of line is compiled for the baseline ISA and called from an
-// AVX-512 or AVX2 clone, which passes the vectors differently (simd.hpp).
+// only for shaders that cannot discard. Declare it FACET_LANES_INLINE, and its helpers too, for speed: a function
+// left out of line is compiled for the baseline ISA only. It still computes the right values, since lane types
+// pass between functions through memory in every ISA (simd.hpp).
 template <class S>
 concept LaneShader =
     Shader<S> && !S::may_discard && requires(const S& shader, const FragmentLanes<typename S::Varyings>& fragment) {

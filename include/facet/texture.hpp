@@ -294,7 +294,7 @@ inline simd::Int Texture::bilinear_repeat_pow2_first(const simd::Vec2& uv, simd:
   using namespace simd;
   const Level& l = levels_[0];
   // Lambdas over lane types are forced inline, like every lane function: one left out of line would be compiled
-  // for the baseline ISA while its caller is an AVX-512 or AVX2 clone, which passes vectors differently.
+  // for the baseline ISA only.
   auto split = [&](Float v, Int & index, Float & fraction) __attribute__((always_inline)) {
     v = clamp_texel_coordinate(v);
     // split_floor's values: within the clamp's +-2^30, floor(v) converts to an int exactly. One rounding
@@ -351,7 +351,7 @@ inline simd::Color Texture::bilinear_repeat_pow2_lanes(const simd::Vec2& uv) con
   const UInt t01 = shuffle(u0, u1, even), t11 = shuffle(u0, u1, odd);
   auto channel = [&](int shift) __attribute__((always_inline)) {
     auto bytes = [&](UInt t) __attribute__((always_inline)) {
-      return to_float(__builtin_convertvector((t >> shift) & 0xffu, Int));
+      return to_float(to_int((t >> shift) & 0xffu));
     };
     const Float c00 = bytes(t00), c10 = bytes(t10), c01 = bytes(t01), c11 = bytes(t11);
     const Float bottom = c00 + (c10 - c00) * alpha;

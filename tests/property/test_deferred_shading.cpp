@@ -53,7 +53,7 @@ struct ProbeShader {
       r += 40.0f * f.ddx[3];
       g += 40.0f * f.ddy[1];
     }
-    const Float third = to_float(reinterpret_cast<Int>(f.primitive % 3u));
+    const Float third = to_float(to_int(f.primitive % 3u));
     const Float b = 0.5f * f.depth + 0.25f * third + blend(f.front_facing, splat(0.0f), splat(0.125f)) +
                     0.001f * f.screen_x - 0.001f * f.screen_y;
     return {r, g, b, splat(1.0f)};

@@ -86,8 +86,9 @@ inline unsigned strip_inside(const TileWork& work, int px, int py) {
   using namespace simd;
 #if defined(__clang__)
   // Clang folds shuffle()'s loop into a shuffle only when it sees literal lane numbers.
-  const UInt left = __builtin_shufflevector(refs, refs, 15, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14);
-  const UInt above = __builtin_shufflevector(refs, refs, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 4, 5, 6, 7);
+  const native::UInt r = refs.native;
+  const UInt left = __builtin_shufflevector(r, r, 15, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14);
+  const UInt above = __builtin_shufflevector(r, r, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 4, 5, 6, 7);
 #else
   const UInt left = shuffle(refs, (kLaneIndex - 1) & 15), above = shuffle(refs, kLaneIndex ^ 8);
 #endif
@@ -124,7 +125,7 @@ template <LaneShader S>
     // strip_lanes_equal): each clone compiles it to one compare per triangle and one masked move or blend per slot,
     // which the AVX-512 clone folds into the value's last addition. GCC 12 lowers `mask ? a : b` on the lane types
     // lane by lane here, and a bitwise blend costs two instructions (AVX-512) or three per half (AVX2).
-    const auto put = [&](auto& slot, auto value) __attribute__((always_inline)) {
+    const auto put = [&](auto& slot, const auto& value) __attribute__((always_inline)) {
       if constexpr (kFirst) {
         slot = value;
       } else {
@@ -132,10 +133,12 @@ template <LaneShader S>
         // Clang keeps the loop below scalar; the lane types' bitwise blend is the same choice, in vector code.
         slot = simd::blend(strip_refs == ref, value, slot);
 #else
-        using Lane = std::remove_reference_t<decltype(slot[0])>;
-        Lane* lanes = reinterpret_cast<Lane*>(&slot);
+        // On the bare vectors: the vectoriser keeps the lane types' element reads in memory.
+        using Lane = typename std::remove_reference_t<decltype(slot)>::scalar_type;
+        Lane* lanes = reinterpret_cast<Lane*>(&slot.native);
+        const auto values = value.native;
 #pragma GCC unroll 1
-        for (int k = 0; k < kLanes; ++k) lanes[k] = refs[k] == ref ? value[k] : lanes[k];
+        for (int k = 0; k < kLanes; ++k) lanes[k] = refs[k] == ref ? values[k] : lanes[k];
 #endif
       }
     };
