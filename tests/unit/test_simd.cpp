@@ -60,6 +60,24 @@ TEST(SimdUniformOperands, DotMatchesGlmBitForBit) {
   for (int k = 0; k < simd::kLanes; ++k) EXPECT_EQ(bits(glm::dot(lane(v, k), uniform)), bits(d[k])) << "lane " << k;
 }
 
+// simd::bit_cast reads a lane type's bits as another's (std::bit_cast per lane); to_int and to_uint convert values.
+TEST(SimdConversions, BitCastKeepsBitsAndConversionsKeepValues) {
+  const simd::Vec3 v = awkward_lanes();
+  const simd::UInt as_bits = simd::bit_cast<simd::UInt>(v.x);
+  const simd::Float back = simd::bit_cast<simd::Float>(as_bits);
+  for (int k = 0; k < simd::kLanes; ++k) {
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(v.x[k]), as_bits[k]) << "lane " << k;
+    EXPECT_EQ(std::bit_cast<std::uint32_t>(v.x[k]), std::bit_cast<std::uint32_t>(back[k])) << "lane " << k;
+  }
+  const simd::Int small = simd::kLaneIndex - 8;
+  const simd::UInt wrapped = simd::to_uint(small);
+  const simd::Int again = simd::to_int(wrapped);
+  for (int k = 0; k < simd::kLanes; ++k) {
+    EXPECT_EQ(static_cast<std::uint32_t>(k - 8), wrapped[k]) << "lane " << k;
+    EXPECT_EQ(k - 8, again[k]) << "lane " << k;
+  }
+}
+
 #pragma GCC diagnostic pop
 
 }  // namespace
