@@ -8,18 +8,20 @@ set -euo pipefail
 build=${1:?usage: clang_check.sh BUILD_DIR}
 clang=$(command -v clang++ || true)
 [ -n "$clang" ] || { echo "clang_check.sh: clang++ not found (scripts/deps.sh installs it)" >&2; exit 1; }
+# ccache caches front-end-only runs (with their warnings) like compiles, so unchanged files cost a lookup.
+launcher=$(command -v ccache || true)
 commands=$build/compile_commands.json
 [ -f "$commands" ] || { echo "clang_check.sh: $commands not found (configure the build first)" >&2; exit 1; }
 
 # One line per file: the GCC command with Clang in place of the compiler and no output file.
-python3 - "$commands" "$clang" > "$build/clang_check.commands" <<'PY'
+python3 - "$commands" "$clang" "$launcher" > "$build/clang_check.commands" <<'PY'
 import json, shlex, sys
-entries, clang = json.load(open(sys.argv[1])), sys.argv[2]
+entries, clang, launcher = json.load(open(sys.argv[1])), sys.argv[2], sys.argv[3]
 for e in entries:
     if "/tests/" in e["file"] and not e["file"].endswith("support/test_shaders.cpp"):
         continue
     args = e.get("arguments") or shlex.split(e["command"])
-    out, skip = [clang], False
+    out, skip = ([launcher] if launcher else []) + [clang], False
     for a in args[1:]:
         if skip: skip = False; continue
         if a == "-o": skip = True; continue
