@@ -19,14 +19,26 @@ cat "$e2e_lib/png.py" - >"$check" <<'EOF'
 import ast, array  # struct and sys come with png.py
 
 def model_mask(w, h, ch, rows):
+    """One bytes object per row, 1 where the pixel is model; whole rows at a time, as pure python is slow per pixel."""
     # Background = the top-left pixel's colour (auto-framed models never reach the corner).
     bg = rows[0][:ch]
-    return [[any(abs(rows[y][x * ch + k] - bg[k]) > 2 for k in range(ch)) for x in range(w)] for y in range(h)]
+    far = [bytes(int(abs(v - bg[k]) > 2) for v in range(256)) for k in range(ch)]
+    mask = []
+    for row in rows:
+        bits = 0
+        for k in range(ch):
+            bits |= int.from_bytes(row[k::ch].translate(far[k]), 'big')
+        mask.append(bits.to_bytes(w, 'big'))
+    return mask
 
 def bbox(mask):
-    ys = [y for y, r in enumerate(mask) if any(r)]
-    xs = [x for x in range(len(mask[0])) if any(r[x] for r in mask)]
-    return (min(xs), min(ys), max(xs), max(ys)) if ys else None
+    ys = [y for y, r in enumerate(mask) if r.count(1)]
+    columns = 0
+    for r in mask:
+        columns |= int.from_bytes(r, 'big')
+    cols = columns.to_bytes(len(mask[0]), 'big')
+    xs = (len(cols) - len(cols.lstrip(b'\0')), len(cols.rstrip(b'\0')) - 1)
+    return (xs[0], min(ys), xs[1], max(ys)) if ys else None
 
 cmd, path = sys.argv[1], sys.argv[2]
 if cmd == 'image':  # image FILE W H [inside]: size, 1%..99% model pixels, optionally clear of the border
@@ -34,7 +46,7 @@ if cmd == 'image':  # image FILE W H [inside]: size, 1%..99% model pixels, optio
     if (w, h) != (int(sys.argv[3]), int(sys.argv[4])):
         sys.exit(f'size {w}x{h}, expected {sys.argv[3]}x{sys.argv[4]}')
     mask = model_mask(w, h, ch, rows)
-    frac = sum(map(sum, mask)) / (w * h)
+    frac = sum(r.count(1) for r in mask) / (w * h)
     box = bbox(mask)
     if not 0.01 <= frac <= 0.99:
         sys.exit(f'model covers {frac:.1%} of the image')
