@@ -116,8 +116,8 @@ struct Draw {
 
 template <class S>
 Framebuffer render(const std::vector<Draw>& draws, int width, int height, bool deferred, int threads,
-                   float clear_depth = 1.0f) {
-  Framebuffer fb(width, height);
+                   float clear_depth = 1.0f, int samples = 1) {
+  Framebuffer fb(width, height, samples);
   Renderer renderer(threads);
   renderer.clear(fb, glm::vec4(0.1f, 0.1f, 0.15f, 1.0f), clear_depth);
   const S shader;
@@ -144,6 +144,27 @@ void expect_deferred_matches(const std::vector<Draw>& draws, int width, int heig
   }
 }
 
+// With several samples per pixel: the shader runs once per pixel and triangle, at the pixel centre, whichever
+// samples that triangle covers. Deferred lane shading gathers the further triangles of pixels on edges from all over
+// the tile into its 16 lanes; each must get what the scalar fragment computes for that pixel and triangle.
+template <bool kDerivatives>
+void expect_multisampled_deferred_matches(const std::vector<Draw>& draws, int width, int height, int samples) {
+  const Framebuffer expected =
+      render<ProbeShader<false, kDerivatives>>(draws, width, height, false, 1, 1.0f, samples);
+  for (const int threads : {1, 3}) {
+    const Framebuffer scalar = render<ProbeShader<false, kDerivatives>>(draws, width, height, true, threads, 1.0f, samples);
+    const Framebuffer lanes = render<ProbeShader<true, kDerivatives>>(draws, width, height, true, threads, 1.0f, samples);
+    for (int k = 0; k < samples; ++k) {
+      EXPECT_TRUE(std::ranges::equal(scalar.sample_color(k), expected.sample_color(k)))
+          << samples << " samples, deferred, scalar fragment: sample " << k;
+      EXPECT_TRUE(std::ranges::equal(lanes.sample_color(k), expected.sample_color(k)))
+          << samples << " samples, deferred, lane fragment: sample " << k;
+    }
+    expect_same(expected, scalar, "multisampled, deferred, scalar fragment");
+    expect_same(expected, lanes, "multisampled, deferred, lane fragment");
+  }
+}
+
 glm::mat4 camera(glm::vec3 offset) {
   return glm::perspective(glm::radians(50.0f), 4.0f / 3.0f, 0.5f, 10.0f) * glm::translate(glm::mat4(1), offset);
 }
@@ -153,6 +174,17 @@ TEST(DeferredShading, DenseSphereMatchesImmediate) {
   const std::vector<Draw> draws{{closed_sphere(40, 64, camera({0.2f, -0.1f, -3.0f})), RenderState{}}};
   expect_deferred_matches<false>(draws, 203, 150);
   expect_deferred_matches<true>(draws, 203, 150);
+}
+
+TEST(DeferredShading, MultisampledDenseMeshesMatchImmediate) {
+  RenderState no_cull;
+  no_cull.cull = CullMode::none;
+  const std::vector<Draw> draws{{closed_sphere(40, 64, camera({0.2f, -0.1f, -3.0f})), RenderState{}},
+                                {triangle_soup(60, 7), no_cull}};
+  for (const int samples : {2, 4, 8}) {
+    expect_multisampled_deferred_matches<false>(draws, 203, 150, samples);
+    expect_multisampled_deferred_matches<true>(draws, 203, 150, samples);
+  }
 }
 
 TEST(DeferredShading, SeveralDrawsAndDepthFunctionsMatchImmediate) {
