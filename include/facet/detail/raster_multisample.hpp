@@ -140,6 +140,24 @@ template <Shader S>
           const auto lanes_of = [](unsigned bits) __attribute__((always_inline)) {
             return (((simd::Int{} + static_cast<std::int32_t>(bits)) >> simd::kLaneIndex) & 1) != 0;
           };
+          // Inside triangles, every sample of every pixel holds the same triangle: one round, and every sample
+          // plane takes the same colours, without sorting them out sample by sample.
+          simd::UInt differ = simd::UInt{};
+          for (int s = 1; s < n; ++s) differ |= simd::load<simd::UInt>(refs[s]) ^ simd::load<simd::UInt>(refs[0]);
+          if (simd::lane_bits(differ != 0u) == 0) {
+            const unsigned fill = inside & ~covered[0];
+            if (covered[0]) {
+              FragmentLanes<typename S::Varyings> fragment;
+              prepare_strip_lanes(shade, planes[0], px, py, refs[0], nullptr, fragment);
+              alignas(64) std::uint32_t strip_colors[simd::kLanes];
+              const simd::UInt shaded = simd::pack_rgba8(ctx.shader->fragment_lanes(fragment));
+              simd::store(strip_colors, simd::blend(fragment.active, shaded, simd::UInt{} + work.clear.color_value));
+              for (int s = 0; s < n; ++s) store_strip(planes[s], px, py, covered[0] | fill, strip_colors);
+            } else if (fill) {
+              for (int s = 0; s < n; ++s) fill_strip(planes[s], px, py, fill);
+            }
+            continue;
+          }
           while (waiting) {
             simd::UInt own_refs = simd::UInt{} + kNoTriangle;
             for (int s = n - 1; s >= 0; --s)
