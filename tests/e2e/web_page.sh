@@ -17,9 +17,9 @@ if ! (cd "$src/build-web" && npm ci --no-audit --no-fund --ignore-scripts >"$out
   echo "FAIL npm ci (log: $out/npm.log)"
   exit 1
 fi
-# The system python3, as in lib/common.bash.
-python=python3
-[ -x /usr/bin/python3 ] && python=/usr/bin/python3
+# For its python3: the system one.
+# shellcheck source=SCRIPTDIR/lib/common.bash
+source "$src/tests/e2e/lib/common.bash"
 status=0
 node "$src/tests/e2e/web_page.mjs" "$src/build-web" "$out" || status=1
 
@@ -27,7 +27,7 @@ node "$src/tests/e2e/web_page.mjs" "$src/build-web" "$out" || status=1
 # must draw the same picture as the host build (GCC, AVX-512 or AVX2 clones, glibc's).
 "$facet" render /usr/share/assimp/models/OBJ/WusonOBJ.obj --output "$out/cli_wuson.png" --resolution 640,480 \
   --samples 1
-"$python" - "$src/tests/e2e/lib" "$out/page_wuson.png" "$out/cli_wuson.png" <<'PY' || status=1
+python3 - "$src/tests/e2e/lib" "$out/page_wuson.png" "$out/cli_wuson.png" <<'PY' || status=1
 import sys
 sys.path.insert(0, sys.argv[1])
 from png import read_png
