@@ -176,14 +176,21 @@ template <LaneShader S>
   fragment.active = strip_refs != kNoTriangle;
 }
 
+// The prepared strip's 16 colours; lanes without a triangle take the clear colour (stored only where a fill asks).
+template <LaneShader S>
+[[gnu::always_inline]] inline void shade_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work,
+                                                     const FragmentLanes<typename S::Varyings>& fragment,
+                                                     std::uint32_t* colors) {
+  const simd::UInt shaded = simd::pack_rgba8(ctx.shader->fragment_lanes(fragment));
+  simd::store(colors, simd::blend(fragment.active, shaded, simd::UInt{} + work.clear.color_value));
+}
+
 template <LaneShader S>
 [[gnu::always_inline]] inline void finish_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px, int py,
                                                       unsigned covered, unsigned fill,
                                                       const FragmentLanes<typename S::Varyings>& fragment) {
   alignas(64) std::uint32_t colors[simd::kLanes];
-  const simd::UInt shaded = simd::pack_rgba8(ctx.shader->fragment_lanes(fragment));
-  // Lanes without a triangle take the clear colour (stored only where `fill` asks for it).
-  simd::store(colors, simd::blend(fragment.active, shaded, simd::UInt{} + work.clear.color_value));
+  shade_strip_lanes(ctx, work, fragment, colors);
   store_strip(work, px, py, covered | fill, colors);
 }
 

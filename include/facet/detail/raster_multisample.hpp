@@ -150,8 +150,7 @@ template <Shader S>
               FragmentLanes<typename S::Varyings> fragment;
               prepare_strip_lanes(shade, planes[0], px, py, refs[0], nullptr, fragment);
               alignas(64) std::uint32_t strip_colors[simd::kLanes];
-              const simd::UInt shaded = simd::pack_rgba8(ctx.shader->fragment_lanes(fragment));
-              simd::store(strip_colors, simd::blend(fragment.active, shaded, simd::UInt{} + work.clear.color_value));
+              shade_strip_lanes(shade, work, fragment, strip_colors);
               for (int s = 0; s < n; ++s) store_strip(planes[s], px, py, covered[0] | fill, strip_colors);
             } else if (fill) {
               for (int s = 0; s < n; ++s) fill_strip(planes[s], px, py, fill);
