@@ -145,15 +145,16 @@ void expect_deferred_matches(const std::vector<Draw>& draws, int width, int heig
 }
 
 // With several samples per pixel: the shader runs once per pixel and triangle, at the pixel centre, whichever
-// samples that triangle covers. Deferred lane shading gathers the further triangles of pixels on edges from all over
-// the tile into its 16 lanes; each must get what the scalar fragment computes for that pixel and triangle.
+// samples that triangle covers. Deferred lane shading shades a strip whose pixels meet several triangles in rounds,
+// a triangle per lane each; every lane must get what the scalar fragment computes for that pixel and triangle.
 template <bool kDerivatives>
 void expect_multisampled_deferred_matches(const std::vector<Draw>& draws, int width, int height, int samples) {
-  const Framebuffer expected =
-      render<ProbeShader<false, kDerivatives>>(draws, width, height, false, 1, 1.0f, samples);
+  using Scalar = ProbeShader<false, kDerivatives>;
+  using Lanes = ProbeShader<true, kDerivatives>;
+  const Framebuffer expected = render<Scalar>(draws, width, height, false, 1, 1.0f, samples);
   for (const int threads : {1, 3}) {
-    const Framebuffer scalar = render<ProbeShader<false, kDerivatives>>(draws, width, height, true, threads, 1.0f, samples);
-    const Framebuffer lanes = render<ProbeShader<true, kDerivatives>>(draws, width, height, true, threads, 1.0f, samples);
+    const Framebuffer scalar = render<Scalar>(draws, width, height, true, threads, 1.0f, samples);
+    const Framebuffer lanes = render<Lanes>(draws, width, height, true, threads, 1.0f, samples);
     for (int k = 0; k < samples; ++k) {
       EXPECT_TRUE(std::ranges::equal(scalar.sample_color(k), expected.sample_color(k)))
           << samples << " samples, deferred, scalar fragment: sample " << k;
