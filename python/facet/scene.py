@@ -31,6 +31,13 @@ def _color(value, default, name):
     return np.append(c, 1.0) if c.size == 3 else c
 
 
+# The limits model files are read within by default, as `facet render` reads them (see LoadOptions in the C++
+# library's model_io.hpp): files a model names are read only from inside its folder tree, at most 100 million
+# triangles are placed, and textures up to 16384 texels a side are decoded.
+DEFAULT_MAX_TRIANGLES = 100_000_000
+DEFAULT_MAX_TEXTURE_SIZE = 16384
+
+
 class Mesh:
     """A triangle mesh: positions N x 3, faces F x 3, and optional per-vertex normals, uvs and colours and a texture.
 
@@ -43,14 +50,21 @@ class Mesh:
         self._core = _facet.MeshCore(positions, faces, normals, uvs, colors, texture)
 
     @classmethod
-    def from_file(cls, path):
+    def from_file(cls, path, *, allow_external_files=False, max_triangles=DEFAULT_MAX_TRIANGLES,
+                  max_texture_size=DEFAULT_MAX_TEXTURE_SIZE):
         """The whole model file as one mesh in world space (every format `facet render` reads).
 
+        Model files are untrusted input, read within limits: the files a model names (materials, textures, buffers)
+        are read only from inside its folder tree unless allow_external_files; a model placing more than
+        max_triangles triangles is refused; a texture wider or taller than max_texture_size is not decoded (its
+        material is drawn untextured, with a warning).
+
         Raises FileNotFoundError for a missing file and facet.LoadError (an OSError and a ValueError) for one that
-        cannot be read, naming the file and the problem.
+        cannot be read, naming the file and the problem; ValueError for a limit out of range.
         """
         mesh = cls.__new__(cls)
-        mesh._core = _facet.MeshCore.from_file(str(path))
+        mesh._core = _facet.MeshCore.from_file(str(path), bool(allow_external_files), max_triangles,
+                                               max_texture_size)
         return mesh
 
     @classmethod
@@ -217,10 +231,12 @@ class Scene:
             self.add_node(node)
 
     @classmethod
-    def from_file(cls, path, bg_color=None, ambient_light=None):
+    def from_file(cls, path, bg_color=None, ambient_light=None, *, allow_external_files=False,
+                  max_triangles=DEFAULT_MAX_TRIANGLES, max_texture_size=DEFAULT_MAX_TEXTURE_SIZE):
         """Every mesh of a model file, placed by the file's nodes (node ids as the file numbers them), and the
-        file's cameras. Raises as Mesh.from_file does."""
-        meshes, instances, cameras = _facet.read_model(str(path))
+        file's cameras. Reads within the limits Mesh.from_file takes, and raises as it does."""
+        meshes, instances, cameras = _facet.read_model(str(path), bool(allow_external_files), max_triangles,
+                                                       max_texture_size)
         scene = cls(bg_color=bg_color, ambient_light=ambient_light)
         wrapped = []
         for core in meshes:

@@ -21,6 +21,22 @@ namespace py = pybind11;
 
 [[noreturn]] inline void value_error(const std::string& message) { throw py::value_error(message); }
 
+// A Python integer (anything with __index__, not a float) within [lo, hi]; raises ValueError naming `name`
+// otherwise, however large the integer.
+inline long long integer_in(py::handle value, const std::string& name, long long lo, long long hi) {
+  const py::object index = py::reinterpret_steal<py::object>(PyNumber_Index(value.ptr()));
+  if (!index) {
+    PyErr_Clear();
+    value_error(name + ": expected an integer");
+  }
+  int overflow = 0;
+  const long long v = PyLong_AsLongLongAndOverflow(index.ptr(), &overflow);
+  if (overflow || v < lo || v > hi)
+    value_error(name + ": expected " + std::to_string(lo) + ".." + std::to_string(hi) + ", got " +
+                py::str(index).cast<std::string>());
+  return v;
+}
+
 // The text of a dtype, for messages ("float64", "<U1").
 inline std::string dtype_name(const py::array& a) { return py::str(a.dtype()).cast<std::string>(); }
 

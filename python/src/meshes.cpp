@@ -153,11 +153,19 @@ Bounds SceneCore::world_bounds() const {
   return out;
 }
 
-py::tuple read_model_file(const std::string& path) {
+LoadOptions load_options_of(bool allow_external_files, py::handle max_triangles, py::handle max_texture_size) {
+  constexpr long long kMostTriangles = 1LL << 40;
+  return LoadOptions{
+      .allow_external_files = allow_external_files,
+      .max_triangles = static_cast<std::uint64_t>(integer_in(max_triangles, "max_triangles", 1, kMostTriangles)),
+      .max_texture_size = static_cast<int>(integer_in(max_texture_size, "max_texture_size", 1, kMaxTextureSize))};
+}
+
+py::tuple read_model_file(const std::string& path, const LoadOptions& options) {
   Model model;
   {
     py::gil_scoped_release released;
-    model = read_model(path);
+    model = read_model(path, options);
   }
   py::list meshes, instances, cameras;
   for (Mesh& mesh : model.meshes) meshes.append(MeshCore{std::make_shared<const Mesh>(std::move(mesh))});

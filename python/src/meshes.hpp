@@ -10,6 +10,7 @@
 
 #include "arrays.hpp"
 #include "facet/mesh.hpp"
+#include "facet/model_io.hpp"
 #include "facet/scene.hpp"
 
 namespace facet::python {
@@ -39,7 +40,11 @@ struct SceneCore {
   Bounds world_bounds() const;  // over every placed mesh's transformed box; empty when there is none
 };
 
+// The LoadOptions of the Python keywords allow_external_files, max_triangles and max_texture_size, in the ranges
+// `facet render` accepts for its flags; raises ValueError outside them.
+LoadOptions load_options_of(bool allow_external_files, py::handle max_triangles, py::handle max_texture_size);
+
 // read_model for Python: (meshes, [(mesh index, 4x4 pose, node id)], [camera dicts]).
-py::tuple read_model_file(const std::string& path);
+py::tuple read_model_file(const std::string& path, const LoadOptions& options);
 
 }  // namespace facet::python

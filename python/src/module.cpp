@@ -157,13 +157,14 @@ class RendererCore {
 py::dict render_file(const std::string& model, int width, int height, int threads, int samples, const std::string& shading,
                      float azimuth, float elevation, const std::string& projection, const std::string& up,
                      std::optional<int> camera_index, py::handle background, const std::vector<std::string>& buffers,
-                     bool rgba) {
+                     bool rgba, bool allow_external_files, py::handle max_triangles, py::handle max_texture_size) {
   if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
     value_error("width and height must lie in 1.." + std::to_string(kMaxDimension));
   if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
     value_error("samples: expected 1, 2, 4 or 8, got " + std::to_string(samples));
   RenderJob job;
   job.model = model;
+  job.load = load_options_of(allow_external_files, max_triangles, max_texture_size);
   job.width = width;
   job.height = height;
   job.samples = samples;
@@ -223,15 +224,16 @@ PYBIND11_MODULE(_facet, m) {
            py::arg("colors"), py::arg("texture"))
       .def_static(
           "from_file",
-          [](const std::string& path) {
+          [](const std::string& path, bool allow_external_files, py::handle max_triangles, py::handle max_texture_size) {
+            const facet::LoadOptions options = load_options_of(allow_external_files, max_triangles, max_texture_size);
             facet::Mesh mesh;
             {
               py::gil_scoped_release released;
-              mesh = facet::load_model(path);
+              mesh = facet::load_model(path, options);
             }
             return MeshCore{std::make_shared<const facet::Mesh>(std::move(mesh))};
           },
-          py::arg("path"))
+          py::arg("path"), py::arg("allow_external_files"), py::arg("max_triangles"), py::arg("max_texture_size"))
       .def_property_readonly("vertex_count", [](const MeshCore& c) { return c.mesh->vertex_count(); })
       .def_property_readonly("triangle_count", [](const MeshCore& c) { return c.mesh->triangle_count(); })
       .def_property_readonly("bounds", &MeshCore::bounds);
@@ -256,6 +258,11 @@ PYBIND11_MODULE(_facet, m) {
       .def("render", &RendererCore::render)
       .def("camera_json", &RendererCore::camera);
 
-  m.def("read_model", &read_model_file, py::arg("path"));
+  m.def(
+      "read_model",
+      [](const std::string& path, bool allow_external_files, py::handle max_triangles, py::handle max_texture_size) {
+        return read_model_file(path, load_options_of(allow_external_files, max_triangles, max_texture_size));
+      },
+      py::arg("path"), py::arg("allow_external_files"), py::arg("max_triangles"), py::arg("max_texture_size"));
   m.def("render_file", &render_file);
 }

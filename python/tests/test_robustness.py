@@ -1,5 +1,8 @@
 """test_robustness.py - bad input raises the right exception; memory stays flat; threads render in parallel."""
+import json
+import struct
 import threading
+import zlib
 
 import numpy as np
 import pytest
@@ -65,6 +68,73 @@ def test_missing_and_malformed_files_raise_os_errors(tmp_path):
         facet.Mesh.from_file(tmp_path)
     with pytest.raises(OSError, match="pond.0.ply"):
         facet.Scene.from_file("/usr/share/assimp/models/PLY/pond.0.ply")
+
+
+BOX = "/usr/share/assimp/models/OBJ/box.obj"  # 12 triangles
+# Every way Python reads a model file, each taking the load limits as keywords.
+LOADS = {
+    "Mesh.from_file": facet.Mesh.from_file,
+    "Scene.from_file": facet.Scene.from_file,
+    "render": lambda path, **limits: facet.render(path, width=32, height=24, buffers=["color"], **limits),
+}
+
+
+@pytest.mark.parametrize("load", LOADS.values(), ids=LOADS.keys())
+@pytest.mark.parametrize("limits, message", [
+    ({"max_triangles": 0}, "max_triangles: expected 1..1099511627776, got 0"),
+    ({"max_triangles": 2**70}, "max_triangles: expected 1..1099511627776, got 1180591620717411303424"),
+    ({"max_triangles": 1.5}, "max_triangles: expected an integer"),
+    ({"max_texture_size": 0}, "max_texture_size: expected 1..16384, got 0"),
+    ({"max_texture_size": 16385}, "max_texture_size: expected 1..16384, got 16385"),
+])
+def test_load_limits_out_of_range_raise_value_error(load, limits, message):
+    with pytest.raises(ValueError, match=message):
+        load(BOX, **limits)
+
+
+@pytest.mark.parametrize("load", LOADS.values(), ids=LOADS.keys())
+def test_a_model_over_the_triangle_limit_is_refused(load):
+    load(BOX, max_triangles=12)
+    with pytest.raises(facet.LoadError, match="box.obj: places 12 triangles, more than the limit of 11"):
+        load(BOX, max_triangles=11)
+
+
+@pytest.mark.parametrize("load", LOADS.values(), ids=LOADS.keys())
+def test_files_outside_the_model_folder_are_read_only_when_allowed(load, tmp_path):
+    (tmp_path / "outside.bin").write_bytes(np.array([0, 0, 0, 1, 0, 0, 0, 1, 0], dtype="<f4").tobytes())
+    model = tmp_path / "model" / "climbs.gltf"
+    model.parent.mkdir()
+    model.write_text(json.dumps({
+        "asset": {"version": "2.0"}, "scene": 0, "scenes": [{"nodes": [0]}], "nodes": [{"mesh": 0}],
+        "meshes": [{"primitives": [{"attributes": {"POSITION": 0}}]}],
+        "buffers": [{"uri": "../outside.bin", "byteLength": 36}],
+        "bufferViews": [{"buffer": 0, "byteLength": 36}],
+        "accessors": [{"bufferView": 0, "componentType": 5126, "count": 3, "type": "VEC3",
+                       "min": [0, 0, 0], "max": [1, 1, 0]}]}))
+    with pytest.raises(facet.LoadError, match="climbs.gltf"):
+        load(model)
+    load(model, allow_external_files=True)
+
+
+def _png(path, width, height):
+    """An opaque grey RGBA PNG, written with the standard library."""
+    def chunk(kind, data):
+        return struct.pack(">I", len(data)) + kind + data + struct.pack(">I", zlib.crc32(kind + data))
+    rows = b"".join(b"\0" + bytes([200, 200, 200, 255]) * width for _ in range(height))
+    path.write_bytes(b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
+                     chunk(b"IDAT", zlib.compress(rows)) + chunk(b"IEND", b""))
+
+
+@pytest.mark.parametrize("load", LOADS.values(), ids=LOADS.keys())
+def test_textures_over_the_size_limit_are_not_decoded(load, tmp_path, capfd):
+    _png(tmp_path / "big.png", 64, 64)
+    (tmp_path / "big.mtl").write_text("newmtl m\nKd 1 1 1\nmap_Kd big.png\n")
+    model = tmp_path / "big.obj"
+    model.write_text("mtllib big.mtl\nusemtl m\nv 0 0 0\nv 1 0 0\nv 0 1 0\nvt 0 0\nvt 1 0\nvt 0 1\nf 1/1 2/2 3/3\n")
+    load(model, max_texture_size=64)
+    assert "over the limit" not in capfd.readouterr().err
+    load(model, max_texture_size=32)
+    assert "is 64x64 texels, over the limit of 32 a side" in capfd.readouterr().err
 
 
 def test_memory_stays_flat_over_a_thousand_renders():
