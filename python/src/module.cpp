@@ -84,8 +84,7 @@ py::dict arrays_of(FrameBuffers&& b, const BufferRequest& request, bool rgba, st
 // One renderer per Python OffscreenRenderer: its threads and framebuffer, used by one render at a time.
 class RendererCore {
  public:
-  RendererCore(int width, int height, int threads, int samples)
-      : renderer_(threads), target_(width, height, samples) {}
+  RendererCore(int width, int height, int threads, int samples) : renderer_(threads), target_(width, height, samples) {}
 
   int width() const { return target_.width(); }
   int height() const { return target_.height(); }
@@ -154,10 +153,11 @@ class RendererCore {
 };
 
 // facet.render()'s work: a RenderJob, as `facet render` builds it, drawn into buffers.
-py::dict render_file(const std::string& model, int width, int height, int threads, int samples, const std::string& shading,
-                     float azimuth, float elevation, const std::string& projection, const std::string& up,
-                     std::optional<int> camera_index, py::handle background, const std::vector<std::string>& buffers,
-                     bool rgba, bool allow_external_files, py::handle max_triangles, py::handle max_texture_size) {
+py::dict render_file(const std::string& model, int width, int height, int threads, int samples,
+                     const std::string& shading, float azimuth, float elevation, const std::string& projection,
+                     const std::string& up, std::optional<int> camera_index, py::handle background,
+                     const std::vector<std::string>& buffers, bool rgba, bool allow_external_files,
+                     py::handle max_triangles, py::handle max_texture_size) {
   if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
     value_error("width and height must lie in 1.." + std::to_string(kMaxDimension));
   if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
@@ -224,7 +224,8 @@ PYBIND11_MODULE(_facet, m) {
            py::arg("colors"), py::arg("texture"))
       .def_static(
           "from_file",
-          [](const std::string& path, bool allow_external_files, py::handle max_triangles, py::handle max_texture_size) {
+          [](const std::string& path, bool allow_external_files, py::handle max_triangles,
+             py::handle max_texture_size) {
             const facet::LoadOptions options = load_options_of(allow_external_files, max_triangles, max_texture_size);
             facet::Mesh mesh;
             {

@@ -146,7 +146,6 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
 
   const std::size_t tiles = static_cast<std::size_t>(target.tiles_x()) * target.tiles_y();
   const int samples = target.samples();
-  const SamplePattern& pattern = sample_pattern(samples);
   const std::size_t scratch_needed = static_cast<std::size_t>(w.pool.size()) * static_cast<std::size_t>(samples);
   if (w.scratch.size() < scratch_needed) w.scratch.resize(scratch_needed);
   for (std::size_t batch_first = 0, next_batch = 0; batch_first < count; batch_first = next_batch) {
@@ -183,8 +182,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
                              .tiles_x = target.tiles_x(),
                              .cull = state.cull,
                              .line_width = state.line_width,
-                             .sample_lo = pattern.lo,
-                             .sample_hi = pattern.hi};
+                             .samples = samples};
       if (triangles) setup_triangles(input, chunk);
       else setup_lines(input, chunk);
       chunk.sort_by_tile(tiles);

@@ -1,5 +1,6 @@
 // cull.cpp - setup's culling tests on 16 triangles at once, branch-free: dense meshes drop most triangles fast.
 #include <algorithm>
+#include <bit>
 #include <cstdint>
 
 #include "facet/detail/dispatch.hpp"
@@ -15,9 +16,30 @@ namespace facet::detail {
 // integer arithmetic, for triangles whose corners are all inside the frustum: those it accepts are set up from
 // its results without classify; everything else it keeps (a corner outside, an invalid index) goes through the
 // full per-triangle path, so it may keep what classify rejects but never rejects what classify keeps.
-FACET_DISPATCH_LEVELS
-void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
+// Whether point (cx, cy) lies inside all three clockwise edges from corners X, Y (fill rule included): 1 or 0.
+// 32 bits are exact here: bounds of at most four pixels span under 7 pixels (1792 units) each way, so every
+// product stays below 2^22. Other lanes may wrap (unsigned, so defined) and are masked by the caller.
+[[gnu::always_inline]] inline std::int32_t inside_all(const std::int32_t X[3], const std::int32_t Y[3], std::int32_t cx,
+                                                      std::int32_t cy) {
+  const auto u = [](std::int32_t v) { return static_cast<std::uint32_t>(v); };
+  std::int32_t inside = 1;
+  for (int k = 0; k < 3; ++k) {
+    const int a = k, b = (k + 1) % 3;
+    const std::int32_t dx = X[b] - X[a], dy = Y[b] - Y[a];
+    const auto bias = static_cast<std::uint32_t>(top_left_bias(dx, dy));
+    const std::uint32_t edge = u(dx) * u(cy - Y[a]) - u(dy) * u(cx - X[a]) + bias;
+    inside &= static_cast<std::int32_t>(edge) >= 0;
+  }
+  return inside;
+}
+
+// With kSamples the constant sample count, so that the loop over the sample positions unrolls and each
+// position is an immediate.
+template <int kSamples>
+[[gnu::always_inline]] inline void cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
   constexpr int N = kCullLanes;
+  constexpr SamplePattern kPattern = kSamplePatterns[std::countr_zero(static_cast<unsigned>(kSamples))];
+  static_assert(kPattern.count == kSamples);
   const std::uint32_t* index = in.indices.data() + 3 * first;
   // An index outside the draw has no projected vertex to read: the scalar path counts such triangles as invalid.
   std::uint32_t highest = 0;
@@ -65,8 +87,8 @@ void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
 
   const std::int32_t last_x = in.width - 1, last_y = in.height - 1;
   constexpr std::int32_t half = kSubpixelScale / 2;
-  const std::int32_t lo = in.sample_lo, hi = in.sample_hi, centre_test = in.multisample() ? 0 : 1;
-  std::uint32_t keep = 0, accepted = 0;
+  const std::int32_t lo = kPattern.lo, hi = kPattern.hi;
+  std::uint32_t keep = 0, accepted = 0, small = 0;
   for (int i = 0; i < N; ++i) {
     // Values, not references into the arrays: std::min of references becomes a conditional load, which stops the
     // vectoriser.
@@ -83,30 +105,22 @@ void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
     const std::int32_t py1 = std::min(last_y, (max_y - lo) >> kSubpixelBits);
     const std::int32_t empty = (px0 > px1) | (py0 > py1);
     // Bounds holding at most four centres: does any lie inside all three clockwise edges (fill rule included)?
-    // Multisampled, samples other than the centres count too, and setup leaves the test to rasterization.
+    // Multisampled, the samples are tested after this loop, and only where some bounds are that small.
     const std::int32_t columns = px1 - px0 + 1, centres = columns * (py1 - py0 + 1);
-    const std::int32_t few = (empty ^ 1) & (centres <= 4) & centre_test;
+    const std::int32_t few = (empty ^ 1) & (centres <= 4);
     const std::int32_t X[3] = {x0, front ? x2 : x1, front ? x1 : x2};
     const std::int32_t Y[3] = {y0, front ? y2 : y1, front ? y1 : y2};
-    std::int32_t covered = 0;
-    for (std::int32_t c = 0; c < 4; ++c) {
-      // Centre c of the bounds in row order, for bounds 1 to 4 columns wide.
-      const std::int32_t row = columns == 1 ? c : (columns == 2 ? c >> 1 : (columns == 3 ? (c == 3) : 0));
-      const std::int32_t column = c - row * columns;
-      const std::int32_t cx = (px0 + column) * kSubpixelScale + half, cy = (py0 + row) * kSubpixelScale + half;
-      std::int32_t inside = c < centres;
-      for (int k = 0; k < 3; ++k) {
-        const int a = k, b = (k + 1) % 3;
-        const std::int32_t dx = X[b] - X[a], dy = Y[b] - Y[a];
-        const auto bias = static_cast<std::uint32_t>(top_left_bias(dx, dy));
-        // 32 bits are exact here: bounds of at most four centres span under 7 pixels (1792 units) each way, so
-        // every product stays below 2^22. Other lanes may wrap (unsigned, so defined) and are masked by `few`.
-        const auto u = [](std::int32_t v) { return static_cast<std::uint32_t>(v); };
-        const std::uint32_t edge = u(dx) * u(cy - Y[a]) - u(dy) * u(cx - X[a]) + bias;
-        inside &= static_cast<std::int32_t>(edge) >= 0;
+    std::int32_t covered = kSamples > 1;
+    if constexpr (kSamples == 1) {
+      for (std::int32_t c = 0; c < 4; ++c) {
+        // Centre c of the bounds in row order, for bounds 1 to 4 columns wide.
+        const std::int32_t row = columns == 1 ? c : (columns == 2 ? c >> 1 : (columns == 3 ? (c == 3) : 0));
+        const std::int32_t column = c - row * columns;
+        const std::int32_t cx = (px0 + column) * kSubpixelScale + half, cy = (py0 + row) * kSubpixelScale + half;
+        covered |= (c < centres) & inside_all(X, Y, cx, cy);
       }
-      covered |= inside;
     }
+    small |= static_cast<std::uint32_t>(few) << i;
     const std::int32_t rejected = faced_away | empty | (few & (covered ^ 1));
     keep |= static_cast<std::uint32_t>((outside[i] != 0) | (rejected ^ 1)) << i;
     accepted |= static_cast<std::uint32_t>((outside[i] == 0) & (rejected ^ 1)) << i;
@@ -115,8 +129,44 @@ void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
     out.px0[i] = px0, out.py0[i] = py0, out.px1[i] = px1, out.py1[i] = py1;
     out.front[i] = front;
   }
+  if constexpr (kSamples > 1) {
+    // Accepted triangles whose bounds hold at most four pixels: does any of their samples lie inside? A second
+    // loop, taken only when some bounds are that small, as they are in dense meshes: 4 x kSamples points cost
+    // more than the four centres of one sample, and larger triangles cover a sample anyway.
+    if (small & accepted) {
+      std::uint32_t uncovered = 0;
+      for (int i = 0; i < N; ++i) {
+        const std::int32_t X[3] = {out.x[0][i], out.x[1][i], out.x[2][i]};
+        const std::int32_t Y[3] = {out.y[0][i], out.y[1][i], out.y[2][i]};
+        const std::int32_t columns = out.px1[i] - out.px0[i] + 1, pixels = columns * (out.py1[i] - out.py0[i] + 1);
+        std::int32_t covered = 0;
+        for (std::int32_t c = 0; c < 4; ++c) {
+          const std::int32_t row = columns == 1 ? c : (columns == 2 ? c >> 1 : (columns == 3 ? (c == 3) : 0));
+          const std::int32_t column = c - row * columns;
+          const std::int32_t cx = (out.px0[i] + column) * kSubpixelScale + half;
+          const std::int32_t cy = (out.py0[i] + row) * kSubpixelScale + half;
+          for (int n = 0; n < kSamples; ++n)
+            covered |= (c < pixels) & inside_all(X, Y, cx + kPattern.offset[n].x, cy + kPattern.offset[n].y);
+        }
+        uncovered |= static_cast<std::uint32_t>(covered ^ 1) << i;
+      }
+      uncovered &= small & accepted;
+      keep &= ~uncovered;
+      accepted &= ~uncovered;
+    }
+  }
   out.keep = keep;
   out.accepted = accepted;
+}
+
+FACET_DISPATCH_LEVELS
+void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
+  switch (in.samples) {
+    case 2: return cull_lanes<2>(in, first, out);
+    case 4: return cull_lanes<4>(in, first, out);
+    case 8: return cull_lanes<8>(in, first, out);
+    default: return cull_lanes<1>(in, first, out);
+  }
 }
 
 }  // namespace facet::detail

@@ -78,7 +78,8 @@ class Binner {
     // Pixels whose centres (i + 0.5) * 256 (or, multisampled, any of whose samples) lie within the snapped bounds.
     const std::int32_t min_x = std::min({x[0], x[1], x[2]}), max_x = std::max({x[0], x[1], x[2]});
     const std::int32_t min_y = std::min({y[0], y[1], y[2]}), max_y = std::max({y[0], y[1], y[2]});
-    const int lo = in_.sample_lo, hi = in_.sample_hi;
+    const SamplePattern& pattern = sample_pattern(in_.samples);
+    const int lo = pattern.lo, hi = pattern.hi;
     s.px0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_x - hi + kSubpixelScale - 1)));
     s.py0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_y - hi + kSubpixelScale - 1)));
     s.px1 = std::min<int>(in_.width - 1, static_cast<int>(floor_div_subpixel(max_x - lo)));
@@ -93,9 +94,9 @@ class Binner {
     const int second = s.flipped ? 2 : 1, third = s.flipped ? 1 : 2;
     s.X[0] = x[0], s.X[1] = x[second], s.X[2] = x[third];
     s.Y[0] = y[0], s.Y[1] = y[second], s.Y[2] = y[third];
-    // Dense meshes make many triangles whose bounds hold a pixel centre or two, and many of those cover none of
-    // them: test those centres now rather than set up a triangle that covers nothing.
-    if (!in_.multisample() && (s.px1 - s.px0 + 1) * (s.py1 - s.py0 + 1) <= 4 && !covers_a_centre(s)) {
+    // Dense meshes make many triangles whose bounds hold a pixel or two, and many of those cover none of their
+    // centres (or samples): test those now rather than set up a triangle that covers nothing and rasterize it.
+    if ((s.px1 - s.px0 + 1) * (s.py1 - s.py0 + 1) <= 4 && !covers_a_sample(s, pattern)) {
       ++out_.culled;
       return false;
     }
@@ -155,20 +156,23 @@ class Binner {
   }
 
  private:
-  // Whether any pixel centre within the bounds is inside all three clockwise edges (the fill rule included).
-  static bool covers_a_centre(const Shape& s) {
+  // Whether any sample of a pixel within the bounds (its centre, with one sample) is inside all three clockwise
+  // edges, the fill rule included: the test rasterization makes of it (at_sample).
+  static bool covers_a_sample(const Shape& s, const SamplePattern& pattern) {
     const std::int64_t half = kSubpixelScale / 2;
     for (int py = s.py0; py <= s.py1; ++py)
-      for (int px = s.px0; px <= s.px1; ++px) {
-        const std::int64_t cx = std::int64_t{px} * kSubpixelScale + half, cy = std::int64_t{py} * kSubpixelScale + half;
-        bool inside = true;
-        for (int k = 0; k < 3; ++k) {
-          const int a = k, b = (k + 1) % 3;
-          const std::int64_t dx = s.X[b] - s.X[a], dy = s.Y[b] - s.Y[a];
-          inside &= dx * (cy - s.Y[a]) - dy * (cx - s.X[a]) + top_left_bias(dx, dy) >= 0;
+      for (int px = s.px0; px <= s.px1; ++px)
+        for (int n = 0; n < pattern.count; ++n) {
+          const std::int64_t cx = std::int64_t{px} * kSubpixelScale + half + pattern.offset[n].x;
+          const std::int64_t cy = std::int64_t{py} * kSubpixelScale + half + pattern.offset[n].y;
+          bool inside = true;
+          for (int k = 0; k < 3; ++k) {
+            const int a = k, b = (k + 1) % 3;
+            const std::int64_t dx = s.X[b] - s.X[a], dy = s.Y[b] - s.Y[a];
+            inside &= dx * (cy - s.Y[a]) - dy * (cx - s.X[a]) + top_left_bias(dx, dy) >= 0;
+          }
+          if (inside) return true;
         }
-        if (inside) return true;
-      }
     return false;
   }
 

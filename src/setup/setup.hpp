@@ -9,6 +9,7 @@
 
 #include "clip/clip.hpp"
 #include "facet/detail/binning.hpp"
+#include "facet/detail/multisample.hpp"
 #include "facet/detail/triangle_setup.hpp"
 #include "facet/detail/vertex_stage.hpp"
 #include "facet/render_state.hpp"
@@ -29,10 +30,11 @@ struct SetupInput {
   int width, height, tiles_x;
   CullMode cull;
   float line_width;
-  // The pixel's sample positions span [sample_lo, sample_hi] in 1/256 pixel from its top-left corner, both
-  // ways: 128 and 128, the centre, without multisampling. Bounds hold the pixels where any sample may be inside.
-  int sample_lo = kSubpixelScale / 2, sample_hi = kSubpixelScale / 2;
-  bool multisample() const { return sample_lo != sample_hi; }
+  // Samples per pixel (1, 2, 4 or 8), at the positions of sample_pattern: bounds hold the pixels where any sample
+  // may be inside, and a triangle whose bounds hold at most four pixels is culled when it covers none of their
+  // samples (without multisampling, their centres).
+  int samples = 1;
+  bool multisample() const { return samples > 1; }
 };
 
 // The vertices that primitives [first, first + count) reference, ignoring indices at or above vertex_count (setup
@@ -44,8 +46,8 @@ void setup_triangles(const SetupInput& input, SetupChunk& out);
 
 // The culling pass's verdict on triangles [first, first + kCullLanes) in index order (no `order`). Bit i of
 // `keep` is clear when triangle first + i is one that setup would cull (facing, zero area, no pixel centre
-// covered) with all corners inside the frustum, and set when it needs setup; a triangle setup would keep is never
-// cleared. Bit i of `accepted` is set when the triangle is valid, inside the frustum and passes every culling
+// or sample covered) with all corners inside the frustum, and set when it needs setup; a triangle setup would keep is
+// never cleared. Bit i of `accepted` is set when the triangle is valid, inside the frustum and passes every culling
 // test: its clockwise corners, area and pixel bounds below are then exactly what setup's own tests would find.
 inline constexpr int kCullLanes = 16;
 struct CullLanes {

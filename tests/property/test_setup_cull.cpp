@@ -43,7 +43,7 @@ Soup tiny_triangles(std::size_t count, unsigned seed) {
   return soup;
 }
 
-SetupInput input_for(const Soup& soup, CullMode cull, std::size_t first, std::size_t count) {
+SetupInput input_for(const Soup& soup, CullMode cull, std::size_t first, std::size_t count, int samples = 1) {
   const int tiles_x = (kWidth + kTileSize - 1) / kTileSize;
   return {nullptr,
           soup.projected.data(),
@@ -59,7 +59,8 @@ SetupInput input_for(const Soup& soup, CullMode cull, std::size_t first, std::si
           kHeight,
           tiles_x,
           cull,
-          1.0f};
+          1.0f,
+          samples};
 }
 
 CullLanes cull_lanes(const SetupInput& in, std::size_t first) {
@@ -71,10 +72,10 @@ CullLanes cull_lanes(const SetupInput& in, std::size_t first) {
 // The full setup of triangle t alone (one triangle never reaches the 16-lane pass).
 // One triangle set up on its own, in a chunk reused from call to call (a new chunk reserves room for thousands of
 // triangles, which made this test spend most of its time allocating). Valid until the next call.
-const SetupChunk& set_up_alone(const Soup& soup, CullMode cull, std::size_t t) {
+const SetupChunk& set_up_alone(const Soup& soup, CullMode cull, std::size_t t, int samples = 1) {
   static SetupChunk chunk;
   chunk.reset();
-  setup_triangles(input_for(soup, cull, t, 1), chunk);
+  setup_triangles(input_for(soup, cull, t, 1, samples), chunk);
   return chunk;
 }
 
@@ -101,34 +102,37 @@ void expect_same_setup(const TriangleSetup& a, const TriangleSetup& b) {
   EXPECT_EQ(a.front_facing, b.front_facing);
 }
 
+// With several samples per pixel, bounds grow to the pixels any sample may lie in, and a small triangle is culled
+// only when it covers none of their samples.
 TEST(SetupCull, RejectsExactlyWhatFullSetupCulls) {
   const Soup soup = tiny_triangles(16 * 400, 7);
-  for (const CullMode cull : {CullMode::back, CullMode::front, CullMode::none}) {
-    std::size_t kept = 0, rejected = 0;
-    for (std::size_t first = 0; first < soup.indices.size() / 3; first += kCullLanes) {
-      const CullLanes lanes = cull_lanes(input_for(soup, cull, first, kCullLanes), first);
-      for (int i = 0; i < kCullLanes; ++i) {
-        const bool lane_keeps = (lanes.keep >> i) & 1u;
-        const SetupChunk& alone = set_up_alone(soup, cull, first + i);
-        ASSERT_EQ(lane_keeps, !alone.triangles.empty())
-            << "triangle " << first + i << ", cull mode " << static_cast<int>(cull);
-        // Every corner is inside, so whatever the pass keeps it has fully accepted, with setup's bounds.
-        ASSERT_EQ(lane_keeps, ((lanes.accepted >> i) & 1u) != 0);
-        if (lane_keeps) {
-          const TriangleSetup& t = alone.triangles.front();
-          EXPECT_EQ(lanes.px0[i], t.min_x);
-          EXPECT_EQ(lanes.py0[i], t.min_y);
-          EXPECT_EQ(lanes.px1[i], t.max_x);
-          EXPECT_EQ(lanes.py1[i], t.max_y);
-          EXPECT_EQ(lanes.front[i] != 0, t.front_facing);
+  for (const int samples : {1, 2, 4, 8})
+    for (const CullMode cull : {CullMode::back, CullMode::front, CullMode::none}) {
+      std::size_t kept = 0, rejected = 0;
+      for (std::size_t first = 0; first < soup.indices.size() / 3; first += kCullLanes) {
+        const CullLanes lanes = cull_lanes(input_for(soup, cull, first, kCullLanes, samples), first);
+        for (int i = 0; i < kCullLanes; ++i) {
+          const bool lane_keeps = (lanes.keep >> i) & 1u;
+          const SetupChunk& alone = set_up_alone(soup, cull, first + i, samples);
+          ASSERT_EQ(lane_keeps, !alone.triangles.empty())
+              << "triangle " << first + i << ", cull mode " << static_cast<int>(cull) << ", " << samples << " samples";
+          // Every corner is inside, so whatever the pass keeps it has fully accepted, with setup's bounds.
+          ASSERT_EQ(lane_keeps, ((lanes.accepted >> i) & 1u) != 0);
+          if (lane_keeps) {
+            const TriangleSetup& t = alone.triangles.front();
+            EXPECT_EQ(lanes.px0[i], t.min_x);
+            EXPECT_EQ(lanes.py0[i], t.min_y);
+            EXPECT_EQ(lanes.px1[i], t.max_x);
+            EXPECT_EQ(lanes.py1[i], t.max_y);
+            EXPECT_EQ(lanes.front[i] != 0, t.front_facing);
+          }
+          (lane_keeps ? kept : rejected) += 1;
         }
-        (lane_keeps ? kept : rejected) += 1;
       }
+      // The soup exercises both outcomes in every mode.
+      EXPECT_GT(kept, 400u);
+      EXPECT_GT(rejected, 400u);
     }
-    // The soup exercises both outcomes in every mode.
-    EXPECT_GT(kept, 400u);
-    EXPECT_GT(rejected, 400u);
-  }
 }
 
 TEST(SetupCull, KeepsTrianglesOutsideTheFrustumAndBlocksWithInvalidIndicesForFullSetup) {
