@@ -99,10 +99,14 @@ template <int kSamples>
     // 256 is an arithmetic shift).
     const std::int32_t min_x = std::min(std::min(x0, x1), x2), max_x = std::max(std::max(x0, x1), x2);
     const std::int32_t min_y = std::min(std::min(y0, y1), y2), max_y = std::max(std::max(y0, y1), y2);
-    const std::int32_t px0 = std::max(0, (min_x - hi + kSubpixelScale - 1) >> kSubpixelBits);
-    const std::int32_t py0 = std::max(0, (min_y - hi + kSubpixelScale - 1) >> kSubpixelBits);
-    const std::int32_t px1 = std::min(last_x, (max_x - lo) >> kSubpixelBits);
-    const std::int32_t py1 = std::min(last_y, (max_y - lo) >> kSubpixelBits);
+    const std::int32_t first_x = (min_x - hi + kSubpixelScale - 1) >> kSubpixelBits;
+    const std::int32_t first_y = (min_y - hi + kSubpixelScale - 1) >> kSubpixelBits;
+    const std::int32_t past_x = (max_x - lo) >> kSubpixelBits, past_y = (max_y - lo) >> kSubpixelBits;
+    const std::int32_t px0 = std::max(0, first_x), py0 = std::max(0, first_y);
+    const std::int32_t px1 = std::min(last_x, past_x), py1 = std::min(last_y, past_y);
+    if constexpr (kSamples > 1)
+      out.bounds_fraction[i] =
+          bounds_fractions(min_x, min_y, max_x, max_y, first_x, first_y, past_x, past_y, last_x, last_y);
     const std::int32_t empty = (px0 > px1) | (py0 > py1);
     // Bounds holding at most four centres: does any lie inside all three clockwise edges (fill rule included)?
     // Multisampled, the samples are tested after this loop, and only where some bounds are that small.

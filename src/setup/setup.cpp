@@ -57,6 +57,7 @@ class Binner {
     bool flipped;       // X[1], Y[1] and X[2], Y[2] were swapped to make it clockwise
     bool front;
     int px0, py0, px1, py1;
+    std::uint32_t bounds_fraction;  // TriangleSetup::bounds_fraction, multisampled
   };
 
   // The tests that need only snapped positions: zero area, facing, culling, pixel centres inside the bounds and,
@@ -80,10 +81,17 @@ class Binner {
     const std::int32_t min_y = std::min({y[0], y[1], y[2]}), max_y = std::max({y[0], y[1], y[2]});
     const SamplePattern& pattern = sample_pattern(in_.samples);
     const int lo = pattern.lo, hi = pattern.hi;
-    s.px0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_x - hi + kSubpixelScale - 1)));
-    s.py0 = std::max<int>(0, static_cast<int>(floor_div_subpixel(min_y - hi + kSubpixelScale - 1)));
-    s.px1 = std::min<int>(in_.width - 1, static_cast<int>(floor_div_subpixel(max_x - lo)));
-    s.py1 = std::min<int>(in_.height - 1, static_cast<int>(floor_div_subpixel(max_y - lo)));
+    const auto first = static_cast<int>(floor_div_subpixel(min_x - hi + kSubpixelScale - 1));
+    const auto top = static_cast<int>(floor_div_subpixel(min_y - hi + kSubpixelScale - 1));
+    const auto last = static_cast<int>(floor_div_subpixel(max_x - lo));
+    const auto bottom = static_cast<int>(floor_div_subpixel(max_y - lo));
+    s.px0 = std::max(0, first);
+    s.py0 = std::max(0, top);
+    s.px1 = std::min(in_.width - 1, last);
+    s.py1 = std::min(in_.height - 1, bottom);
+    if (in_.multisample())
+      s.bounds_fraction =
+          bounds_fractions(min_x, min_y, max_x, max_y, first, top, last, bottom, in_.width - 1, in_.height - 1);
     if (s.px0 > s.px1 || s.py0 > s.py1) {
       ++out_.culled;
       return false;
@@ -145,6 +153,7 @@ class Binner {
     t.min_y = static_cast<std::int16_t>(cull.py0[i]);
     t.max_x = static_cast<std::int16_t>(cull.px1[i]);
     t.max_y = static_cast<std::int16_t>(cull.py1[i]);
+    if (in_.multisample()) t.bounds_fraction = cull.bounds_fraction[i];
     t.origin_x = lanes.origin_x[i];
     t.origin_y = lanes.origin_y[i];
     Plane* const planes[4] = {&t.depth, &t.inv_w, &t.b1_over_w, &t.b2_over_w};
@@ -197,6 +206,7 @@ class Binner {
     t.min_y = static_cast<std::int16_t>(s.py0);
     t.max_x = static_cast<std::int16_t>(s.px1);
     t.max_y = static_cast<std::int16_t>(s.py1);
+    if (in_.multisample()) t.bounds_fraction = s.bounds_fraction;
 
     // Interpolation planes from the snapped positions, so that they agree with coverage. The determinant in
     // pixels is the area classify computed, exactly.

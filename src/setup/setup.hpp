@@ -55,7 +55,8 @@ struct CullLanes {
   std::int32_t x[3][kCullLanes], y[3][kCullLanes];  // snapped corners, clockwise on screen
   std::int64_t area[kCullLanes];                    // twice the area, positive
   std::int32_t px0[kCullLanes], py0[kCullLanes], px1[kCullLanes], py1[kCullLanes];  // pixel bounds
-  std::int32_t front[kCullLanes];  // 1 when front-facing (then corners 1 and 2 were swapped)
+  std::uint32_t bounds_fraction[kCullLanes];  // TriangleSetup::bounds_fraction, multisampled only
+  std::int32_t front[kCullLanes];             // 1 when front-facing (then corners 1 and 2 were swapped)
 };
 void setup_cull_lanes(const SetupInput& input, std::size_t first, CullLanes& out);
 

@@ -1,12 +1,15 @@
 // test_setup_cull.cpp - setup's 16-lane culling pass rejects exactly the triangles the full per-triangle setup culls.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <bit>
+#include <climits>
 #include <cstdint>
 #include <random>
 #include <utility>
 #include <vector>
 
+#include "facet/detail/multisample.hpp"
 #include "facet/framebuffer.hpp"
 #include "setup/setup.hpp"
 
@@ -124,6 +127,9 @@ TEST(SetupCull, RejectsExactlyWhatFullSetupCulls) {
             EXPECT_EQ(lanes.py0[i], t.min_y);
             EXPECT_EQ(lanes.px1[i], t.max_x);
             EXPECT_EQ(lanes.py1[i], t.max_y);
+            if (samples > 1) {
+              EXPECT_EQ(lanes.bounds_fraction[i], t.bounds_fraction);
+            }
             EXPECT_EQ(lanes.front[i] != 0, t.front_facing);
           }
           (lane_keeps ? kept : rejected) += 1;
@@ -183,28 +189,68 @@ TEST(SetupCull, BlocksThatAllFaceAwayKeepOnlyTrianglesOutsideTheFrustum) {
   EXPECT_GT(accepted_elsewhere, 100u);  // culling front faces or none, the far side is drawn
 }
 
+// Multisampled, each sample's view of a triangle (at_sample) is bounded by exactly the pixels whose sample lies
+// within the snapped corners' extremes, clamped to the target: often a pixel less each way than the triangle's
+// bounds, which hold those of every sample.
+TEST(SetupCull, EachSampleViewHasItsOwnBounds) {
+  const Soup soup = tiny_triangles(16 * 100, 5);
+  const auto ceil_div = [](std::int32_t v) { return -((-v) >> kSubpixelBits); };
+  for (const int samples : {2, 4, 8}) {
+    const SamplePattern& pattern = sample_pattern(samples);
+    int tighter = 0;
+    for (std::size_t t = 0; t < soup.indices.size() / 3; ++t) {
+      const SetupChunk& alone = set_up_alone(soup, CullMode::none, t, samples);
+      if (alone.triangles.empty()) continue;
+      const TriangleSetup& tri = alone.triangles.front();
+      std::int32_t min_x = INT32_MAX, min_y = INT32_MAX, max_x = INT32_MIN, max_y = INT32_MIN;
+      for (int k = 0; k < 3; ++k) {
+        const ProjectedVertex& v = soup.projected[soup.indices[3 * t + k]];
+        min_x = std::min(min_x, v.x), max_x = std::max(max_x, v.x);
+        min_y = std::min(min_y, v.y), max_y = std::max(max_y, v.y);
+      }
+      for (int s = 0; s < samples; ++s) {
+        const TriangleSetup view = at_sample(tri, pattern, s);
+        const std::int32_t x = pattern.offset[s].x + kSubpixelScale / 2, y = pattern.offset[s].y + kSubpixelScale / 2;
+        ASSERT_EQ(view.min_x, std::max(0, ceil_div(min_x - x))) << "triangle " << t << ", sample " << s;
+        ASSERT_EQ(view.min_y, std::max(0, ceil_div(min_y - y))) << "triangle " << t << ", sample " << s;
+        ASSERT_EQ(view.max_x, std::min(kWidth - 1, (max_x - x) >> kSubpixelBits)) << "triangle " << t;
+        ASSERT_EQ(view.max_y, std::min(kHeight - 1, (max_y - y) >> kSubpixelBits)) << "triangle " << t;
+        tighter += view.min_x > tri.min_x || view.max_x < tri.max_x || view.min_y > tri.min_y || view.max_y < tri.max_y;
+      }
+    }
+    EXPECT_GT(tighter, 100) << samples << " samples";
+  }
+}
+
 // A whole chunk through setup_triangles (16-lane pass first) gives the same set-up triangles, field for field, in
-// the same order, and the same counts as setting the triangles up one at a time.
+// the same order, and the same counts as setting the triangles up one at a time, with one sample or several.
 TEST(SetupCull, ChunkSetupMatchesOneTriangleAtATime) {
   Soup soup = tiny_triangles(16 * 64 + 5, 11);  // a tail shorter than 16 takes the per-triangle path
   soup.indices[3 * 40 + 1] = 99999;             // one invalid triangle
   const std::size_t count = soup.indices.size() / 3;
-  SetupChunk whole;
-  whole.reset();
-  setup_triangles(input_for(soup, CullMode::back, 0, count), whole);
-  std::vector<TriangleSetup> expected;
-  std::size_t culled = 0, invalid = 0;
-  for (std::size_t t = 0; t < count; ++t) {
-    const SetupChunk& one = set_up_alone(soup, CullMode::back, t);
-    expected.insert(expected.end(), one.triangles.begin(), one.triangles.end());
-    culled += one.culled;
-    invalid += one.invalid;
+  for (const int samples : {1, 4}) {
+    SetupChunk whole;
+    whole.reset();
+    setup_triangles(input_for(soup, CullMode::back, 0, count, samples), whole);
+    std::vector<TriangleSetup> expected;
+    std::size_t culled = 0, invalid = 0;
+    for (std::size_t t = 0; t < count; ++t) {
+      const SetupChunk& one = set_up_alone(soup, CullMode::back, t, samples);
+      expected.insert(expected.end(), one.triangles.begin(), one.triangles.end());
+      culled += one.culled;
+      invalid += one.invalid;
+    }
+    ASSERT_EQ(whole.triangles.size(), expected.size()) << samples << " samples";
+    for (std::size_t i = 0; i < expected.size(); ++i) {
+      expect_same_setup(whole.triangles[i], expected[i]);
+      if (samples > 1) {
+        EXPECT_EQ(whole.triangles[i].bounds_fraction, expected[i].bounds_fraction);
+      }
+    }
+    EXPECT_EQ(whole.culled, culled);
+    EXPECT_EQ(whole.invalid, invalid);
+    EXPECT_EQ(invalid, 1u);
   }
-  ASSERT_EQ(whole.triangles.size(), expected.size());
-  for (std::size_t i = 0; i < expected.size(); ++i) expect_same_setup(whole.triangles[i], expected[i]);
-  EXPECT_EQ(whole.culled, culled);
-  EXPECT_EQ(whole.invalid, invalid);
-  EXPECT_EQ(invalid, 1u);
 }
 
 }  // namespace

@@ -48,19 +48,32 @@ inline const SamplePattern& sample_pattern(int samples) {
   return kSamplePatterns[samples >= 8 ? 3 : (samples >= 4 ? 2 : (samples >= 2 ? 1 : 0))];
 }
 
-// The triangle as the rasterizer sees it from sample `o` of each pixel: coverage of pixel (i, j) by the result is
-// the coverage of the sample at (i, j) + o by the triangle, exactly (the same integers as the centre's, with the
-// fill rule), and its depth plane evaluated at a pixel centre gives the depth at that sample. Its interpolation
-// planes are shifted alike; the fragment shader still runs at the pixel centre, with the triangle itself.
-inline TriangleSetup at_sample(const TriangleSetup& tri, SampleOffset o) {
+// The triangle as the rasterizer sees it from sample `sample` of each pixel: coverage of pixel (i, j) by the
+// result is the coverage of that sample of (i, j) by the triangle, exactly (the same integers as the centre's,
+// with the fill rule), and its depth plane evaluated at a pixel centre gives the depth at that sample. Its
+// interpolation planes are shifted alike; the fragment shader still runs at the pixel centre, with the triangle
+// itself. Its bounds hold the pixels whose sample lies within the snapped corners' extremes: the triangle's own
+// bounds hold those of any sample, and a small triangle's bounds are often a pixel wider than each sample's.
+inline TriangleSetup at_sample(const TriangleSetup& tri, const SamplePattern& pattern, int sample) {
+  const SampleOffset o = pattern.offset[sample];
   TriangleSetup view = tri;
   for (int e = 0; e < 3; ++e) {
     const Edge& edge = tri.edge[e];
     // k at the sample: k at the centre, which q and the fraction hold, plus the edge's gradient times the offset.
-    const std::int64_t k = edge.q * kSubpixelScale + tri.edge_fraction[e] + std::int64_t{edge.a} * o.x +
-                           std::int64_t{edge.b} * o.y;
+    const std::int64_t k =
+        edge.q * kSubpixelScale + tri.edge_fraction[e] + std::int64_t{edge.a} * o.x + std::int64_t{edge.b} * o.y;
     view.edge[e].q = k >> kSubpixelBits;
   }
+  // A corner extreme m (a multiple of 256 plus its fraction f) admits pixel p when p * 256 + position lies on the
+  // inside of it: the first pixel is one further on for a sample at a position below f than for one at or above,
+  // and the bounds were drawn for the farthest position of the pattern.
+  const int x = o.x + kSubpixelScale / 2, y = o.y + kSubpixelScale / 2;
+  const auto below = [](int fraction, int position) { return fraction > position ? 1 : 0; };
+  const auto f = [&](int k) { return static_cast<int>((tri.bounds_fraction >> (8 * k)) & 0xffu); };
+  view.min_x = static_cast<std::int16_t>(tri.min_x + below(f(0), x) - below(f(0), pattern.hi));
+  view.min_y = static_cast<std::int16_t>(tri.min_y + below(f(1), y) - below(f(1), pattern.hi));
+  view.max_x = static_cast<std::int16_t>(tri.max_x - below(x, f(2)) + below(pattern.lo, f(2)));
+  view.max_y = static_cast<std::int16_t>(tri.max_y - below(y, f(3)) + below(pattern.lo, f(3)));
   // Planes are evaluated at (pixel centre - origin): moving the origin back by the offset moves that to the sample.
   view.origin_x = tri.origin_x - static_cast<float>(o.x) / kSubpixelScale;
   view.origin_y = tri.origin_y - static_cast<float>(o.y) / kSubpixelScale;

@@ -27,7 +27,7 @@ template <Shader S>
   const int n = work.samples;
   const SamplePattern& pattern = sample_pattern(n);
   TriangleSetup views[kMaxSamples];
-  for (int s = 0; s < n; ++s) views[s] = at_sample(tri, pattern.offset[s]);
+  for (int s = 0; s < n; ++s) views[s] = at_sample(tri, pattern, s);
 
   const int x0 = std::max<int>(tri.min_x, work.x0), x1 = std::min<int>(tri.max_x, work.x1 - 1);
   const int y0 = std::max<int>(tri.min_y, work.y0), y1 = std::min<int>(tri.max_y, work.y1 - 1);
@@ -103,7 +103,7 @@ template <Shader S>
         for_each_tile_triangle(
             work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
               for (int s = 0; s < n; ++s) {
-                const TriangleSetup view = at_sample(tri, pattern.offset[s]);
+                const TriangleSetup view = at_sample(tri, pattern, s);
                 if (state.depth_test) raster_triangle_visibility<kFunc, true>(view, state, planes[s], ref);
                 else raster_triangle_visibility<kFunc, false>(view, state, planes[s], ref);
               }

@@ -39,7 +39,24 @@ struct TriangleSetup {
   // The low 8 bits of each edge's k (see Edge), which q drops: with them the edge can be evaluated exactly at the
   // sample positions of multisampling, which are not pixel centres (see at_sample in multisample.hpp).
   std::uint8_t edge_fraction[3];
+  // Multisampled only: the low 8 bits of the snapped corners' extremes, which the pixel bounds drop, min x, min y,
+  // max x and max y from bit 0 up (bounds_fractions). With them each sample's own bounds follow from the bounds
+  // above (at_sample). 0 for a minimum and 255 for a maximum whose bound was clamped to the target, which leaves
+  // that bound as it is.
+  std::uint32_t bounds_fraction;
 };
+
+// TriangleSetup::bounds_fraction of snapped corner extremes (1/256 pixel) and pixel bounds before and after
+// clamping to the target's last pixel (last_x, last_y).
+inline std::uint32_t bounds_fractions(std::int32_t min_x, std::int32_t min_y, std::int32_t max_x, std::int32_t max_y,
+                                      std::int32_t first_x, std::int32_t first_y, std::int32_t past_x,
+                                      std::int32_t past_y, std::int32_t last_x, std::int32_t last_y) {
+  constexpr std::int32_t kFraction = kSubpixelScale - 1;
+  const std::int32_t low_x = first_x < 0 ? 0 : min_x & kFraction, low_y = first_y < 0 ? 0 : min_y & kFraction;
+  const std::int32_t high_x = past_x > last_x ? kFraction : max_x & kFraction;
+  const std::int32_t high_y = past_y > last_y ? kFraction : max_y & kFraction;
+  return static_cast<std::uint32_t>(low_x | low_y << 8 | high_x << 16 | high_y << 24);
+}
 
 inline float evaluate(const Plane& p, float dx, float dy) { return p.at_origin + p.ddx * dx + p.ddy * dy; }
 
