@@ -31,11 +31,11 @@ def _color(value, default, name):
     return np.append(c, 1.0) if c.size == 3 else c
 
 
-# The limits model files are read within by default, as `facet render` reads them (see LoadOptions in the C++
-# library's model_io.hpp): files a model names are read only from inside its folder tree, at most 100 million
-# triangles are placed, and textures up to 16384 texels a side are decoded.
-DEFAULT_MAX_TRIANGLES = 100_000_000
-DEFAULT_MAX_TEXTURE_SIZE = 16384
+# The limits model files are read within by default, as `facet render` reads them (LoadOptions in the C++ library's
+# model_io.hpp): files a model names are read only from inside its folder tree, at most 100 million triangles are
+# placed, and textures up to 16384 texels a side are decoded.
+DEFAULT_MAX_TRIANGLES = _facet.DEFAULT_MAX_TRIANGLES
+DEFAULT_MAX_TEXTURE_SIZE = _facet.MAX_TEXTURE_SIZE
 
 
 class Mesh:

@@ -266,4 +266,7 @@ PYBIND11_MODULE(_facet, m) {
       },
       py::arg("path"), py::arg("allow_external_files"), py::arg("max_triangles"), py::arg("max_texture_size"));
   m.def("render_file", &render_file);
+  // The load limits' defaults, for the Python keywords.
+  m.attr("DEFAULT_MAX_TRIANGLES") = facet::kDefaultMaxTriangles;
+  m.attr("MAX_TEXTURE_SIZE") = facet::kMaxTextureSize;
 }

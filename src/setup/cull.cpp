@@ -8,14 +8,6 @@
 
 namespace facet::detail {
 
-// Why a separate pass: in a mesh of millions of triangles most are back faces or too small to hold a pixel centre,
-// and which ones is a coin toss per triangle, so a per-triangle branch on it mispredicts about every other
-// triangle and throws away the loads already under way for the next ones. Here the tests are plain loops over 16
-// triangles that the vectoriser turns into mask operations (64-bit lanes for the exact products), and the only
-// branch left is the scalar setup of each survivor. The pass repeats Binner::classify's tests exactly, in the same
-// integer arithmetic, for triangles whose corners are all inside the frustum: those it accepts are set up from
-// its results without classify; everything else it keeps (a corner outside, an invalid index) goes through the
-// full per-triangle path, so it may keep what classify rejects but never rejects what classify keeps.
 // Whether point (cx, cy) lies inside all three clockwise edges from corners X, Y (fill rule included): 1 or 0.
 // 32 bits are exact here: bounds of at most four pixels span under 7 pixels (1792 units) each way, so every
 // product stays below 2^22. Other lanes may wrap (unsigned, so defined) and are masked by the caller.
@@ -33,8 +25,24 @@ namespace facet::detail {
   return inside;
 }
 
-// With kSamples the constant sample count, so that the loop over the sample positions unrolls and each
-// position is an immediate.
+// Centre of pixel c of bounds 1 to 4 columns wide starting at pixel (px0, py0), pixels in row order, in 1/256 pixel.
+[[gnu::always_inline]] inline void bounds_pixel_centre(std::int32_t c, std::int32_t columns, std::int32_t px0,
+                                                       std::int32_t py0, std::int32_t& cx, std::int32_t& cy) {
+  const std::int32_t row = columns == 1 ? c : (columns == 2 ? c >> 1 : (columns == 3 ? (c == 3) : 0));
+  cx = (px0 + c - row * columns) * kSubpixelScale + kSubpixelScale / 2;
+  cy = (py0 + row) * kSubpixelScale + kSubpixelScale / 2;
+}
+
+// Why a separate pass: in a mesh of millions of triangles most are back faces or too small to hold a pixel centre,
+// and which ones is a coin toss per triangle, so a per-triangle branch on it mispredicts about every other
+// triangle and throws away the loads already under way for the next ones. Here the tests are plain loops over 16
+// triangles that the vectoriser turns into mask operations (64-bit lanes for the exact products), and the only
+// branch left is the scalar setup of each survivor. The pass repeats Binner::classify's tests exactly, in the same
+// integer arithmetic, for triangles whose corners are all inside the frustum: those it accepts are set up from
+// its results without classify; everything else it keeps (a corner outside, an invalid index) goes through the
+// full per-triangle path, so it may keep what classify rejects but never rejects what classify keeps.
+// kSamples is the sample count, a constant, so that the loop over the sample positions unrolls and each position
+// is an immediate.
 template <int kSamples>
 [[gnu::always_inline]] inline void cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
   constexpr int N = kCullLanes;
@@ -86,7 +94,6 @@ template <int kSamples>
   }
 
   const std::int32_t last_x = in.width - 1, last_y = in.height - 1;
-  constexpr std::int32_t half = kSubpixelScale / 2;
   const std::int32_t lo = kPattern.lo, hi = kPattern.hi;
   std::uint32_t keep = 0, accepted = 0, small = 0;
   for (int i = 0; i < N; ++i) {
@@ -117,10 +124,8 @@ template <int kSamples>
     std::int32_t covered = kSamples > 1;
     if constexpr (kSamples == 1) {
       for (std::int32_t c = 0; c < 4; ++c) {
-        // Centre c of the bounds in row order, for bounds 1 to 4 columns wide.
-        const std::int32_t row = columns == 1 ? c : (columns == 2 ? c >> 1 : (columns == 3 ? (c == 3) : 0));
-        const std::int32_t column = c - row * columns;
-        const std::int32_t cx = (px0 + column) * kSubpixelScale + half, cy = (py0 + row) * kSubpixelScale + half;
+        std::int32_t cx, cy;
+        bounds_pixel_centre(c, columns, px0, py0, cx, cy);
         covered |= (c < centres) & inside_all(X, Y, cx, cy);
       }
     }
@@ -145,10 +150,8 @@ template <int kSamples>
         const std::int32_t columns = out.px1[i] - out.px0[i] + 1, pixels = columns * (out.py1[i] - out.py0[i] + 1);
         std::int32_t covered = 0;
         for (std::int32_t c = 0; c < 4; ++c) {
-          const std::int32_t row = columns == 1 ? c : (columns == 2 ? c >> 1 : (columns == 3 ? (c == 3) : 0));
-          const std::int32_t column = c - row * columns;
-          const std::int32_t cx = (out.px0[i] + column) * kSubpixelScale + half;
-          const std::int32_t cy = (out.py0[i] + row) * kSubpixelScale + half;
+          std::int32_t cx, cy;
+          bounds_pixel_centre(c, columns, out.px0[i], out.py0[i], cx, cy);
           for (int n = 0; n < kSamples; ++n)
             covered |= (c < pixels) & inside_all(X, Y, cx + kPattern.offset[n].x, cy + kPattern.offset[n].y);
         }
