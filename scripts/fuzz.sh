@@ -2,12 +2,13 @@
 # fuzz.sh - fuzzes facet's readers of untrusted input with libFuzzer (Clang, ASan + UBSan).
 # Usage: scripts/fuzz.sh --list            names the targets
 #        scripts/fuzz.sh TARGET SECONDS    builds what is missing, then fuzzes TARGET for SECONDS from a seed corpus
-#                                          of Debian's assimp-testmodels; exits non-zero on any finding, whose input
-#                                          libFuzzer writes to build-fuzz/findings/TARGET/.
+#                                          of Debian's assimp-testmodels (environment: small files written here);
+#                                          exits non-zero on any finding, whose input libFuzzer writes to
+#                                          build-fuzz/findings/TARGET/.
 # A finding, once fixed, joins tests/fuzz/regressions/FORMAT/, which every test run reads through the same reader.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-targets=(obj ply stl gltf image batch)
+targets=(obj ply stl gltf image environment batch)
 if [ "${1:-}" = --list ]; then
   printf '%s\n' "${targets[@]}"
   exit 0
@@ -38,6 +39,65 @@ case $target in
   stl) seed -iname '*.stl' ;;
   gltf) seed \( -iname '*.gltf' -o -iname '*.glb' \) ;;
   image) seed \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.tga' -o -iname '*.bmp' \) ;;
+  environment)
+    # No environment images among the test models: small ones written here, each behind the byte that picks its
+    # extension (fuzz_environment.cpp). OpenEXR: scanline half RGB, ZIP float Y, ZIPS with a layer and uint and
+    # half channels, tiled float RGB; Radiance: flat and run-length.
+    python3 - "$corpus" <<'PY'
+import os, struct, sys, zlib
+def attr(name, kind, value):
+    return name.encode() + b'\0' + kind.encode() + b'\0' + struct.pack('<i', len(value)) + value
+def header(channels, compression, w, h, tile=None):
+    box = struct.pack('<4i', 0, 0, w - 1, h - 1)
+    chlist = b''.join(n.encode() + b'\0' + struct.pack('<iB3xii', t, 0, 1, 1) for n, t in channels) + b'\0'
+    attrs = [attr('channels', 'chlist', chlist), attr('compression', 'compression', bytes([compression])),
+             attr('dataWindow', 'box2i', box), attr('displayWindow', 'box2i', box),
+             attr('lineOrder', 'lineOrder', b'\0'), attr('pixelAspectRatio', 'float', struct.pack('<f', 1)),
+             attr('screenWindowCenter', 'v2f', struct.pack('<2f', 0, 0)),
+             attr('screenWindowWidth', 'float', struct.pack('<f', 1))]
+    if tile: attrs.append(attr('tiles', 'tiledesc', struct.pack('<IIB', tile[0], tile[1], 0)))
+    return b'v/1\x01' + struct.pack('<I', 2 | (0x200 if tile else 0)) + b''.join(attrs) + b'\0'
+def pixels(channels, x0, y0, w, h):  # line by line, each channel's values in turn (types 0 uint, 1 half, 2 float)
+    def value(t, x, y, c):
+        v = 0.25 * ((3 * x + 5 * y + c) % 9)
+        return struct.pack('<I', int(4 * v)) if t == 0 else struct.pack('<e' if t == 1 else '<f', v)
+    return b''.join(value(t, x, y, c) for y in range(y0, y0 + h) for c, (_, t) in enumerate(channels)
+                    for x in range(x0, x0 + w))
+def zip_pack(raw):  # bytes split even then odd, differences, deflate; stored as they are unless smaller
+    b = raw[0::2] + raw[1::2]
+    d = bytes([b[0]] + [(b[i] - b[i - 1] + 384) & 0xff for i in range(1, len(b))])
+    z = zlib.compress(d)
+    return z if len(z) < len(raw) else raw
+def exr(head, chunks):
+    offsets, at = b'', len(head) + 8 * len(chunks)
+    for chunk in chunks: offsets, at = offsets + struct.pack('<Q', at), at + len(chunk)
+    return head + offsets + b''.join(chunks)
+def scanline(channels, compression, w, h):  # compression 0 none, 2 ZIPS (a line a chunk), 3 ZIP (16 lines)
+    lines, chunks = (16 if compression == 3 else 1), []
+    for y in range(0, h, lines):
+        raw = pixels(channels, 0, y, w, min(lines, h - y))
+        data = zip_pack(raw) if compression else raw
+        chunks.append(struct.pack('<2i', y, len(data)) + data)
+    return exr(header(channels, compression, w, h), chunks)
+def tiled(channels, w, h, tw, th):
+    chunks = [struct.pack('<5i', tx, ty, 0, 0, len(data)) + data
+              for ty in range((h + th - 1) // th) for tx in range((w + tw - 1) // tw)
+              for data in [pixels(channels, tx * tw, ty * th, min(tw, w - tx * tw), min(th, h - ty * th))]]
+    return exr(header(channels, 0, w, h, (tw, th)), chunks)
+def radiance(w, h): return b'#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y %d +X %d\n' % (h, w)
+rle_line = bytes([2, 2, 0, 10]) + bytes([136, 100, 2, 90, 80]) * 3 + bytes([136, 129, 2, 129, 129])
+seeds = {
+    'exr-half-rgb': scanline([('B', 1), ('G', 1), ('R', 1)], 0, 4, 3),
+    'exr-zip-float-y': scanline([('Y', 2)], 3, 5, 20),
+    'exr-zips-layer': scanline([('A', 1), ('diffuse.B', 2), ('diffuse.G', 0), ('diffuse.R', 1)], 2, 6, 3),
+    'exr-tiled-rgb': tiled([('B', 2), ('G', 2), ('R', 2)], 5, 3, 2, 2),
+    'hdr-flat': radiance(3, 2) + bytes([128, 64, 32, 129] * 6),
+    'hdr-rle': radiance(10, 2) + rle_line * 2,
+}
+for name, data in seeds.items():
+    open(os.path.join(sys.argv[1], name), 'wb').write(bytes([name.startswith('exr')]) + data)
+PY
+    ;;
   batch)
     printf '{"model": "a.obj", "output": "x/{stem}.png", "resolution": [64, 48], "no-background": true}\n' \
       >"$corpus/json"

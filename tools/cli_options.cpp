@@ -205,6 +205,21 @@ void add_look_options(CLI::App& app, LookArgs& args) {
               throw UsageError("--light-direction: must not be zero");
           },
           ""));
+  app.add_option("--hdri", args.hdri,
+                 "Light the model's own look by this environment: an equirectangular .hdr or .exr (default: "
+                 "facet's studio)")
+      ->type_name("FILE");
+  app.add_option("--hdri-rotation", args.hdri_rotation, "Turn the environment about the up axis (degrees)")
+      ->check(number_in(-1e6, 1e6))
+      ->type_name("DEG");
+  add_enum_option<ToneMapping>(
+      app, "--tone-mapping",
+      {{"neutral", ToneMapping::neutral}, {"aces", ToneMapping::aces}, {"none", ToneMapping::none}},
+      [&args](ToneMapping t) { args.tone_mapping = t; },
+      "How the model's own look maps light to colour (default: neutral, Khronos PBR Neutral)");
+  app.add_option("--exposure", args.exposure, "Scale the light of the model's own look before tone mapping (1)")
+      ->check(number_in(1e-6, 1e6))
+      ->type_name("X");
   app.add_option("--threads", args.threads, "Render threads (0 = all cores)")
       ->check(number_in(0, 1024, true))
       ->type_name("N");
@@ -286,6 +301,10 @@ LookSpec look_spec(const LookArgs& args) {
   look.transparent_background = args.no_background;
   if (!args.color.empty()) look.color = parse_color(args.color, "--color");
   if (!args.light_direction.empty()) look.light_direction = parse_vec3(args.light_direction, "--light-direction");
+  look.hdri = args.hdri;
+  look.hdri_rotation = args.hdri_rotation;
+  look.tone_mapping = args.tone_mapping;
+  look.exposure = args.exposure;
   return look;
 }
 

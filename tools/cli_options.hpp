@@ -85,6 +85,10 @@ struct LookArgs {
   bool wireframe = false, edges = false, no_depth_test = false, painter = false, no_background = false;
   std::optional<CullMode> culling;
   std::string background_color, color, light_direction;
+  std::string hdri;
+  float hdri_rotation = 0.0f;
+  ToneMapping tone_mapping = ToneMapping::neutral;
+  float exposure = 1.0f;
   int threads = 0;
   int samples = 4;  // multisample anti-aliasing
 };

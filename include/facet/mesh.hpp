@@ -26,14 +26,29 @@ enum class AlphaMode {
   blend,   // alpha-blended over what is behind it, after the opaque surfaces, farthest first
 };
 
+// A surface's look. Colours are as displayed (sRGB-encoded), as OBJ's Kd and the colours of PLY and STL files
+// hold them; a glTF reader encodes glTF's linear base colour factor and vertex colours on load. The physically
+// based inputs (metallic, roughness, emission, occlusion) are glTF's metallic-roughness model; the other readers
+// derive them (see docs/FORMATS.md).
 struct Material {
   std::string name;
-  glm::vec4 diffuse{1, 1, 1, 1};  // OBJ: Kd and, as alpha, the dissolve d
-  glm::vec3 specular{0};          // OBJ: Ks
-  float shininess = 32;           // OBJ: Ns
+  glm::vec4 diffuse{1, 1, 1, 1};  // the base colour; OBJ: Kd and, as alpha, the dissolve d; glTF: baseColorFactor
+  glm::vec3 specular{0};          // OBJ: Ks (the Blinn-Phong and Phong shadings)
+  float shininess = 32;           // OBJ: Ns (the Blinn-Phong and Phong shadings)
   std::string diffuse_texture;    // absolute or relative-to-the-model path, empty if none
   // A texture the loader decoded itself (glTF's embedded images); used instead of diffuse_texture when set.
   std::shared_ptr<const Texture> diffuse_map{};
+  float metallic = 0.0f;   // glTF metallicFactor, in [0, 1]
+  float roughness = 0.5f;  // glTF roughnessFactor, in [0, 1] (perceptual: the GGX alpha is its square)
+  // glTF metallicRoughnessTexture: roughness in green, metallic in blue, multiplying the factors (linear texels).
+  std::shared_ptr<const Texture> metallic_roughness_map{};
+  // Emitted radiance, linear and unbounded (glTF emissiveFactor times KHR_materials_emissive_strength), times
+  // emissive_map (sRGB-encoded) when there is one.
+  glm::vec3 emissive{0.0f};
+  std::shared_ptr<const Texture> emissive_map{};
+  // glTF occlusionTexture (red channel) and its strength: how much of the environment's light reaches the surface.
+  std::shared_ptr<const Texture> occlusion_map{};
+  float occlusion_strength = 1.0f;
   // The file's filtering and wrapping for the texture (glTF samplers); unset: the scene's (SceneOptions::sampler).
   std::optional<Sampler> sampler{};
   // Drawn with its colour alone, no lighting, when the shading is Shading::automatic (glTF KHR_materials_unlit).

@@ -33,6 +33,12 @@ struct LookSpec {
   bool transparent_background = false;       // alpha 0 where nothing is drawn (RGBA PNG)
   std::optional<glm::vec3> color;            // replaces every material, vertex and face colour
   std::optional<glm::vec3> light_direction;  // towards the light, world space; default: a headlight above left
+  // The physically based look (the model's own): the environment that lights it, an equirectangular .hdr or .exr
+  // (empty: facet's studio), turned by hdri_rotation degrees about the up axis (+Y); exposure and tone mapping.
+  std::filesystem::path hdri{};
+  float hdri_rotation = 0.0f;
+  ToneMapping tone_mapping = ToneMapping::neutral;
+  float exposure = 1.0f;
 };
 
 // The files a render writes; empty paths are not written.
@@ -105,10 +111,18 @@ struct RenderTimings {
 inline constexpr glm::vec3 kDefaultBackground{0.42f, 0.45f, 0.5f};
 
 // SceneOptions for a look. `view_from_world` places the default headlight in the world; `default_shading` applies
-// when the look names none; `background` picks a wireframe colour that stays visible. Throws std::invalid_argument
-// for a zero light direction.
+// when the look names none; `background` picks a wireframe colour that stays visible. The physically based look
+// (Shading::automatic) is lit by the look's environment alone, plus a directional light of intensity pi (a white
+// diffuse surface facing it shows white) when the look gives a light direction; the other shadings by the light
+// direction or the headlight. Environments are prefiltered once per process and file (environment_for). Throws
+// std::invalid_argument for a zero light direction or a bad exposure or rotation, InputError for an unreadable
+// environment file.
 SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_world, Shading default_shading,
                            glm::vec3 background);
+
+// The prefiltered environment of a look: the built-in studio, or its .hdr/.exr file read and prefiltered on first
+// use and kept for the process (a batch, a turntable or a sheet prefilters each file once).
+std::shared_ptr<const Environment> environment_for(const LookSpec& look);
 
 // A colour the look asks for replaces the mesh's vertex and face colours too (the shaders prefer those over the
 // material), so the whole model takes it. Does nothing without one.

@@ -13,14 +13,16 @@
 #include "facet/mesh.hpp"
 #include "facet/render_state.hpp"
 #include "facet/renderer.hpp"
+#include "facet/environment.hpp"
+#include "facet/shaders/brdf.hpp"
 #include "facet/shaders/lighting.hpp"
 #include "facet/texture.hpp"
 
 namespace facet {
 
 enum class Shading {
-  automatic,    // the model's own look: Blinn-Phong lit with its materials, textures and vertex colours (unlit
-                // materials as `unlit`)
+  automatic,    // the model's own look: its physically based (metallic-roughness) materials, textures and vertex
+                // colours lit by the environment and lights, tone-mapped (unlit materials as `unlit`)
   unlit,        // material colour x (vertex colour, else face colour) x texture; no lighting
   flat,         // one lit colour per face (face normal)
   gouraud,      // lit per vertex, colour interpolated
@@ -57,6 +59,11 @@ struct SceneOptions {
   glm::vec4 edge_color{0.05f, 0.05f, 0.05f, 1.0f};
   float line_width = 1.0f;
   Sampler sampler{};
+  // The physically based look (Shading::automatic): the environment that lights it besides `lights` (none: the
+  // ambient colour lights it evenly instead), and how its light becomes displayed colour.
+  std::shared_ptr<const Environment> environment{};
+  ToneMapping tone_mapping = ToneMapping::neutral;
+  float exposure = 1.0f;
 };
 
 inline constexpr int kMaxLights = 4;

@@ -269,6 +269,7 @@ struct alignas(kLaneAlign) Vec3 {
 // lowers the splat for the baseline before the clone exists); a scalar operand becomes one broadcast.
 FACET_LANES_INLINE Vec3 operator-(const glm::vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 FACET_LANES_INLINE Vec3 operator-(const Vec3& a, const glm::vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
+FACET_LANES_INLINE Vec3 operator+(const Vec3& a, const glm::vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
 // In glm's order, (x*x + y*y) + z*z, so lane and scalar shaders round alike.
 FACET_LANES_INLINE Float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
 FACET_LANES_INLINE Float dot(const Vec3& a, const glm::vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }

@@ -78,6 +78,9 @@ inline glm::vec4 blend_portable(std::uint64_t bottom_pair, std::uint64_t top_pai
 inline constexpr int kSrgbEncodeSteps = 4096;
 const float* srgb_decode_table();  // 256 entries
 const float* srgb_encode_table();  // kSrgbEncodeSteps + 1 entries
+// The decoding curve at kSrgbEncodeSteps + 1 evenly spaced points of [0, 1], for encoded values that are not bytes
+// (a filtered texel, an interpolated vertex colour); interpolated linearly by srgb_decode (off by less than 3e-5).
+const float* srgb_decode_curve_table();
 
 // Linear light to its sRGB encoding, both in [0, 1]; values outside (and NaN) are clamped first.
 inline float srgb_encode(float linear, const float* table) {
@@ -88,6 +91,9 @@ inline float srgb_encode(float linear, const float* table) {
   const float w = f - static_cast<float>(i);
   return table[i] + (table[i + 1] - table[i]) * w;
 }
+
+// An sRGB-encoded value in [0, 1] to linear light; values outside (and NaN) are clamped first.
+inline float srgb_decode(float encoded, const float* table) { return srgb_encode(encoded, table); }
 
 // blend for sRGB-encoded texels: red, green and blue decoded to linear light, interpolated there (the same lerps as
 // blend) and encoded again; alpha, which is linear, exactly as blend does it.

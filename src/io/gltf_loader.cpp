@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "facet/color.hpp"
 #include "facet/error.hpp"
 #include "facet/model.hpp"
 #include "facet/texture.hpp"
@@ -281,21 +282,56 @@ glm::mat3 uv_transform_of(const tinygltf::TextureInfo& info, const std::string& 
                    glm::vec3(offset, 1.0f));
 }
 
+// A factor clamped to [0, 1] as the specification bounds it; NaN gives the default.
+float unit_factor(double value, float fallback) {
+  return std::isfinite(value) ? static_cast<float>(std::clamp(value, 0.0, 1.0)) : fallback;
+}
+template <int N>
+glm::vec<N, float> unit_vector(const std::vector<double>& values) {
+  glm::vec<N, float> out(1.0f);
+  for (int i = 0; i < N; ++i) out[i] = unit_factor(values[static_cast<std::size_t>(i)], 1.0f);
+  return out;
+}
+
+// The material the specification gives a primitive without one: white, fully metallic, fully rough, one-sided.
+Material default_material() {
+  Material out;
+  out.name = "glTF default";
+  out.metallic = 1.0f;
+  out.roughness = 1.0f;
+  out.double_sided = false;
+  return out;
+}
+
 Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& source) {
   Material out;
   out.name = m.name;
-  const std::vector<double>& f = m.pbrMetallicRoughness.baseColorFactor;
-  if (f.size() == 4)
-    out.diffuse = glm::vec4(static_cast<float>(f[0]), static_cast<float>(f[1]), static_cast<float>(f[2]),
-                            static_cast<float>(f[3]));
-  // Metallic-roughness approximated for Blinn-Phong: rough surfaces get a weak, broad highlight.
-  const float roughness = static_cast<float>(std::clamp(m.pbrMetallicRoughness.roughnessFactor, 0.0, 1.0));
-  out.specular = glm::vec3(0.5f * (1.0f - roughness));
-  out.shininess = 2.0f + 126.0f * (1.0f - roughness) * (1.0f - roughness);
-  out.diffuse_map = decode_texture(model, m.pbrMetallicRoughness.baseColorTexture.index, TexelEncoding::srgb, source);
-  out.sampler = sampler_of(model, m.pbrMetallicRoughness.baseColorTexture.index);
+  const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+  // glTF's factors are linear; facet's material colours are as displayed (mesh.hpp).
+  if (pbr.baseColorFactor.size() == 4) out.diffuse = linear_to_srgb(unit_vector<4>(pbr.baseColorFactor));
+  out.metallic = unit_factor(pbr.metallicFactor, 1.0f);
+  out.roughness = unit_factor(pbr.roughnessFactor, 1.0f);
+  // For the Blinn-Phong and Phong shadings: rough surfaces get a weak, broad highlight.
+  out.specular = glm::vec3(0.5f * (1.0f - out.roughness));
+  out.shininess = 2.0f + 126.0f * (1.0f - out.roughness) * (1.0f - out.roughness);
+  out.diffuse_map = decode_texture(model, pbr.baseColorTexture.index, TexelEncoding::srgb, source);
+  out.sampler = sampler_of(model, pbr.baseColorTexture.index);
+  out.metallic_roughness_map = decode_texture(model, pbr.metallicRoughnessTexture.index, TexelEncoding::linear, source);
   out.normal_map = decode_texture(model, m.normalTexture.index, TexelEncoding::linear, source);
   out.normal_scale = std::isfinite(m.normalTexture.scale) ? static_cast<float>(m.normalTexture.scale) : 1.0f;
+  out.occlusion_map = decode_texture(model, m.occlusionTexture.index, TexelEncoding::linear, source);
+  out.occlusion_strength = unit_factor(m.occlusionTexture.strength, 1.0f);
+  if (m.emissiveFactor.size() == 3) {
+    float strength = 1.0f;
+    if (const auto e = m.extensions.find("KHR_materials_emissive_strength"); e != m.extensions.end() &&
+                                                                             e->second.Has("emissiveStrength")) {
+      const double value = e->second.Get("emissiveStrength").GetNumberAsDouble();
+      if (std::isfinite(value) && value >= 0.0) strength = static_cast<float>(value);
+      else warn(source, "material '" + m.name + "': emissiveStrength must be finite and not negative; using 1");
+    }
+    out.emissive = glm::vec3(unit_vector<3>(m.emissiveFactor)) * strength;
+  }
+  out.emissive_map = decode_texture(model, m.emissiveTexture.index, TexelEncoding::srgb, source);
   out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
   out.double_sided = m.doubleSided;
   if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::blend;
@@ -316,6 +352,8 @@ class SceneReader {
       uv_transforms_.push_back(uv_transform_of(m.pbrMetallicRoughness.baseColorTexture, source));
       materials_.push_back(material_of(model_, m, source));
     }
+    uv_transforms_.emplace_back(1.0f);
+    materials_.push_back(default_material());  // for primitives without a material
   }
 
   void node(int index, const glm::mat4& parent, int depth) {
@@ -463,12 +501,13 @@ class SceneReader {
     for (std::size_t i = 0; i < count; ++i)
       mesh_.positions.emplace_back(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
     append_normals(data.normals, count);
-    const int material =
-        p.material >= 0 && static_cast<std::size_t>(p.material) < model_.materials.size() ? p.material : -1;
-    append_uvs(data.uvs, count, material >= 0 ? uv_transforms_[static_cast<std::size_t>(material)] : glm::mat3(1.0f));
+    const int material = p.material >= 0 && static_cast<std::size_t>(p.material) < model_.materials.size()
+                             ? p.material
+                             : static_cast<int>(model_.materials.size());  // the default material
+    append_uvs(data.uvs, count, uv_transforms_[static_cast<std::size_t>(material)]);
     append_colors(data.colors, data.color_components, count);
 
-    const std::int32_t local = material < 0 ? -1 : local_material(material);
+    const std::int32_t local = local_material(material);
     for (std::size_t t = 0; t < corners.size(); t += 3) {
       const auto b = static_cast<std::uint32_t>(base);
       mesh_.indices.insert(mesh_.indices.end(), {b + corners[t], b + corners[t + 1], b + corners[t + 2]});
@@ -522,8 +561,10 @@ class SceneReader {
     }
     any_colors_ = true;
     const auto k = static_cast<std::size_t>(components);
+    // COLOR_0 is linear; facet's vertex colours are as displayed (mesh.hpp).
     for (std::size_t i = 0; i < count; ++i)
-      mesh_.colors.emplace_back(c[k * i], c[k * i + 1], c[k * i + 2], components == 4 ? c[k * i + 3] : 1.0f);
+      mesh_.colors.push_back(
+          linear_to_srgb(glm::vec4(c[k * i], c[k * i + 1], c[k * i + 2], components == 4 ? c[k * i + 3] : 1.0f)));
   }
 
   const tinygltf::Model& model_;

@@ -9,6 +9,7 @@
 #include <string_view>
 #include <unordered_map>
 
+#include "facet/color.hpp"
 #include "facet/error.hpp"
 #include "facet/model_io.hpp"
 #include "io/file_util.hpp"
@@ -189,6 +190,15 @@ std::vector<Material> convert_materials(const std::vector<tinyobj::material_t>& 
     mat.diffuse = {m.diffuse[0], m.diffuse[1], m.diffuse[2], m.dissolve};
     mat.specular = {m.specular[0], m.specular[1], m.specular[2]};
     mat.shininess = m.shininess;
+    mat.metallic = std::clamp(m.metallic, 0.0f, 1.0f);
+    if (m.roughness > 0.0f || m.metallic > 0.0f) {
+      mat.roughness = std::clamp(m.roughness, 0.0f, 1.0f);  // MTL's PBR extension: Pr, Pm
+    } else {
+      // Blinn-Phong's exponent as a GGX roughness (alpha^2 = 2 / (Ns + 2)); no specular colour means a matte surface.
+      const bool matte = mat.specular == glm::vec3(0.0f) || !(m.shininess > 0.0f);
+      mat.roughness = matte ? 1.0f : std::clamp(std::sqrt(std::sqrt(2.0f / (m.shininess + 2.0f))), 0.0f, 1.0f);
+    }
+    mat.emissive = srgb_to_linear(glm::vec3(m.emission[0], m.emission[1], m.emission[2]));
     if (!m.diffuse_texname.empty()) {
       const std::string what = "texture '" + printable(m.diffuse_texname) + "' of material '" + printable(m.name) + "'";
       mat.diffuse_texture = usable_texture(policy, options, m.diffuse_texname, what, source).value_or("");

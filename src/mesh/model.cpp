@@ -20,7 +20,10 @@ bool same_material(const Material& a, const Material& b) {
          a.diffuse_texture == b.diffuse_texture && a.diffuse_map == b.diffuse_map &&
          same_sampler(a.sampler, b.sampler) && a.unlit == b.unlit && a.normal_map == b.normal_map &&
          a.normal_scale == b.normal_scale && a.alpha_mode == b.alpha_mode && a.alpha_cutoff == b.alpha_cutoff &&
-         a.double_sided == b.double_sided;
+         a.double_sided == b.double_sided && a.metallic == b.metallic && a.roughness == b.roughness &&
+         a.metallic_roughness_map == b.metallic_roughness_map && a.emissive == b.emissive &&
+         a.emissive_map == b.emissive_map && a.occlusion_map == b.occlusion_map &&
+         a.occlusion_strength == b.occlusion_strength;
 }
 
 // The index of an equal material in `materials`, appending it if there is none. Models have few materials, and

@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <span>
 
+#include "facet/color.hpp"
 #include "facet/shaders/stock.hpp"
 #include "scene/draw.hpp"
 
@@ -35,6 +36,27 @@ S lit_shader(const FrameContext& frame, const ObjectTransforms& transforms, cons
   return shader;
 }
 
+// The physically based inputs of a material, decoded to linear light; the base colour and its texture as
+// `surface` has them (the options' colour override included).
+PbrMaterial pbr_material(const Material& material, const SurfaceColor& surface) {
+  PbrMaterial m;
+  m.base_color = srgb_to_linear(surface.diffuse);
+  m.metallic = material.metallic;
+  m.roughness = material.roughness;
+  m.emissive = material.emissive;
+  m.occlusion_strength = material.occlusion_strength;
+  m.face_colors = surface.face_colors;
+  m.base_color_map = surface.texture;
+  m.metallic_roughness_map = material.metallic_roughness_map.get();
+  m.occlusion_map = material.occlusion_map.get();
+  m.emissive_map = material.emissive_map.get();
+  m.normal_map = material.normal_map.get();
+  m.normal_scale = material.normal_scale;
+  m.sampler = surface.sampler;
+  m.opaque = surface.opaque;
+  return m;
+}
+
 void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance& instance,
                 const ObjectTransforms& transforms, const PreparedMesh& prepared, const TriangleGroup& group) {
   const SceneOptions& options = *frame.options;
@@ -43,7 +65,26 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
   const Shading shading = shading_of(options, material);
   const bool masked = is_masked(options, material);
   switch (shading) {
-    case Shading::automatic:
+    case Shading::automatic: {
+      PbrShader shader;
+      shader.transforms = transforms;
+      shader.material = pbr_material(material, surface);
+      shader.lights = frame.lights;
+      shader.environment = options.environment.get();
+      shader.eye = frame.eye;
+      shader.tone_mapping = options.tone_mapping;
+      shader.exposure = options.exposure;
+      if (masked) {
+        Masked<PbrShader> cut{shader};
+        cut.alpha_cutoff = material.alpha_cutoff;
+        draw(cut);
+      } else if (!shader.material.textured()) {
+        draw(UntexturedPbrShader{shader});
+      } else {
+        draw(shader);
+      }
+      break;
+    }
     case Shading::blinn_phong:
     case Shading::phong: {
       const SpecularModel model = shading == Shading::phong ? SpecularModel::phong : SpecularModel::blinn_phong;

@@ -1,9 +1,19 @@
 // look.cpp - a LookSpec applied: the scene's drawing options and lights, the mesh's colour, the clear colour.
+#include <cmath>
+#include <map>
+#include <memory>
+#include <mutex>
 #include <stdexcept>
+#include <string>
+#include <utility>
 
 #include "facet/render_job.hpp"
 
 namespace facet {
+
+namespace {
+constexpr float kPi = 3.14159265358979f;
+}  // namespace
 
 SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_world, Shading default_shading,
                            glm::vec3 background) {
@@ -18,7 +28,17 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
     // at and gives the three faces of a box seen in a 3/4 view three distinct tones.
     light = glm::transpose(glm::mat3(view_from_world)) * glm::vec3(-0.3f, 0.5f, 0.8f);
   }
-  options.lights = {Light{Light::Kind::directional, light, glm::vec3(1.0f), 1.0f}};
+  if (options.shading == Shading::automatic) {
+    if (!(look.exposure > 0.0f) || !std::isfinite(look.exposure))
+      throw std::invalid_argument("exposure: must be a finite number above 0");
+    options.environment = environment_for(look);
+    options.tone_mapping = look.tone_mapping;
+    options.exposure = look.exposure;
+    options.lights.clear();
+    if (look.light_direction) options.lights = {Light{Light::Kind::directional, light, glm::vec3(1.0f), kPi}};
+  } else {
+    options.lights = {Light{Light::Kind::directional, light, glm::vec3(1.0f), 1.0f}};
+  }
   if (look.color) options.color = glm::vec4(*look.color, 1.0f);
   options.cull = look.cull.value_or(CullMode::none);
   options.cull_single_sided = !look.cull;
@@ -30,6 +50,22 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
   const float luminance = glm::dot(background, glm::vec3(0.2126f, 0.7152f, 0.0722f));
   if (look.wireframe && !options.color && luminance > 0.5f) options.color = glm::vec4(0.1f, 0.1f, 0.1f, 1.0f);
   return options;
+}
+
+std::shared_ptr<const Environment> environment_for(const LookSpec& look) {
+  if (!std::isfinite(look.hdri_rotation)) throw std::invalid_argument("environment rotation: must be finite");
+  if (look.hdri.empty() && look.hdri_rotation == 0.0f) return studio_lighting();
+  // A few environments at most in a process; each is a few MB once prefiltered.
+  static std::mutex mutex;
+  static std::map<std::pair<std::string, float>, std::shared_ptr<const Environment>> cache;
+  const std::pair<std::string, float> key{look.hdri.string(), look.hdri_rotation};
+  const std::lock_guard<std::mutex> lock(mutex);
+  std::shared_ptr<const Environment>& found = cache[key];
+  if (!found) {
+    const EnvironmentImage image = look.hdri.empty() ? studio_environment() : read_environment_image(look.hdri);
+    found = std::make_shared<const Environment>(image, look.hdri_rotation);
+  }
+  return found;
 }
 
 void apply_look_color(Mesh& mesh, const LookSpec& look) {

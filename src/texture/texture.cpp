@@ -13,13 +13,14 @@
 #include "texture/decode.hpp"
 #include "texture/image_decode.hpp"
 
-// The one stb_image implementation in facet, for TGA and BMP only: PNG and JPEG go through libspng and
+// The one stb_image implementation in facet, for TGA, BMP and Radiance .hdr only: PNG and JPEG go through libspng and
 // libjpeg-turbo (image_decode.hpp), which fuzzing showed to be the safer readers of malformed files. A build
 // without those (FACET_NO_IMAGE_CODECS) decodes PNG and JPEG with stb too. The dimension cap rejects absurd files
 // early.
 #define STB_IMAGE_IMPLEMENTATION
 #define STBI_ONLY_TGA
 #define STBI_ONLY_BMP
+#define STBI_ONLY_HDR  // Radiance environments (io/environment_io.cpp)
 #ifdef FACET_NO_IMAGE_CODECS
 #define STBI_ONLY_PNG
 #define STBI_ONLY_JPEG
@@ -112,6 +113,19 @@ const float* srgb_encode_table() {
       const double x = static_cast<double>(i) / kSrgbEncodeSteps;
       t[static_cast<std::size_t>(i)] =
           static_cast<float>(x <= 0.0031308 ? 12.92 * x : 1.055 * std::pow(x, 1.0 / 2.4) - 0.055);
+    }
+    return t;
+  }();
+  return table.data();
+}
+
+const float* srgb_decode_curve_table() {
+  static const std::array<float, kSrgbEncodeSteps + 1> table = [] {
+    std::array<float, kSrgbEncodeSteps + 1> t{};
+    for (int i = 0; i <= kSrgbEncodeSteps; ++i) {
+      const double c = static_cast<double>(i) / kSrgbEncodeSteps;
+      t[static_cast<std::size_t>(i)] =
+          static_cast<float>(c <= 0.04045 ? c / 12.92 : std::pow((c + 0.055) / 1.055, 2.4));
     }
     return t;
   }();

@@ -117,6 +117,16 @@ expect too_many_triangles 1 render "$box" --max-triangles 5
 expect_message too_many_triangles "more than the limit of 5 (--max-triangles)"
 expect max_triangles_zero 2 render "$box" --max-triangles 0
 expect max_texture_size_range 2 render "$box" --max-texture-size 20000
+# Environments: missing, not an image, not a format facet reads, lying about their size.
+printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 16000 +X 16000\n' >"$scratch/lying.hdr"
+head -c 2000 /dev/urandom >"$scratch/garbage.hdr"
+expect hdri_missing 1 render "$box" --hdri "$scratch/nowhere.hdr"
+expect_message hdri_missing "nowhere.hdr: no such file"
+expect hdri_garbage 1 render "$box" --hdri "$scratch/garbage.hdr"
+expect hdri_lying 1 render "$box" --hdri "$scratch/lying.hdr"
+expect_message hdri_lying "more than its"
+expect hdri_png 1 render "$box" --hdri "$scratch/header.ply"
+expect_message hdri_png "an environment must be a Radiance .hdr or an OpenEXR .exr file"
 
 # Bad usage: exit 2.
 expect no_command 2 -n
@@ -131,6 +141,9 @@ expect resolution_too_big 2 render "$box" --resolution 100000,10
 expect resolution_negative 2 render "$box" --resolution=-5,10
 expect resolution_fraction 2 render "$box" --resolution 64.5,48
 expect samples_three 2 render "$box" --samples 3
+expect tone_mapping_unknown 2 render "$box" --tone-mapping filmic
+expect exposure_negative 2 render "$box" --exposure=-1
+expect exposure_text 2 render "$box" --exposure bright
 expect samples_zero 2 render "$box" --samples 0
 expect demo_samples_sixteen 2 demo cube --samples 16
 expect position_two_numbers 2 render "$box" --camera-position 1,2

@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "facet/draw.hpp"
+#include "facet/environment.hpp"
 #include "facet/shaders/stock.hpp"  // the library's own SurfaceShader pipelines, not new ones
 #include "facet/texture.hpp"
 #include "support/image_asserts.hpp"
@@ -160,6 +161,60 @@ TEST(SurfaceLanes, EveryMaterialAndLightMatchesTheScalarFragment) {
     const glm::mat4 view_from_object = glm::lookAt(eye, glm::vec3(0.0f), {0, 1, 0}) * c.world_from_object;
     expect_lanes_match(DepthShader{lit.transforms.clip_from_object, view_from_object, 1.2f, 4.0f}, g,
                        std::string("depth, ") + c.name);
+  }
+}
+
+// The physically based shader's lane path: metals and dielectrics, rough and smooth, lit by an environment and two
+// lights or by lights and ambient alone, under each tone mapping, mirrored or not.
+TEST(SurfaceLanes, PbrMatchesTheScalarFragment) {
+  const Geometry g = open_sphere();
+  const Environment studio(studio_environment());
+  std::mt19937 rng(5);
+  std::vector<std::uint32_t> texels(16 * 16);
+  for (std::uint32_t& t : texels) t = static_cast<std::uint32_t>(rng()) | 0xff000000u;
+  Texture texture(16, 16, texels, TexelEncoding::srgb), linear(16, 16, texels);
+  texture.generate_mipmaps();
+  const glm::vec3 eye(0.4f, 1.8f, 2.6f);
+  const glm::mat4 clip_from_world = glm::perspective(glm::radians(50.0f), 203.0f / 151.0f, 0.1f, 10.0f) *
+                                    glm::lookAt(eye, glm::vec3(0.0f), {0, 1, 0});
+  struct Case {
+    const char* name;
+    glm::mat4 world_from_object;
+    float metallic, roughness;
+    const Environment* environment;
+    ToneMapping tone_mapping;
+  };
+  const Case cases[] = {
+      {"dielectric, studio, neutral", glm::mat4(1.0f), 0.0f, 0.5f, &studio, ToneMapping::neutral},
+      {"metal, smooth, mirrored, ACES", glm::scale(glm::mat4(1.0f), glm::vec3(-1.0f, 1.0f, 1.0f)), 1.0f, 0.05f,
+       &studio, ToneMapping::aces},
+      {"half metal, rough, no environment, no tone mapping", glm::rotate(glm::mat4(1.0f), 0.6f, glm::vec3(1, 0.2f, 0)),
+       0.5f, 1.0f, nullptr, ToneMapping::none},
+  };
+  for (const Case& c : cases) {
+    PbrShader shader;
+    shader.transforms = ObjectTransforms::make(clip_from_world, c.world_from_object);
+    shader.material.base_color = glm::vec4(0.9f, 0.5f, 0.2f, 0.8f);
+    shader.material.metallic = c.metallic;
+    shader.material.roughness = c.roughness;
+    shader.material.emissive = glm::vec3(0.05f, 0.0f, 0.1f);
+    shader.lights.add_directional(glm::vec3(-0.3f, 0.5f, 0.8f), glm::vec3(2.0f, 2.2f, 2.4f));
+    shader.lights.add_point(glm::vec3(1.5f, 2.0f, 1.0f), glm::vec3(0.6f, 0.3f, 0.2f));
+    shader.lights.ambient = glm::vec3(0.12f);
+    shader.environment = c.environment;
+    shader.eye = eye;
+    shader.tone_mapping = c.tone_mapping;
+    shader.exposure = 1.3f;
+    expect_lanes_match(shader, g, std::string("PBR, ") + c.name);
+    expect_same(draw_with(ScalarOf<PbrShader>{shader}, g), draw_with(UntexturedPbrShader{shader}, g), c.name);
+    // Every texture the material model reads, and face colours.
+    shader.material.face_colors = g.face_colors.data();
+    shader.material.base_color_map = &texture;
+    shader.material.metallic_roughness_map = &linear;
+    shader.material.occlusion_map = &linear;
+    shader.material.emissive_map = &texture;
+    shader.material.occlusion_strength = 0.7f;
+    expect_lanes_match(shader, g, std::string("PBR, textured, ") + c.name);
   }
 }
 

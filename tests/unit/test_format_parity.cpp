@@ -66,7 +66,9 @@ std::string gltf() {
   std::memcpy(buffer.data() + kPositions.size() * 12, kIndices.data(), kIndices.size() * 4);
   const std::string positions = std::to_string(kPositions.size() * 12), indices = std::to_string(kIndices.size() * 4);
   return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
-         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1}]}],)"
+         // The look the other formats' material-less meshes get (glTF's own default is a rough metal).
+         R"("materials":[{"pbrMetallicRoughness":{"metallicFactor":0,"roughnessFactor":0.5},"doubleSided":true}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1,"material":0}]}],)"
          R"("accessors":[{"bufferView":0,"componentType":5126,"count":5,"type":"VEC3","min":[-1,0,-1],"max":[1,1,1]},)"
          R"({"bufferView":1,"componentType":5125,"count":18,"type":"SCALAR"}],)"
          R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":)" +

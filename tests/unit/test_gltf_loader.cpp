@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "facet/color.hpp"
 #include "facet/error.hpp"
 #include "facet/mesh.hpp"
 #include "facet/model_io.hpp"
@@ -201,7 +202,7 @@ TEST(GltfLoader, UnlitMaterialsAreMarked) {
   ASSERT_EQ(mesh.materials.size(), 2u);
   EXPECT_TRUE(mesh.materials[0].unlit);
   EXPECT_FALSE(mesh.materials[1].unlit);
-  EXPECT_EQ(mesh.materials[0].diffuse, glm::vec4(0.2f, 0.6f, 0.4f, 1.0f));
+  EXPECT_EQ(mesh.materials[0].diffuse, linear_to_srgb(glm::vec4(0.2f, 0.6f, 0.4f, 1.0f)));  // as displayed
 }
 
 // Every glTF file Debian ships either loads (at least one triangle, validated) or is refused with InputError.

@@ -318,8 +318,8 @@ TEST(SceneShading, MissingNormalsAreComputedAndDefaultMaterialIsLit) {
   options.shading = Shading::normals;
   EXPECT_EQ(render(scene, view, options).fb.pixel(32, 32), pack_rgba8({0.5f, 0.5f, 1.0f, 1.0f}));
 
-  // automatic: Blinn-Phong with the default material (specular 0.4, shininess 32); the highlight peaks head-on.
-  options.shading = Shading::automatic;
+  // Blinn-Phong with the default material (specular 0.4, shininess 32); the highlight peaks head-on.
+  options.shading = Shading::blinn_phong;
   options.lights = {Light{Light::Kind::directional, {0, 0, 1}, glm::vec3(1.0f), 1.0f}};
   options.ambient = glm::vec3(0.1f);
   options.color = glm::vec4(0.5f, 0.5f, 0.5f, 1.0f);
@@ -338,6 +338,7 @@ TEST(SceneShading, BoxWithoutNormalsHasFlatFaces) {
   scene.add(instance(m));
   const View view = make_view({1.6f, 2.2f, 3.4f});
   SceneOptions options;
+  options.shading = Shading::blinn_phong;
   options.lights = {Light{Light::Kind::directional, {0.3f, 0.5f, 0.8f}, glm::vec3(1.0f), 1.0f}};
   options.ambient = glm::vec3(0.1f);
   const Frame lit = render(scene, view, options);

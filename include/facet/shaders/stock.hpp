@@ -11,6 +11,7 @@
 #include "facet/shaders/masked.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
 #include "facet/shaders/normal.hpp"
+#include "facet/shaders/pbr.hpp"
 #include "facet/shaders/surface.hpp"
 #include "facet/shaders/surface_color.hpp"
 #include "facet/shaders/unlit.hpp"
@@ -26,3 +27,6 @@ FACET_EXTERN_SHADER(facet::DepthShader);
 FACET_EXTERN_SHADER(facet::LineShader);
 FACET_EXTERN_SHADER(facet::Masked<facet::SurfaceShader>);
 FACET_EXTERN_SHADER(facet::Masked<facet::UnlitShader>);
+FACET_EXTERN_SHADER(facet::PbrShader);
+FACET_EXTERN_SHADER(facet::UntexturedPbrShader);
+FACET_EXTERN_SHADER(facet::Masked<facet::PbrShader>);

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "facet/shaders/lit.hpp"
+#include "facet/shaders/normal_mapping.hpp"
 
 namespace facet {
 
@@ -18,9 +19,7 @@ struct SurfaceShader : LitUniforms {
     glm::vec2 uv;
   };
 
-  // A tangent-space normal map, or null; its frame comes from the screen-space derivatives of the world position
-  // and the uvs (a cotangent frame, as in Schueler's "Normal Mapping without Precomputed Tangents"), so meshes need
-  // no tangents.
+  // A tangent-space normal map, or null (normal_mapping.hpp: applied without tangents).
   const Texture* normal_map = nullptr;
   float normal_scale = 1.0f;
 
@@ -57,19 +56,7 @@ struct SurfaceShader : LitUniforms {
   }
 
   glm::vec3 mapped_normal(glm::vec3 n, const Fragment<Varyings>& f) const {
-    // Window y grows downwards; the frame is built for y up, as OpenGL's dFdy gives it.
-    const glm::vec3 dp1 = f.ddx.world, dp2 = -f.ddy.world;
-    const glm::vec2 duv1 = f.ddx.uv, duv2 = -f.ddy.uv;
-    const glm::vec3 dp2perp = glm::cross(dp2, n), dp1perp = glm::cross(n, dp1);
-    const glm::vec3 t = dp2perp * duv1.x + dp1perp * duv2.x, b = dp2perp * duv1.y + dp1perp * duv2.y;
-    const float extent = std::max(glm::dot(t, t), glm::dot(b, b));
-    if (!(extent > 0.0f) || !std::isfinite(extent)) return n;  // uvs constant over the pixel: no frame
-    const float scale = 1.0f / std::sqrt(extent);
-    const glm::vec3 texel = glm::vec3(normal_map->sample(f.varyings.uv, f.ddx.uv, f.ddy.uv, surface.sampler));
-    const glm::vec3 m = texel * 2.0f - 1.0f;
-    const glm::vec3 mapped = t * (scale * m.x * normal_scale) + b * (scale * m.y * normal_scale) + n * m.z;
-    const float length = glm::length(mapped);
-    return length > 0.0f && std::isfinite(length) ? mapped / length : n;
+    return facet::mapped_normal(n, f, *normal_map, surface.sampler, normal_scale);
   }
 };
 
