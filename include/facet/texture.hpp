@@ -205,6 +205,10 @@ class Texture {
   // samples level 0 bilinearly. nearest and bilinear ignore the derivatives, as in OpenGL.
   glm::vec4 sample(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, const Sampler& sampler) const;
 
+  // sample(uv, duv_dx, duv_dy, sampler) in linear light: an sRGB texture's filtered colour is returned decoded
+  // rather than encoded again (a linear texture's as sample() gives it), for shading in linear light.
+  glm::vec4 sample_linear(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, const Sampler& sampler) const;
+
   // sample(uv, sampler) for 16 lanes. The benchmark's case (bilinear, repeat, power-of-two) runs in lanes with the
   // same IEEE operations as the scalar path, so both give identical results, for both encodings; other samplers
   // sample lane by lane.

@@ -112,4 +112,35 @@ glm::vec4 Texture::sample(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, cons
           detail::srgb_encode(mixed.b, encode), mixed.a};
 }
 
+glm::vec4 Texture::sample_linear(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, const Sampler& sampler) const {
+  if (!srgb_) return sample(uv, duv_dx, duv_dy, sampler);
+  if (empty()) return glm::vec4(0.0f, 0.0f, 0.0f, 1.0f);
+  if (sampler.filter == Filter::nearest) {
+    const glm::vec4 t = sample_nearest(0, uv, sampler.wrap_u, sampler.wrap_v);
+    const float* decode = detail::srgb_decode_table();
+    const auto byte = [&](float v) { return decode[static_cast<int>(v * 255.0f + 0.5f)]; };
+    return {byte(t.r), byte(t.g), byte(t.b), t.a};
+  }
+  // trilinear as sample() chooses its levels, without the final encoding.
+  int level = 0;
+  float f = 0.0f;
+  if (sampler.filter == Filter::trilinear && level_count_ > 1) {
+    const glm::vec2 size(levels_[0].fwidth, levels_[0].fheight);
+    const float lod = std::log2(std::max(glm::length(duv_dx * size), glm::length(duv_dy * size)));
+    if (lod > 0.0f) {
+      const float max_level = static_cast<float>(level_count_ - 1);
+      if (lod >= max_level) {
+        level = level_count_ - 1;
+      } else {
+        level = static_cast<int>(lod);
+        f = lod - static_cast<float>(level);
+      }
+    }
+  }
+  const glm::vec4 a = sample_bilinear_linear(level, uv, sampler.wrap_u, sampler.wrap_v);
+  if (f == 0.0f) return a;
+  const glm::vec4 b = sample_bilinear_linear(level + 1, uv, sampler.wrap_u, sampler.wrap_v);
+  return a + (b - a) * f;
+}
+
 }  // namespace facet

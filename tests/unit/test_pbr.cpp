@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "facet/color.hpp"
 #include "facet/environment.hpp"
@@ -11,6 +12,7 @@
 #include "facet/render_job.hpp"
 #include "facet/shaders/brdf.hpp"
 #include "facet/shaders/pbr.hpp"
+#include "facet/texture.hpp"
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
@@ -218,6 +220,27 @@ TEST(GltfColorSpace, MissingMaterialIsTheSpecificationsDefault) {
   EXPECT_EQ(mesh.materials[0].metallic, 1.0f);
   EXPECT_EQ(mesh.materials[0].roughness, 1.0f);
   EXPECT_FALSE(mesh.materials[0].double_sided);
+}
+
+// sample_linear gives an sRGB texture's filtered colour in linear light: what sample() gives, decoded (to the
+// encoding table's precision), for every filter; a linear texture's exactly as sample() gives it.
+TEST(TextureLinear, IsTheDecodedSample) {
+  std::mt19937 rng(8);
+  std::vector<std::uint32_t> texels(16 * 8);
+  for (std::uint32_t& t : texels) t = static_cast<std::uint32_t>(rng());
+  Texture srgb(16, 8, texels, TexelEncoding::srgb), linear(16, 8, texels);
+  srgb.generate_mipmaps();
+  linear.generate_mipmaps();
+  std::uniform_real_distribution<float> unit(-1.0f, 2.0f), step(0.0f, 0.3f);
+  for (const Filter filter : {Filter::nearest, Filter::bilinear, Filter::trilinear})
+    for (int i = 0; i < 200; ++i) {
+      const Sampler sampler{filter, Wrap::repeat, Wrap::mirror};
+      const glm::vec2 uv(unit(rng), unit(rng)), dx(step(rng), 0.0f), dy(0.0f, step(rng));
+      const glm::vec4 encoded = srgb.sample(uv, dx, dy, sampler), decoded = srgb.sample_linear(uv, dx, dy, sampler);
+      for (int c = 0; c < 3; ++c) EXPECT_NEAR(decoded[c], srgb_to_linear(encoded[c]), 2e-4f) << c;
+      EXPECT_FLOAT_EQ(decoded.a, encoded.a);
+      EXPECT_EQ(linear.sample_linear(uv, dx, dy, sampler), linear.sample(uv, dx, dy, sampler));
+    }
 }
 
 }  // namespace

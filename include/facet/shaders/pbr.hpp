@@ -97,7 +97,11 @@ struct PbrShader {
     };
     if (m.face_colors) multiply_decoded(m.face_colors[f.primitive]);
     const glm::vec2 uv = f.varyings.uv, dx = f.ddx.uv, dy = f.ddy.uv;
-    if (m.base_color_map) multiply_decoded(m.base_color_map->sample(uv, dx, dy, m.sampler));
+    if (m.base_color_map) {
+      const glm::vec4 t = m.base_color_map->sample_linear(uv, dx, dy, m.sampler);
+      in.base = in.base * brdf::Rgb<float>{t.r, t.g, t.b};
+      in.alpha *= t.a;
+    }
     if (m.metallic_roughness_map) {
       const glm::vec4 t = m.metallic_roughness_map->sample(uv, dx, dy, m.sampler);
       in.roughness *= t.g;
@@ -106,9 +110,8 @@ struct PbrShader {
     if (m.occlusion_map)
       in.occlusion = 1.0f + m.occlusion_strength * (m.occlusion_map->sample(uv, dx, dy, m.sampler).r - 1.0f);
     if (m.emissive_map) {
-      const glm::vec4 t = m.emissive_map->sample(uv, dx, dy, m.sampler);
-      in.emissive = in.emissive * brdf::Rgb<float>{detail::srgb_decode(t.r, decode), detail::srgb_decode(t.g, decode),
-                                                   detail::srgb_decode(t.b, decode)};
+      const glm::vec4 t = m.emissive_map->sample_linear(uv, dx, dy, m.sampler);
+      in.emissive = in.emissive * brdf::Rgb<float>{t.r, t.g, t.b};
     }
     if (m.opaque) in.alpha = 1.0f;
     return in;
@@ -170,7 +173,13 @@ struct PbrShader {
       const std::size_t u = FragmentLanes<Varyings>::float_index(&Varyings::uv);
       for (int k = 0; k < kLanes; ++k) {
         const glm::vec2 at(uv.x[k], uv.y[k]), dx(f.ddx[u][k], f.ddx[u + 1][k]), dy(f.ddy[u][k], f.ddy[u + 1][k]);
-        if (m.base_color_map) multiply_decoded(k, m.base_color_map->sample(at, dx, dy, m.sampler));
+        if (m.base_color_map) {
+          const glm::vec4 t = m.base_color_map->sample_linear(at, dx, dy, m.sampler);
+          in.base.r[k] = in.base.r[k] * t.r;
+          in.base.g[k] = in.base.g[k] * t.g;
+          in.base.b[k] = in.base.b[k] * t.b;
+          in.alpha[k] *= t.a;
+        }
         if (m.metallic_roughness_map) {
           const glm::vec4 t = m.metallic_roughness_map->sample(at, dx, dy, m.sampler);
           in.roughness[k] *= t.g;
@@ -179,10 +188,10 @@ struct PbrShader {
         if (m.occlusion_map)
           in.occlusion[k] = 1.0f + m.occlusion_strength * (m.occlusion_map->sample(at, dx, dy, m.sampler).r - 1.0f);
         if (m.emissive_map) {
-          const glm::vec4 t = m.emissive_map->sample(at, dx, dy, m.sampler);
-          in.emissive.r[k] = in.emissive.r[k] * detail::srgb_decode(t.r, decode);
-          in.emissive.g[k] = in.emissive.g[k] * detail::srgb_decode(t.g, decode);
-          in.emissive.b[k] = in.emissive.b[k] * detail::srgb_decode(t.b, decode);
+          const glm::vec4 t = m.emissive_map->sample_linear(at, dx, dy, m.sampler);
+          in.emissive.r[k] = in.emissive.r[k] * t.r;
+          in.emissive.g[k] = in.emissive.g[k] * t.g;
+          in.emissive.b[k] = in.emissive.b[k] * t.b;
         }
       }
     }
