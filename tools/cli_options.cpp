@@ -212,6 +212,11 @@ void add_look_options(CLI::App& app, LookArgs& args) {
   app.add_option("--hdri-rotation", args.hdri_rotation, "Turn the environment about the up axis (degrees)")
       ->check(number_in(-1e6, 1e6))
       ->type_name("DEG");
+  app.add_flag("--hdri-background", args.hdri_background,
+               "Draw the environment behind the model instead of the background colour");
+  app.add_option("--hdri-blur", args.hdri_blur, "Blur the environment behind the model, 0 (sharp) to 1")
+      ->check(number_in(0.0, 1.0))
+      ->type_name("R");
   add_enum_option<ToneMapping>(
       app, "--tone-mapping",
       {{"neutral", ToneMapping::neutral}, {"aces", ToneMapping::aces}, {"none", ToneMapping::none}},
@@ -305,6 +310,8 @@ LookSpec look_spec(const LookArgs& args) {
   look.hdri_rotation = args.hdri_rotation;
   look.tone_mapping = args.tone_mapping;
   look.exposure = args.exposure;
+  look.hdri_background = args.hdri_background;
+  look.hdri_blur = args.hdri_blur;
   return look;
 }
 

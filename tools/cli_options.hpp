@@ -89,6 +89,8 @@ struct LookArgs {
   float hdri_rotation = 0.0f;
   ToneMapping tone_mapping = ToneMapping::neutral;
   float exposure = 1.0f;
+  bool hdri_background = false;
+  float hdri_blur = 0.0f;
   int threads = 0;
   int samples = 4;  // multisample anti-aliasing
 };

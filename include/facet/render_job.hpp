@@ -39,6 +39,8 @@ struct LookSpec {
   float hdri_rotation = 0.0f;
   ToneMapping tone_mapping = ToneMapping::neutral;
   float exposure = 1.0f;
+  bool hdri_background = false;  // draw the environment behind the model instead of the background colour
+  float hdri_blur = 0.0f;        // how blurred: 0 sharp to 1
 };
 
 // The files a render writes; empty paths are not written.

@@ -64,6 +64,10 @@ struct SceneOptions {
   std::shared_ptr<const Environment> environment{};
   ToneMapping tone_mapping = ToneMapping::neutral;
   float exposure = 1.0f;
+  // Draw the environment behind the model (the physically based look, with an environment), prefiltered at
+  // background_blur: a roughness, 0 sharp to 1 the roughest level.
+  bool environment_background = false;
+  float background_blur = 0.0f;
 };
 
 inline constexpr int kMaxLights = 4;

@@ -194,6 +194,24 @@ float edge_depth_offset(const glm::mat4& clip_from_view, float distance, float n
   return std::clamp(offset, -0.05f, -1e-6f);
 }
 
+void draw_environment_background(Renderer& renderer, Framebuffer& target, const FrameContext& frame) {
+  const SceneOptions& options = *frame.options;
+  EnvironmentBackgroundShader shader;
+  shader.world_from_clip = glm::inverse(frame.clip_from_world);
+  shader.eye = frame.eye;
+  shader.environment = options.environment.get();
+  shader.blur = options.background_blur;
+  shader.tone_mapping = options.tone_mapping;
+  shader.exposure = options.exposure;
+  static constexpr EnvironmentBackgroundShader::Vertex kCover[] = {{{-1.0f, -1.0f}}, {{3.0f, -1.0f}}, {{-1.0f, 3.0f}}};
+  static constexpr std::uint32_t kIndices[] = {0, 1, 2};
+  RenderState state;
+  state.cull = CullMode::none;
+  state.depth_test = false;
+  state.depth_write = false;
+  renderer.draw(target, shader, std::span<const EnvironmentBackgroundShader::Vertex>(kCover), kIndices, state);
+}
+
 void draw_instance(Renderer& renderer, Framebuffer& target, const FrameContext& frame, const Instance& instance,
                    const PreparedMesh& prepared, DrawPass pass) {
   const SceneOptions& options = *frame.options;

@@ -47,6 +47,10 @@ enum class DrawPass { opaque, blended };
 void draw_instance(Renderer& renderer, Framebuffer& target, const FrameContext& frame, const Instance& instance,
                    const PreparedMesh& prepared, DrawPass pass);
 
+// The environment behind everything (SceneOptions::environment_background): one triangle covering the target,
+// drawn first, without depth test or depth writes.
+void draw_environment_background(Renderer& renderer, Framebuffer& target, const FrameContext& frame);
+
 // The window-depth offset that pulls edge lines in front of the surface they lie on: about two line widths of
 // pixel footprint in eye space at the instance's distance, converted through the projection. Negative.
 float edge_depth_offset(const glm::mat4& clip_from_view, float distance, float near, float line_width,

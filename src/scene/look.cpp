@@ -34,6 +34,10 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
     options.environment = environment_for(look);
     options.tone_mapping = look.tone_mapping;
     options.exposure = look.exposure;
+    if (!(look.hdri_blur >= 0.0f && look.hdri_blur <= 1.0f))
+      throw std::invalid_argument("environment blur: must lie between 0 and 1");
+    options.environment_background = look.hdri_background;
+    options.background_blur = look.hdri_blur;
     options.lights.clear();
     if (look.light_direction) options.lights = {Light{Light::Kind::directional, light, glm::vec3(1.0f), kPi}};
   } else {

@@ -111,6 +111,8 @@ std::vector<std::size_t> Scene::Impl::blended(const detail::FrameContext& frame,
 
 std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options) {
   const detail::FrameContext frame = detail::frame_context(view, options);
+  if (options.environment_background && options.environment && options.shading == Shading::automatic)
+    detail::draw_environment_background(renderer, target, frame);
   const std::vector<std::size_t> order = impl_->visible(frame);
   for (const std::size_t i : order) {
     const Mesh& mesh = *impl_->instances[i].mesh;

@@ -144,6 +144,7 @@ expect samples_three 2 render "$box" --samples 3
 expect tone_mapping_unknown 2 render "$box" --tone-mapping filmic
 expect exposure_negative 2 render "$box" --exposure=-1
 expect exposure_text 2 render "$box" --exposure bright
+expect hdri_blur_range 2 render "$box" --hdri-background --hdri-blur 2
 expect samples_zero 2 render "$box" --samples 0
 expect demo_samples_sixteen 2 demo cube --samples 16
 expect position_two_numbers 2 render "$box" --camera-position 1,2

@@ -2,7 +2,11 @@
 // mapping and the colour spaces of glTF's factors.
 #include <gtest/gtest.h>
 
+#include <glm/gtc/matrix_transform.hpp>
+
 #include <cmath>
+#include <memory>
+#include <utility>
 #include <random>
 #include <vector>
 
@@ -10,6 +14,8 @@
 #include "facet/environment.hpp"
 #include "facet/model_io.hpp"
 #include "facet/render_job.hpp"
+#include "facet/renderer.hpp"
+#include "facet/scene.hpp"
 #include "facet/shaders/brdf.hpp"
 #include "facet/shaders/pbr.hpp"
 #include "facet/texture.hpp"
@@ -220,6 +226,37 @@ TEST(GltfColorSpace, MissingMaterialIsTheSpecificationsDefault) {
   EXPECT_EQ(mesh.materials[0].metallic, 1.0f);
   EXPECT_EQ(mesh.materials[0].roughness, 1.0f);
   EXPECT_FALSE(mesh.materials[0].double_sided);
+}
+
+// --hdri-background: each pixel shows the environment along its view ray, perspective or parallel, tone-mapped
+// like the model. An environment red towards +X, green towards +Z, blue elsewhere, seen from the origin.
+TEST(EnvironmentBackground, ShowsTheEnvironmentAlongEachRay) {
+  EnvironmentImage image = uniform_image(glm::vec3(0.0f, 0.0f, 1.0f), 64, 32);
+  for (int y = 8; y < 24; ++y)
+    for (int x = 0; x < 64; ++x) {
+      if (x >= 24 && x < 40) image.texels[static_cast<std::size_t>(y * 64 + x)] = glm::vec3(1.0f, 0.0f, 0.0f);
+      if (x >= 40 && x < 56) image.texels[static_cast<std::size_t>(y * 64 + x)] = glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+  SceneOptions options;
+  options.environment = std::make_shared<const Environment>(image);
+  options.environment_background = true;
+  options.tone_mapping = ToneMapping::none;
+  Scene scene;
+  Renderer renderer(2);
+  for (const bool parallel : {false, true})
+    for (const auto& [target, channel] : {std::pair{glm::vec3(1, 0, 0), 0}, std::pair{glm::vec3(0, 0, 1), 1}}) {
+      View view;
+      view.view_from_world = glm::lookAt(glm::vec3(0.0f), target, glm::vec3(0, 1, 0));
+      view.clip_from_view = parallel ? glm::ortho(-1.0f, 1.0f, -1.0f, 1.0f, 0.1f, 10.0f)
+                                     : glm::perspective(0.5f, 1.0f, 0.1f, 10.0f);
+      Framebuffer fb(32, 32);
+      renderer.clear(fb, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+      scene.render(renderer, fb, view, options);
+      renderer.finish(fb);
+      const std::uint32_t centre = fb.pixel(16, 16);
+      EXPECT_EQ((centre >> (8 * channel)) & 0xffu, 255u) << "towards " << target.x << "," << target.z;
+      EXPECT_EQ((centre >> 16) & 0xffu, 0u) << "no blue towards " << target.x << "," << target.z;
+    }
 }
 
 // sample_linear gives an sRGB texture's filtered colour in linear light: what sample() gives, decoded (to the

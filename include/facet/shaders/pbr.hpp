@@ -236,6 +236,22 @@ struct PbrShader {
     return encode(mapped);
   }
 
+  // sRGB's encoding of a displayable linear colour, by table, per pixel or per lane.
+  static brdf::Rgb<float> encode(const brdf::Rgb<float>& c) {
+    const float* table = detail::srgb_encode_table();
+    return {detail::srgb_encode(c.r, table), detail::srgb_encode(c.g, table), detail::srgb_encode(c.b, table)};
+  }
+  FACET_LANES_INLINE static brdf::Rgb<simd::Float> encode(const brdf::Rgb<simd::Float>& c) {
+    const float* table = detail::srgb_encode_table();
+    brdf::Rgb<simd::Float> out;
+    for (int k = 0; k < simd::kLanes; ++k) {
+      out.r[k] = detail::srgb_encode(c.r[k], table);
+      out.g[k] = detail::srgb_encode(c.g[k], table);
+      out.b[k] = detail::srgb_encode(c.b[k], table);
+    }
+    return out;
+  }
+
  private:
   template <class V3>
   static V3 uniform(glm::vec3 u) {
@@ -284,20 +300,6 @@ struct PbrShader {
     }
   }
 
-  static brdf::Rgb<float> encode(const brdf::Rgb<float>& c) {
-    const float* table = detail::srgb_encode_table();
-    return {detail::srgb_encode(c.r, table), detail::srgb_encode(c.g, table), detail::srgb_encode(c.b, table)};
-  }
-  FACET_LANES_INLINE static brdf::Rgb<simd::Float> encode(const brdf::Rgb<simd::Float>& c) {
-    const float* table = detail::srgb_encode_table();
-    brdf::Rgb<simd::Float> out;
-    for (int k = 0; k < simd::kLanes; ++k) {
-      out.r[k] = detail::srgb_encode(c.r[k], table);
-      out.g[k] = detail::srgb_encode(c.g[k], table);
-      out.b[k] = detail::srgb_encode(c.b[k], table);
-    }
-    return out;
-  }
 };
 
 // PbrShader for a material without textures: the same picture without the screen-space derivatives.

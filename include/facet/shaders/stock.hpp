@@ -3,6 +3,7 @@
 
 #include "facet/renderer.hpp"
 #include "facet/shaders/depth.hpp"
+#include "facet/shaders/environment_background.hpp"
 #include "facet/shaders/flat.hpp"
 #include "facet/shaders/gouraud.hpp"
 #include "facet/shaders/lighting.hpp"
@@ -30,3 +31,4 @@ FACET_EXTERN_SHADER(facet::Masked<facet::UnlitShader>);
 FACET_EXTERN_SHADER(facet::PbrShader);
 FACET_EXTERN_SHADER(facet::UntexturedPbrShader);
 FACET_EXTERN_SHADER(facet::Masked<facet::PbrShader>);
+FACET_EXTERN_SHADER(facet::EnvironmentBackgroundShader);
