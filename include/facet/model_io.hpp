@@ -61,11 +61,12 @@ struct LoadOptions {
 //     every root node), each node that places a mesh an instance with its matrix or TRS composed down the
 //     hierarchy; triangles, strips and fans of every primitive, indexed or not;
 //     NORMAL, TEXCOORD_0 and COLOR_0 of any component type, sparse accessors; one material per glTF material
-//     (baseColorFactor -> diffuse, baseColorTexture decoded into diffuse_map, roughness -> specular and
-//     shininess); Draco-compressed primitives decoded; the cameras the scene's nodes place (Mesh::cameras). Points
-//     and lines are skipped with a warning; an extension the file lists as required that facet does not implement
-//     (it implements KHR_mesh_quantization, KHR_texture_transform, KHR_materials_unlit and
-//     KHR_draco_mesh_compression) is refused naming it.
+//     (the metallic-roughness inputs, emission and occlusion; linear factors encoded as displayed; textures
+//     decoded), the specification's default material for primitives without one; Draco- and meshopt-compressed
+//     data decoded; the cameras the scene's nodes place (Mesh::cameras). Points and lines are skipped with a
+//     warning; an extension the file lists as required that facet does not implement (it implements
+//     KHR_mesh_quantization, KHR_texture_transform, KHR_materials_unlit, KHR_materials_emissive_strength,
+//     KHR_draco_mesh_compression and EXT_meshopt_compression) is refused naming it.
 //   Other formats, through Assimp (triangulated, points and lines dropped): each aiMesh with its material, placed
 //     by the nodes of the scene's node tree.
 // Every reader records where each triangle came from: Mesh::face_ids numbers the file's faces (OBJ `f` lines of

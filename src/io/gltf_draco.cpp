@@ -24,7 +24,7 @@ int integer_member(const tinygltf::Value& object, const char* key) {
 
 // The JSON with "indices" removed from every Draco-compressed primitive; nullopt when there is none (or the text
 // does not parse: tinygltf then reports the problem).
-std::optional<std::string> json_without_draco_indices(std::string_view json) {
+std::optional<std::string> json_without_draco_indices(std::string_view json, bool) {
   if (json.find("KHR_draco_mesh_compression") == std::string_view::npos) return std::nullopt;
   nlohmann::json document = nlohmann::json::parse(json, nullptr, false);
   if (document.is_discarded() || !document.is_object() || !document.contains("meshes")) return std::nullopt;
@@ -50,13 +50,13 @@ std::uint32_t load_u32(const char* p) {
 
 }  // namespace
 
-std::optional<std::string> without_draco_indices(std::string_view bytes, bool binary) {
-  if (!binary) return json_without_draco_indices(bytes);
+std::optional<std::string> with_gltf_json_rewritten(std::string_view bytes, bool binary, JsonRewrite rewrite) {
+  if (!binary) return rewrite(bytes, false);
   // GLB: a 12-byte header, then the JSON chunk (length, "JSON", text) and any others after it.
   if (bytes.size() < 20 || load_u32(bytes.data() + 16) != 0x4E4F534Au) return std::nullopt;
   const std::uint32_t length = load_u32(bytes.data() + 12);
   if (length > bytes.size() - 20) return std::nullopt;
-  std::optional<std::string> json = json_without_draco_indices(bytes.substr(20, length));
+  std::optional<std::string> json = rewrite(bytes.substr(20, length), true);
   if (!json) return std::nullopt;
   json->append((4 - json->size() % 4) % 4, ' ');  // chunks stay 4-byte aligned
   const auto new_length = static_cast<std::uint32_t>(json->size());
@@ -68,6 +68,10 @@ std::optional<std::string> without_draco_indices(std::string_view bytes, bool bi
   const auto total = static_cast<std::uint32_t>(out.size());
   std::memcpy(out.data() + 8, &total, 4);
   return out;
+}
+
+std::optional<std::string> without_draco_indices(std::string_view bytes, bool binary) {
+  return with_gltf_json_rewritten(bytes, binary, &json_without_draco_indices);
 }
 
 PrimitiveArrays decode_draco(const tinygltf::Model& model, const tinygltf::Primitive& primitive,

@@ -10,6 +10,7 @@
 #include <limits>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <vector>
 
@@ -18,6 +19,7 @@
 #include "facet/model.hpp"
 #include "facet/texture.hpp"
 #include "io/file_util.hpp"
+#include "io/gltf_meshopt.hpp"
 #include "io/gltf_primitive.hpp"
 #include "io/loaders.hpp"
 #include "texture/image_decode.hpp"
@@ -27,10 +29,30 @@ namespace {
 
 // Required extensions facet implements: the reader handles any component type, so quantized attributes
 // (KHR_mesh_quantization) read like floats; texture transforms are applied to TEXCOORD_0 (KHR_texture_transform);
-// unlit materials draw with their colour alone (KHR_materials_unlit); Draco-compressed primitives are decoded
-// (KHR_draco_mesh_compression).
+// unlit materials draw with their colour alone (KHR_materials_unlit); emission is scaled
+// (KHR_materials_emissive_strength); Draco-compressed primitives are decoded
+// (KHR_draco_mesh_compression), and so are compressed buffer views where meshoptimizer is built in
+// (EXT_meshopt_compression).
 const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization", "KHR_texture_transform",
-                                                  "KHR_materials_unlit", "KHR_draco_mesh_compression"};
+                                                  "KHR_materials_unlit", "KHR_materials_emissive_strength",
+                                                  "KHR_draco_mesh_compression",
+#ifndef FACET_NO_MESHOPT
+                                                  "EXT_meshopt_compression"
+#endif
+};
+
+// Texture extensions whose images facet cannot decode: KTX2 (Basis Universal) and WebP. load_image leaves such
+// images undecoded without a word (a texture may offer a PNG or JPEG image beside them), marking them with
+// kUndecodedImage and their MIME type; decode_texture names the extension when a material needs one.
+struct UndecodedFormat {
+  const char* extension;
+  const char* format;
+  const char* mime_type;
+};
+constexpr UndecodedFormat kUndecodedFormats[] = {{"KHR_texture_basisu", "KTX2", "image/ktx2"},
+                                                 {"EXT_texture_webp", "WebP", "image/webp"}};
+// Image widths load_image leaves instead of decoding: a warning given, or a format above.
+constexpr int kWarnedImage = -1, kUndecodedImage = -2;
 
 struct Reader {
   const tinygltf::Model& model;
@@ -195,14 +217,32 @@ glm::mat4 local_transform(const tinygltf::Node& node) {
   return m;
 }
 
-// glTF images are stored top row first with v = 0 at the top, so rows are kept in file order.
+// glTF images are stored top row first with v = 0 at the top, so rows are kept in file order. A texture with only a
+// KTX2 or WebP image is warned about once (`warned` holds the textures warned about), naming its extension.
 std::shared_ptr<const Texture> decode_texture(const tinygltf::Model& model, int texture_index, TexelEncoding encoding,
-                                              const std::string& source) {
+                                              const std::string& source, std::set<int>& warned) {
   if (texture_index < 0 || static_cast<std::size_t>(texture_index) >= model.textures.size()) return nullptr;
-  const int image_index = model.textures[static_cast<std::size_t>(texture_index)].source;
-  if (image_index < 0 || static_cast<std::size_t>(image_index) >= model.images.size()) return nullptr;
+  const tinygltf::Texture& texture = model.textures[static_cast<std::size_t>(texture_index)];
+  const auto undecoded = [&](const std::string& problem) -> std::shared_ptr<const Texture> {
+    if (warned.insert(texture_index).second)
+      warn(source, "texture " + std::to_string(texture_index) + " " + problem +
+                       ", which facet cannot decode; drawing its material untextured");
+    return nullptr;
+  };
+  const int image_index = texture.source;
+  if (image_index < 0 || static_cast<std::size_t>(image_index) >= model.images.size()) {
+    for (const UndecodedFormat& f : kUndecodedFormats)
+      if (texture.extensions.count(f.extension))
+        return undecoded(std::string("has only a ") + f.format + " image (" + f.extension + ")");
+    return nullptr;
+  }
   const tinygltf::Image& image = model.images[static_cast<std::size_t>(image_index)];
-  if (image.width == -1) return nullptr;  // too large: load_image has warned
+  if (image.width == kUndecodedImage)
+    for (const UndecodedFormat& f : kUndecodedFormats)
+      if (image.mimeType == f.mime_type)
+        return undecoded("has a " + std::string(f.format) + " image (" + f.extension + "), image " +
+                         std::to_string(image_index));
+  if (image.width == kWarnedImage) return nullptr;  // too large or unreadable: load_image has warned
   const std::size_t texels = static_cast<std::size_t>(std::max(image.width, 0)) * std::max(image.height, 0);
   if (texels == 0 || image.bits != 8 || image.component < 1 || image.component > 4 ||
       image.image.size() != texels * static_cast<std::size_t>(image.component)) {
@@ -303,7 +343,11 @@ Material default_material() {
   return out;
 }
 
-Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& source) {
+Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& source,
+                     std::set<int>& warned_textures) {
+  const auto texture = [&](int index, TexelEncoding encoding) {
+    return decode_texture(model, index, encoding, source, warned_textures);
+  };
   Material out;
   out.name = m.name;
   const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
@@ -314,12 +358,12 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
   // For the Blinn-Phong and Phong shadings: rough surfaces get a weak, broad highlight.
   out.specular = glm::vec3(0.5f * (1.0f - out.roughness));
   out.shininess = 2.0f + 126.0f * (1.0f - out.roughness) * (1.0f - out.roughness);
-  out.diffuse_map = decode_texture(model, pbr.baseColorTexture.index, TexelEncoding::srgb, source);
+  out.diffuse_map = texture(pbr.baseColorTexture.index, TexelEncoding::srgb);
   out.sampler = sampler_of(model, pbr.baseColorTexture.index);
-  out.metallic_roughness_map = decode_texture(model, pbr.metallicRoughnessTexture.index, TexelEncoding::linear, source);
-  out.normal_map = decode_texture(model, m.normalTexture.index, TexelEncoding::linear, source);
+  out.metallic_roughness_map = texture(pbr.metallicRoughnessTexture.index, TexelEncoding::linear);
+  out.normal_map = texture(m.normalTexture.index, TexelEncoding::linear);
   out.normal_scale = std::isfinite(m.normalTexture.scale) ? static_cast<float>(m.normalTexture.scale) : 1.0f;
-  out.occlusion_map = decode_texture(model, m.occlusionTexture.index, TexelEncoding::linear, source);
+  out.occlusion_map = texture(m.occlusionTexture.index, TexelEncoding::linear);
   out.occlusion_strength = unit_factor(m.occlusionTexture.strength, 1.0f);
   if (m.emissiveFactor.size() == 3) {
     float strength = 1.0f;
@@ -331,7 +375,7 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
     }
     out.emissive = glm::vec3(unit_vector<3>(m.emissiveFactor)) * strength;
   }
-  out.emissive_map = decode_texture(model, m.emissiveTexture.index, TexelEncoding::srgb, source);
+  out.emissive_map = texture(m.emissiveTexture.index, TexelEncoding::srgb);
   out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
   out.double_sided = m.doubleSided;
   if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::blend;
@@ -348,9 +392,10 @@ class SceneReader {
  public:
   SceneReader(const tinygltf::Model& model, const std::string& source)
       : model_(model), reader_{model, source}, slots_(model.meshes.size(), kUnread) {
+    std::set<int> warned_textures;
     for (const tinygltf::Material& m : model.materials) {
       uv_transforms_.push_back(uv_transform_of(m.pbrMetallicRoughness.baseColorTexture, source));
-      materials_.push_back(material_of(model_, m, source));
+      materials_.push_back(material_of(model_, m, source, warned_textures));
     }
     uv_transforms_.emplace_back(1.0f);
     materials_.push_back(default_material());  // for primitives without a material
@@ -642,17 +687,30 @@ bool refuse_write(std::string* error, const std::string&, const std::vector<unsi
   return false;
 }
 
-// Images larger than the limit are not decoded (a small PNG can expand to gigabytes): the material is drawn
-// untextured. Their width is set to -1 so that decode_texture knows the warning was given.
+// The undecoded format of kUndecodedFormats an image file is in, from its signature; nullptr for any other.
+const UndecodedFormat* undecoded_format(std::span<const unsigned char> bytes) {
+  static constexpr unsigned char kKtx2[12] = {0xAB, 'K', 'T', 'X', ' ', '2', '0', 0xBB, '\r', '\n', 0x1A, '\n'};
+  if (bytes.size() >= 12 && std::equal(kKtx2, kKtx2 + 12, bytes.begin())) return &kUndecodedFormats[0];
+  if (bytes.size() >= 12 && std::memcmp(bytes.data(), "RIFF", 4) == 0 && std::memcmp(bytes.data() + 8, "WEBP", 4) == 0)
+    return &kUndecodedFormats[1];
+  return nullptr;
+}
+
 // Images are decoded by facet's decoders (image_decode.hpp), not tinygltf's stb_image. One that cannot be
 // decoded, or is larger than the limit (a small PNG can expand to gigabytes), leaves its material untextured with
-// a warning; its width is set to -1 so that decode_texture knows the warning was given.
+// a warning; its width is set to kWarnedImage so that decode_texture knows the warning was given. KTX2 and WebP
+// images are left for decode_texture to name (kUndecodedImage), with no warning here.
 bool load_image(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
                 const unsigned char* bytes, int size, void* user) {
   const auto& access = *static_cast<const GltfAccess*>(user);
+  const std::span<const unsigned char> file(bytes, static_cast<std::size_t>(std::max(size, 0)));
+  if (const UndecodedFormat* format = undecoded_format(file)) {
+    image->width = kUndecodedImage;
+    image->mimeType = format->mime_type;
+    return true;
+  }
   try {
-    DecodedImage decoded = decode_image(std::span(bytes, static_cast<std::size_t>(std::max(size, 0))),
-                                        access.options->max_texture_size, "image " + std::to_string(index));
+    DecodedImage decoded = decode_image(file, access.options->max_texture_size, "image " + std::to_string(index));
     image->width = decoded.width;
     image->height = decoded.height;
     image->component = 4;
@@ -663,7 +721,7 @@ bool load_image(tinygltf::Image* image, const int index, std::string*, std::stri
     warn(access.source, std::string(e.what()) +
                             " (--max-texture-size sets the size limit); drawing its material "
                             "untextured");
-    image->width = -1;
+    image->width = kWarnedImage;
   }
   return true;
 }
@@ -679,8 +737,12 @@ Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const
   GltfAccess access{{path.parent_path(), options.allow_external_files}, &options, base, source, {}, {}};
   gltf.SetFsCallbacks({&file_exists, &expand_path, &read_whole_file, &refuse_write, &access});
   gltf.SetImageLoader(&load_image, &access);
+  // Rewritten for tinygltf, which cannot read some files that use Draco or meshoptimizer as they are
+  // (gltf_primitive.hpp, gltf_meshopt.hpp).
   const std::optional<std::string> patched = without_draco_indices(bytes, is_gltf_binary(bytes));
   if (patched) bytes = *patched;
+  const std::optional<std::string> repatched = without_meshopt_placeholders(bytes, is_gltf_binary(bytes));
+  if (repatched) bytes = *repatched;
   const auto* data = reinterpret_cast<const unsigned char*>(bytes.data());
   const bool ok =
       is_gltf_binary(bytes)
@@ -692,10 +754,14 @@ Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const
   };
   if (!ok) throw InputError(source, access.refused.empty() ? first_line(error) : access.refused);
   if (!warning.empty()) warn(source, first_line(warning));
-  for (const std::string& extension : model.extensionsRequired)
-    if (!kSupportedRequired.count(extension))
-      throw InputError(source,
-                       "requires the glTF extension " + printable(extension) + ", which facet does not support");
+  for (const std::string& extension : model.extensionsRequired) {
+    if (kSupportedRequired.count(extension)) continue;
+    if (extension == "EXT_meshopt_compression")
+      throw InputError(source, "this build cannot decode EXT_meshopt_compression, which the file requires");
+    throw InputError(source, "requires the glTF extension " + printable(extension) + ", which facet does not support");
+  }
+  // Compressed buffer views are decoded before any accessor is read.
+  decode_meshopt(model, source);
 
   SceneReader scene_reader(model, source);
   const int scene = model.defaultScene >= 0 ? model.defaultScene : 0;

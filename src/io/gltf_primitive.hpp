@@ -32,6 +32,12 @@ struct PrimitiveArrays {
 PrimitiveArrays decode_draco(const tinygltf::Model& model, const tinygltf::Primitive& primitive,
                              std::size_t max_vertices, const std::string& source);
 
+// The file with its JSON text rewritten, for tinygltf: `rewrite` gets the JSON and whether it came from a GLB, and
+// returns the new JSON or nullopt to leave it. The result is the new .gltf text or the GLB with its JSON chunk
+// replaced, or nullopt when nothing changes (or the GLB's header cannot be read: tinygltf then reports it).
+using JsonRewrite = std::optional<std::string> (*)(std::string_view json, bool binary);
+std::optional<std::string> with_gltf_json_rewritten(std::string_view bytes, bool binary, JsonRewrite rewrite);
+
 // tinygltf built without Draco (as Debian's is) refuses a primitive whose index accessor has no buffer view, which
 // is how Draco-compressed primitives list theirs. Their indices come from the Draco data, so the file is handed to
 // tinygltf with those "indices" removed: the rewritten .gltf text or GLB file, or nullopt when nothing changes.
