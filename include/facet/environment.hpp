@@ -92,6 +92,30 @@ class Environment {
   }
 
   // The split sum's second factor at NdotV and roughness (brdf_table), from the table this environment holds.
+  // ... and for 16 lanes: the same operations, the four table entries gathered per lane.
+  FACET_LANES_INLINE simd::Vec2 split_sum(const simd::Float& n_dot_v, const simd::Float& roughness) const {
+    using namespace simd;
+    constexpr float n = kBrdfTableSize;
+    const auto coordinate = [](const Float& v) {
+      const Float c = v * n - 0.5f;
+      return select(c > 0.0f, select(c < n - 1.0f, c, splat(n - 1.0f)), splat(0.0f));
+    };
+    const Float s = coordinate(n_dot_v), r = coordinate(roughness);
+    const Int i = truncate(s), j = truncate(r);
+    const Float a = s - to_float(i), b = r - to_float(j);
+    Vec2 t00, t10, t01, t11;
+    for (int k = 0; k < kLanes; ++k) {
+      const int i1 = i[k] + 1 < kBrdfTableSize ? i[k] + 1 : i[k], j1 = j[k] + 1 < kBrdfTableSize ? j[k] + 1 : j[k];
+      const glm::vec2 c00 = table_[j[k] * kBrdfTableSize + i[k]], c10 = table_[j[k] * kBrdfTableSize + i1];
+      const glm::vec2 c01 = table_[j1 * kBrdfTableSize + i[k]], c11 = table_[j1 * kBrdfTableSize + i1];
+      t00.x[k] = c00.x, t00.y[k] = c00.y, t10.x[k] = c10.x, t10.y[k] = c10.y;
+      t01.x[k] = c01.x, t01.y[k] = c01.y, t11.x[k] = c11.x, t11.y[k] = c11.y;
+    }
+    const auto lerp = [](const Float& p, const Float& q, const Float& w) { return p + (q - p) * w; };
+    const Float bottom_x = lerp(t00.x, t10.x, a), bottom_y = lerp(t00.y, t10.y, a);
+    const Float top_x = lerp(t01.x, t11.x, a), top_y = lerp(t01.y, t11.y, a);
+    return {lerp(bottom_x, top_x, b), lerp(bottom_y, top_y, b)};
+  }
   glm::vec2 split_sum(float n_dot_v, float roughness) const {
     return detail::brdf_table_lookup(table_, n_dot_v, roughness);
   }

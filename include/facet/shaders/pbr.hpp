@@ -241,15 +241,21 @@ struct PbrShader {
     const float* table = detail::srgb_encode_table();
     return {detail::srgb_encode(c.r, table), detail::srgb_encode(c.g, table), detail::srgb_encode(c.b, table)};
   }
+  // detail::srgb_encode's operations in lanes, the two table entries gathered per lane.
   FACET_LANES_INLINE static brdf::Rgb<simd::Float> encode(const brdf::Rgb<simd::Float>& c) {
+    using namespace simd;
     const float* table = detail::srgb_encode_table();
-    brdf::Rgb<simd::Float> out;
-    for (int k = 0; k < simd::kLanes; ++k) {
-      out.r[k] = detail::srgb_encode(c.r[k], table);
-      out.g[k] = detail::srgb_encode(c.g[k], table);
-      out.b[k] = detail::srgb_encode(c.b[k], table);
-    }
-    return out;
+    const auto channel = [table](const Float& linear) {
+      const Float x = select(linear > 0.0f, select(linear < 1.0f, linear, splat(1.0f)), splat(0.0f));
+      const Float f = x * static_cast<float>(detail::kSrgbEncodeSteps);
+      Int i = truncate(f);
+      i = blend(i < detail::kSrgbEncodeSteps, i, splat(detail::kSrgbEncodeSteps - 1));
+      const Float w = f - to_float(i);
+      Float t0, t1;
+      for (int k = 0; k < kLanes; ++k) t0[k] = table[i[k]], t1[k] = table[i[k] + 1];
+      return t0 + (t1 - t0) * w;
+    };
+    return {channel(c.r), channel(c.g), channel(c.b)};
   }
 
  private:
@@ -294,10 +300,8 @@ struct PbrShader {
     irradiance = {e[0], e[1], e[2]};
     const simd::Vec3 l = environment->radiance(r, roughness);
     radiance = {l.x, l.y, l.z};
-    for (int k = 0; k < simd::kLanes; ++k) {
-      const glm::vec2 ab = environment->split_sum(n_dot_v[k], roughness[k]);
-      a[k] = ab.x, b[k] = ab.y;
-    }
+    const simd::Vec2 ab = environment->split_sum(n_dot_v, roughness);
+    a = ab.x, b = ab.y;
   }
 
 };
