@@ -70,6 +70,18 @@ struct alignas(simd::kLaneAlign) FragmentLanes {
   }
 };
 
+// A shader's fragment() on each of the 16 lanes in turn: what a lane function falls back to for its rare cases (a
+// normal-mapped material, say).
+template <class S, class V>
+FACET_LANES_INLINE simd::Color fragment_each_lane(const S& shader, const FragmentLanes<V>& f) {
+  simd::Color out;
+  for (int k = 0; k < simd::kLanes; ++k) {
+    const glm::vec4 c = shader.fragment(f.lane(k));
+    out.r[k] = c.r, out.g[k] = c.g, out.b[k] = c.b, out.a[k] = c.a;
+  }
+  return out;
+}
+
 // A LaneShader is a Shader that also has
 //     simd::Color fragment_lanes(const FragmentLanes<Varyings>&) const;
 // computing, lane for lane, what fragment() computes. The pipeline then shades 16 fragments per call instead of

@@ -41,14 +41,7 @@ struct SurfaceShader : LitUniforms {
   // material is shaded by fragment() lane by lane.
   FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
     using namespace simd;
-    if (normal_map) {
-      Color out;
-      for (int k = 0; k < kLanes; ++k) {
-        const glm::vec4 c = fragment(f.lane(k));
-        out.r[k] = c.r, out.g[k] = c.g, out.b[k] = c.b, out.a[k] = c.a;
-      }
-      return out;
-    }
+    if (normal_map) return fragment_each_lane(*this, f);
     Vec3 n = normalize(f.get(&Varyings::normal));
     const Mask back = back_lanes(f.front_facing);
     n = Vec3{select(back, -n.x, n.x), select(back, -n.y, n.y), select(back, -n.z, n.z)};
