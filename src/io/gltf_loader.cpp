@@ -640,6 +640,9 @@ struct GltfAccess {
   std::string source;
   std::set<std::string> noted;  // files already warned about: tinygltf may look a file up more than once
   std::string refused;          // the first file that could not be read, and why: a failed load's error
+  // The model being loaded: tinygltf hands load_image an image's buffer view without checking that the view lies
+  // inside its buffer, so load_image checks it against the buffers and views parsed before the images.
+  const tinygltf::Model* model = nullptr;
 };
 
 // tinygltf joins a buffer's or image's URI to the model's folder; the part after the folder is the name the file
@@ -702,7 +705,23 @@ const UndecodedFormat* undecoded_format(std::span<const unsigned char> bytes) {
 // images are left for decode_texture to name (kUndecodedImage), with no warning here.
 bool load_image(tinygltf::Image* image, const int index, std::string*, std::string*, int, int,
                 const unsigned char* bytes, int size, void* user) {
-  const auto& access = *static_cast<const GltfAccess*>(user);
+  auto& access = *static_cast<GltfAccess*>(user);
+  if (image->bufferView >= 0) {
+    const auto& views = access.model->bufferViews;
+    const auto& buffers = access.model->buffers;
+    const auto view = static_cast<std::size_t>(image->bufferView);
+    const bool inside = view < views.size() && views[view].buffer >= 0 &&
+                        static_cast<std::size_t>(views[view].buffer) < buffers.size() &&
+                        views[view].byteOffset <= buffers[static_cast<std::size_t>(views[view].buffer)].data.size() &&
+                        views[view].byteLength <= buffers[static_cast<std::size_t>(views[view].buffer)].data.size() -
+                                                      views[view].byteOffset;
+    if (!inside) {
+      if (access.refused.empty())
+        access.refused = "image " + std::to_string(index) + ": buffer view " + std::to_string(view) +
+                         " reaches past the end of its buffer";
+      return false;
+    }
+  }
   const std::span<const unsigned char> file(bytes, static_cast<std::size_t>(std::max(size, 0)));
   if (const UndecodedFormat* format = undecoded_format(file)) {
     image->width = kUndecodedImage;
@@ -736,6 +755,7 @@ Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const
   const std::string base = path.parent_path().string();
   GltfAccess access{{path.parent_path(), options.allow_external_files}, &options, base, source, {}, {}};
   gltf.SetFsCallbacks({&file_exists, &expand_path, &read_whole_file, &refuse_write, &access});
+  access.model = &model;
   gltf.SetImageLoader(&load_image, &access);
   // Rewritten for tinygltf, which cannot read some files that use Draco or meshoptimizer as they are
   // (gltf_primitive.hpp, gltf_meshopt.hpp).

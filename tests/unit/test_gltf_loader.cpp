@@ -524,3 +524,25 @@ TEST(GltfLoader, EveryAssimpModelLoadsOrThrowsInputError) {
 
 }  // namespace
 }  // namespace facet
+
+namespace facet {
+namespace {
+
+// An image whose buffer view reaches past its buffer is refused naming both, before any of its bytes are read
+// (tinygltf hands the image loader such a view unchecked).
+TEST(GltfLoader, ImageBufferViewPastItsBufferIsRefused) {
+  const std::filesystem::path dir = test::scratch_dir("gltf_image_view");
+  const std::filesystem::path model = test::write_file(
+      dir, "image_view.gltf",
+      R"({"asset":{"version":"2.0"},"buffers":[{"byteLength":36,)"
+      R"("uri":"data:application/octet-stream;base64,AAAAAAAAAAAAAAAAAACAPwAAAAAAAAAAAAAAAAAAgD8AAAAA"}],)"
+      R"("bufferViews":[{"buffer":0,"byteLength":36},{"buffer":0,"byteOffset":100000000,"byteLength":100}],)"
+      R"("accessors":[{"bufferView":0,"componentType":5126,"count":3,"type":"VEC3","min":[0,0,0],"max":[1,1,0]}],)"
+      R"("images":[{"bufferView":1,"mimeType":"image/png"}],"textures":[{"source":0}],)"
+      R"("meshes":[{"primitives":[{"attributes":{"POSITION":0}}]}],"nodes":[{"mesh":0}],"scenes":[{"nodes":[0]}],)"
+      R"("scene":0})");
+  EXPECT_EQ(test::load_problem(model), "image 0: buffer view 1 reaches past the end of its buffer");
+}
+
+}  // namespace
+}  // namespace facet
