@@ -1,0 +1,188 @@
+// gltf_material.cpp - a glTF file's materials as facet's Material: factors, textures, samplers, texture transforms.
+#include "io/gltf_material.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <optional>
+#include <vector>
+
+#include "facet/color.hpp"
+#include "facet/error.hpp"
+#include "io/loaders.hpp"
+
+namespace facet {
+
+namespace {
+
+// glTF images are stored top row first with v = 0 at the top, so rows are kept in file order. A texture with only a
+// KTX2 or WebP image is warned about once (`warned` holds the textures warned about), naming its extension.
+std::shared_ptr<const Texture> decode_texture(const tinygltf::Model& model, int texture_index, TexelEncoding encoding,
+                                              const std::string& source, std::set<int>& warned) {
+  if (texture_index < 0 || static_cast<std::size_t>(texture_index) >= model.textures.size()) return nullptr;
+  const tinygltf::Texture& texture = model.textures[static_cast<std::size_t>(texture_index)];
+  const auto undecoded = [&](const std::string& problem) -> std::shared_ptr<const Texture> {
+    if (warned.insert(texture_index).second)
+      warn(source, "texture " + std::to_string(texture_index) + " " + problem +
+                       ", which facet cannot decode; drawing its material untextured");
+    return nullptr;
+  };
+  const int image_index = texture.source;
+  if (image_index < 0 || static_cast<std::size_t>(image_index) >= model.images.size()) {
+    for (const UndecodedFormat& f : kUndecodedFormats)
+      if (texture.extensions.count(f.extension))
+        return undecoded(std::string("has only a ") + f.format + " image (" + f.extension + ")");
+    return nullptr;
+  }
+  const tinygltf::Image& image = model.images[static_cast<std::size_t>(image_index)];
+  if (image.width == kUndecodedImage)
+    for (const UndecodedFormat& f : kUndecodedFormats)
+      if (image.mimeType == f.mime_type)
+        return undecoded("has a " + std::string(f.format) + " image (" + f.extension + "), image " +
+                         std::to_string(image_index));
+  if (image.width == kWarnedImage) return nullptr;  // too large or unreadable: load_image has warned
+  const std::size_t texels = static_cast<std::size_t>(std::max(image.width, 0)) * std::max(image.height, 0);
+  if (texels == 0 || image.bits != 8 || image.component < 1 || image.component > 4 ||
+      image.image.size() != texels * static_cast<std::size_t>(image.component)) {
+    warn(source, "image " + std::to_string(image_index) + " (" + printable(image.uri) +
+                     ") could not be decoded; drawing its material untextured");
+    return nullptr;
+  }
+  // Rows flipped, as load_texture flips image files: texture row 0 is v = 0, the image's bottom row (OpenGL's
+  // convention, which append_uvs turns glTF's top-left texture coordinates into).
+  std::vector<std::uint32_t> rgba(texels);
+  const int n = image.component;
+  const auto width = static_cast<std::size_t>(image.width), height = static_cast<std::size_t>(image.height);
+  for (std::size_t i = 0; i < texels; ++i) {
+    const unsigned char* p = image.image.data() + i * static_cast<std::size_t>(n);
+    const std::uint32_t r = p[0], g = n >= 3 ? p[1] : p[0], b = n >= 3 ? p[2] : p[0];
+    const std::uint32_t a = n == 4 ? p[3] : n == 2 ? p[1] : 255;
+    rgba[(height - 1 - i / width) * width + i % width] = r | g << 8 | b << 16 | a << 24;
+  }
+  try {
+    auto texture = std::make_shared<Texture>(image.width, image.height, std::move(rgba), encoding);
+    texture->generate_mipmaps();
+    return texture;
+  } catch (const std::invalid_argument& e) {
+    warn(source, "image " + std::to_string(image_index) + ": " + e.what() + "; drawing its material untextured");
+    return nullptr;
+  }
+}
+
+// The texture's filtering and wrapping from its glTF sampler (OpenGL enums); unset when it has none, which glTF
+// defines as repeat with filtering left to the renderer. One Filter stands for both of glTF's: mipmapped
+// minification means trilinear, NEAREST for both means nearest, anything else bilinear.
+std::optional<Sampler> sampler_of(const tinygltf::Model& model, int texture_index) {
+  if (texture_index < 0 || static_cast<std::size_t>(texture_index) >= model.textures.size()) return std::nullopt;
+  const int index = model.textures[static_cast<std::size_t>(texture_index)].sampler;
+  if (index < 0 || static_cast<std::size_t>(index) >= model.samplers.size()) return std::nullopt;
+  const tinygltf::Sampler& gl = model.samplers[static_cast<std::size_t>(index)];
+  const auto wrap = [](int mode) {
+    switch (mode) {
+      case TINYGLTF_TEXTURE_WRAP_CLAMP_TO_EDGE: return Wrap::clamp;
+      case TINYGLTF_TEXTURE_WRAP_MIRRORED_REPEAT: return Wrap::mirror;
+      default: return Wrap::repeat;
+    }
+  };
+  Sampler out;
+  out.wrap_u = wrap(gl.wrapS);
+  out.wrap_v = wrap(gl.wrapT);
+  const bool mipmapped = gl.minFilter >= TINYGLTF_TEXTURE_FILTER_NEAREST_MIPMAP_NEAREST &&
+                         gl.minFilter <= TINYGLTF_TEXTURE_FILTER_LINEAR_MIPMAP_LINEAR;
+  if (mipmapped || (gl.minFilter < 0 && gl.magFilter < 0)) out.filter = Filter::trilinear;
+  else if (gl.magFilter == TINYGLTF_TEXTURE_FILTER_NEAREST && gl.minFilter != TINYGLTF_TEXTURE_FILTER_LINEAR)
+    out.filter = Filter::nearest;
+  else out.filter = Filter::bilinear;
+  return out;
+}
+
+// A factor clamped to [0, 1] as the specification bounds it; NaN gives the default.
+float unit_factor(double value, float fallback) {
+  return std::isfinite(value) ? static_cast<float>(std::clamp(value, 0.0, 1.0)) : fallback;
+}
+template <int N>
+glm::vec<N, float> unit_vector(const std::vector<double>& values) {
+  glm::vec<N, float> out(1.0f);
+  for (int i = 0; i < N; ++i) out[i] = unit_factor(values[static_cast<std::size_t>(i)], 1.0f);
+  return out;
+}
+
+}  // namespace
+
+// KHR_texture_transform of a texture reference as one matrix on (u, v, 1): translation * rotation * scale, in the
+// extension's order and with its rotation sense. Identity without the extension.
+glm::mat3 uv_transform_of(const tinygltf::TextureInfo& info, const std::string& source) {
+  const auto found = info.extensions.find("KHR_texture_transform");
+  if (found == info.extensions.end() || !found->second.IsObject()) return glm::mat3(1.0f);
+  const tinygltf::Value& t = found->second;
+  const auto number = [](const tinygltf::Value& v, double fallback) {
+    const double x = v.IsNumber() ? v.GetNumberAsDouble() : fallback;
+    return std::isfinite(x) ? static_cast<float>(x) : static_cast<float>(fallback);
+  };
+  const auto pair = [&](const char* key, float fallback) {
+    if (!t.Has(key) || !t.Get(key).IsArray() || t.Get(key).ArrayLen() != 2) return glm::vec2(fallback);
+    return glm::vec2(number(t.Get(key).Get(0), fallback), number(t.Get(key).Get(1), fallback));
+  };
+  if (t.Has("texCoord") && number(t.Get("texCoord"), 0.0) != 0.0f)
+    warn(source, "KHR_texture_transform selects another texture coordinate set; facet reads TEXCOORD_0 only");
+  const glm::vec2 offset = pair("offset", 0.0f), scale = pair("scale", 1.0f);
+  const float rotation = t.Has("rotation") ? number(t.Get("rotation"), 0.0) : 0.0f;
+  const float c = std::cos(rotation), s = std::sin(rotation);
+  // Columns: glm is column-major. [1 0 ox; 0 1 oy] * [c s; -s c] * [sx 0; 0 sy].
+  return glm::mat3(glm::vec3(c * scale.x, -s * scale.x, 0.0f), glm::vec3(s * scale.y, c * scale.y, 0.0f),
+                   glm::vec3(offset, 1.0f));
+}
+
+// The material the specification gives a primitive without one: white, fully metallic, fully rough, one-sided.
+Material default_material() {
+  Material out;
+  out.name = "glTF default";
+  out.metallic = 1.0f;
+  out.roughness = 1.0f;
+  out.double_sided = false;
+  return out;
+}
+
+Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, const std::string& source,
+                     std::set<int>& warned_textures) {
+  const auto texture = [&](int index, TexelEncoding encoding) {
+    return decode_texture(model, index, encoding, source, warned_textures);
+  };
+  Material out;
+  out.name = m.name;
+  const tinygltf::PbrMetallicRoughness& pbr = m.pbrMetallicRoughness;
+  // glTF's factors are linear; facet's material colours are as displayed (mesh.hpp).
+  if (pbr.baseColorFactor.size() == 4) out.diffuse = linear_to_srgb(unit_vector<4>(pbr.baseColorFactor));
+  out.metallic = unit_factor(pbr.metallicFactor, 1.0f);
+  out.roughness = unit_factor(pbr.roughnessFactor, 1.0f);
+  // For the Blinn-Phong and Phong shadings: rough surfaces get a weak, broad highlight.
+  out.specular = glm::vec3(0.5f * (1.0f - out.roughness));
+  out.shininess = 2.0f + 126.0f * (1.0f - out.roughness) * (1.0f - out.roughness);
+  out.diffuse_map = texture(pbr.baseColorTexture.index, TexelEncoding::srgb);
+  out.sampler = sampler_of(model, pbr.baseColorTexture.index);
+  out.metallic_roughness_map = texture(pbr.metallicRoughnessTexture.index, TexelEncoding::linear);
+  out.normal_map = texture(m.normalTexture.index, TexelEncoding::linear);
+  out.normal_scale = std::isfinite(m.normalTexture.scale) ? static_cast<float>(m.normalTexture.scale) : 1.0f;
+  out.occlusion_map = texture(m.occlusionTexture.index, TexelEncoding::linear);
+  out.occlusion_strength = unit_factor(m.occlusionTexture.strength, 1.0f);
+  if (m.emissiveFactor.size() == 3) {
+    float strength = 1.0f;
+    if (const auto e = m.extensions.find("KHR_materials_emissive_strength");
+        e != m.extensions.end() && e->second.Has("emissiveStrength")) {
+      const double value = e->second.Get("emissiveStrength").GetNumberAsDouble();
+      if (std::isfinite(value) && value >= 0.0) strength = static_cast<float>(value);
+      else warn(source, "material '" + m.name + "': emissiveStrength must be finite and not negative; using 1");
+    }
+    out.emissive = glm::vec3(unit_vector<3>(m.emissiveFactor)) * strength;
+  }
+  out.emissive_map = texture(m.emissiveTexture.index, TexelEncoding::srgb);
+  out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
+  out.double_sided = m.doubleSided;
+  if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::blend;
+  if (m.alphaMode == "MASK") {
+    out.alpha_mode = AlphaMode::mask;
+    if (std::isfinite(m.alphaCutoff)) out.alpha_cutoff = static_cast<float>(m.alphaCutoff);
+  }
+  return out;
+}
+
+}  // namespace facet
