@@ -222,6 +222,8 @@ void add_look_options(CLI::App& app, LookArgs& args) {
       {{"neutral", ToneMapping::neutral}, {"aces", ToneMapping::aces}, {"none", ToneMapping::none}},
       [&args](ToneMapping t) { args.tone_mapping = t; },
       "How the model's own look maps light to colour (default: neutral, Khronos PBR Neutral)");
+  app.add_flag("--no-model-lights", args.no_model_lights,
+               "Leave out the lights the model's file places (glTF KHR_lights_punctual) from its own look");
   app.add_option("--exposure", args.exposure, "Scale the light of the model's own look before tone mapping (1)")
       ->check(number_in(1e-6, 1e6))
       ->type_name("X");
@@ -312,6 +314,7 @@ LookSpec look_spec(const LookArgs& args) {
   look.exposure = args.exposure;
   look.hdri_background = args.hdri_background;
   look.hdri_blur = args.hdri_blur;
+  look.model_lights = !args.no_model_lights;
   return look;
 }
 

@@ -91,6 +91,7 @@ struct LookArgs {
   float exposure = 1.0f;
   bool hdri_background = false;
   float hdri_blur = 0.0f;
+  bool no_model_lights = false;
   int threads = 0;
   int samples = 4;  // multisample anti-aliasing
 };

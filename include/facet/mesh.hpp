@@ -13,6 +13,7 @@
 
 #include <glm/glm.hpp>
 
+#include "facet/light.hpp"
 #include "facet/sampler.hpp"
 
 namespace facet {
@@ -93,6 +94,7 @@ struct Mesh {
   std::vector<std::uint32_t> face_ids;      // the file's face number (a polygon's triangles share it); empty: t
   std::vector<std::uint32_t> instance_ids;  // the file's node (instance) the triangle was placed by; empty: 0
   std::vector<ModelCamera> cameras;         // in the order the scene's nodes place them
+  std::vector<Light> lights;                // world space, in the order the scene's nodes place them
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return indices.size() / 3; }

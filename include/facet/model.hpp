@@ -21,8 +21,9 @@ struct ModelInstance {
 };
 
 // What every reader fills, whatever the format: each mesh once, in its own (object) coordinates, with its own
-// materials and face_ids (Mesh::instance_ids and Mesh::cameras empty); the instances that place meshes in the
-// world, in the file's scene order (a mesh may be placed by several, or by none); and the cameras the scene places.
+// materials and face_ids (Mesh::instance_ids, cameras and lights empty); the instances that place meshes in the
+// world, in the file's scene order (a mesh may be placed by several, or by none); and the cameras and lights the
+// scene places.
 //
 //   facet::Model model = facet::read_model("scene.glb");
 //   for (const facet::ModelInstance& i : model.instances)
@@ -31,6 +32,7 @@ struct Model {
   std::vector<Mesh> meshes;
   std::vector<ModelInstance> instances;
   std::vector<ModelCamera> cameras;  // world_from_camera in world space, in the order the scene places them
+  std::vector<Light> lights;         // world space, in the order the scene places them (glTF KHR_lights_punctual)
 };
 
 // The whole model as one mesh in world space: every instance's mesh, in instance order, positions transformed,

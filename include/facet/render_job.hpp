@@ -41,6 +41,7 @@ struct LookSpec {
   float exposure = 1.0f;
   bool hdri_background = false;  // draw the environment behind the model instead of the background colour
   float hdri_blur = 0.0f;        // how blurred: 0 sharp to 1
+  bool model_lights = true;      // the physically based look: light the model by the lights its file places too
 };
 
 // The files a render writes; empty paths are not written.
@@ -114,13 +115,14 @@ inline constexpr glm::vec3 kDefaultBackground{0.42f, 0.45f, 0.5f};
 
 // SceneOptions for a look. `view_from_world` places the default headlight in the world; `default_shading` applies
 // when the look names none; `background` picks a wireframe colour that stays visible. The physically based look
-// (Shading::automatic) is lit by the look's environment alone, plus a directional light of intensity pi (a white
-// diffuse surface facing it shows white) when the look gives a light direction; the other shadings by the light
-// direction or the headlight. Environments are prefiltered once per process and file (environment_for). Throws
+// (Shading::automatic) is lit by the look's environment, the lights the model's file places (`model_lights`,
+// unless the look turns them off), and a directional key light of intensity pi (a white diffuse surface facing
+// it shows white) when the look gives a light direction; the other shadings by the light direction or the
+// headlight. Environments are prefiltered once per process and file (environment_for). Throws
 // std::invalid_argument for a zero light direction or a bad exposure or rotation, InputError for an unreadable
 // environment file.
 SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_world, Shading default_shading,
-                           glm::vec3 background);
+                           glm::vec3 background, std::span<const Light> model_lights = {});
 
 // The prefiltered environment of a look: the built-in studio, or its .hdr/.exr file read and prefiltered on first
 // use and kept for the process (a batch, a turntable or a sheet prefilters each file once).

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "facet/framebuffer.hpp"
+#include "facet/light.hpp"
 #include "facet/mesh.hpp"
 #include "facet/render_state.hpp"
 #include "facet/renderer.hpp"
@@ -32,18 +33,13 @@ enum class Shading {
   depth,        // linear eye-space depth as grey, near = white, far = black
 };
 
-struct Light {
-  enum class Kind { directional, point } kind = Kind::directional;
-  glm::vec3 vector{0.4f, 0.7f, 0.6f};  // directional: direction towards the light; point: world position
-  glm::vec3 color{1.0f};
-  float intensity = 1.0f;
-};
-
 struct SceneOptions {
   Shading shading = Shading::automatic;
   // One default light; built with (1) rather than {Light{}} because GCC 12 warns (maybe-uninitialized) about the
   // initializer_list copy at -O2.
-  std::vector<Light> lights = std::vector<Light>(1);  // at most kMaxLights are used
+  // The physically based look uses every light; the classic shadings the first kMaxLights directional and point
+  // lights.
+  std::vector<Light> lights = std::vector<Light>(1);
   glm::vec3 ambient{0.15f};
   std::optional<glm::vec4> color;  // overrides every material's diffuse colour (--color)
   CullMode cull = CullMode::back;
@@ -73,7 +69,8 @@ struct SceneOptions {
 inline constexpr int kMaxLights = 4;
 static_assert(kMaxLights <= kLightSlots);
 
-// The first kMaxLights of options.lights (colour times intensity, directions normalized) and the ambient term.
+// The first kMaxLights directional and point lights of options.lights (colour times intensity, directions
+// normalized) and the ambient term: the classic shadings' lights.
 LightBlock make_light_block(const SceneOptions& options);
 
 struct Instance {

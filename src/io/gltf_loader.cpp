@@ -19,6 +19,7 @@
 #include "facet/model.hpp"
 #include "facet/texture.hpp"
 #include "io/file_util.hpp"
+#include "io/gltf_lights.hpp"
 #include "io/gltf_material.hpp"
 #include "io/gltf_meshopt.hpp"
 #include "io/gltf_primitive.hpp"
@@ -36,6 +37,7 @@ namespace {
 // (EXT_meshopt_compression).
 const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization", "KHR_texture_transform",
                                                   "KHR_materials_unlit", "KHR_materials_emissive_strength",
+                                                  "KHR_lights_punctual",
                                                   "KHR_draco_mesh_compression",
 #ifndef FACET_NO_MESHOPT
                                                   "EXT_meshopt_compression"
@@ -230,6 +232,8 @@ class SceneReader {
     const glm::mat4 world = parent * local_transform(n);
     if (n.mesh >= 0) place(n.mesh, world, static_cast<std::uint32_t>(index));
     if (n.camera >= 0) camera(n.camera, world);
+    if (std::optional<Light> light = light_of(model_, n, world, reader_.source, warned_lights_))
+      out_.lights.push_back(std::move(*light));
     on_path_.insert(index);
     for (int child : n.children) node(child, world, depth + 1);
     on_path_.erase(index);
@@ -443,6 +447,7 @@ class SceneReader {
   Mesh mesh_;
   std::vector<std::int32_t> local_materials_;  // per file material: its index in mesh_.materials, or -1
   bool all_normals_ = true, any_uvs_ = false, any_colors_ = false, warned_points_ = false;
+  std::set<int> warned_lights_;
 };
 
 }  // namespace

@@ -63,6 +63,7 @@ Mesh flatten(Model model, const std::string& source) {
   if (model.instances.size() == 1 && is_identity(model.instances[0].world_from_object) && !any_ids) {
     Mesh out = std::move(model.meshes[model.instances[0].mesh]);
     out.cameras = std::move(model.cameras);
+    out.lights = std::move(model.lights);
     return out;
   }
 
@@ -125,6 +126,7 @@ Mesh flatten(Model model, const std::string& source) {
     }
   }
   out.cameras = std::move(model.cameras);
+  out.lights = std::move(model.lights);
   validate(out, source);
   return out;
 }

@@ -69,7 +69,8 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
       PbrShader shader;
       shader.transforms = transforms;
       shader.material = pbr_material(material, surface);
-      shader.lights = frame.lights;
+      shader.lights = frame.punctual;
+      shader.ambient = frame.lights.ambient;
       shader.environment = options.environment.get();
       shader.eye = frame.eye;
       shader.tone_mapping = options.tone_mapping;

@@ -2,8 +2,10 @@
 #pragma once
 
 #include <algorithm>
+#include <vector>
 
 #include "facet/scene.hpp"
+#include "facet/shaders/punctual.hpp"
 #include "facet/shaders/surface_color.hpp"
 #include "scene/prepared_mesh.hpp"
 
@@ -14,7 +16,8 @@ struct FrameContext {
   const SceneOptions* options;
   glm::mat4 clip_from_world;
   glm::vec3 eye;  // world space
-  LightBlock lights;
+  LightBlock lights;                     // the classic shadings'
+  std::vector<PunctualLight> punctual;  // the physically based look's
 };
 
 // The largest factor by which world_from_object stretches a length: scales a bounding sphere's radius.

@@ -16,7 +16,7 @@ constexpr float kPi = 3.14159265358979f;
 }  // namespace
 
 SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_world, Shading default_shading,
-                           glm::vec3 background) {
+                           glm::vec3 background, std::span<const Light> model_lights) {
   SceneOptions options;
   options.shading = look.shading.value_or(default_shading);
   glm::vec3 light;
@@ -39,7 +39,8 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
     options.environment_background = look.hdri_background;
     options.background_blur = look.hdri_blur;
     options.lights.clear();
-    if (look.light_direction) options.lights = {Light{Light::Kind::directional, light, glm::vec3(1.0f), kPi}};
+    if (look.model_lights) options.lights.assign(model_lights.begin(), model_lights.end());
+    if (look.light_direction) options.lights.push_back(Light{Light::Kind::directional, light, glm::vec3(1.0f), kPi});
   } else {
     options.lights = {Light{Light::Kind::directional, light, glm::vec3(1.0f), 1.0f}};
   }

@@ -2,6 +2,7 @@
 #include "facet/scene.hpp"
 
 #include <algorithm>
+#include <cmath>
 #include <stdexcept>
 #include <utility>
 
@@ -47,16 +48,44 @@ LightBlock make_light_block(const SceneOptions& options) {
     if (light.kind == Light::Kind::directional) {
       // A zero direction would normalize to NaN and blacken every pixel; such a light is skipped instead.
       if (glm::dot(light.vector, light.vector) > 0.0f) block.add_directional(light.vector, color);
-    } else {
+    } else if (light.kind == Light::Kind::point) {
       block.add_point(light.vector, color);
     }
   }
   return block;
 }
 
+namespace {
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Every light of the options the physically based look can use; a light with a zero or non-finite vector, or
+// whose colour is not finite and non-negative, would turn pixels NaN and is left out.
+std::vector<PunctualLight> punctual_lights(const SceneOptions& options) {
+  std::vector<PunctualLight> out;
+  for (const Light& light : options.lights) {
+    const glm::vec3 color = light.color * light.intensity;
+    if (!finite(color) || glm::min(color, glm::vec3(0.0f)) != glm::vec3(0.0f) || !finite(light.vector)) continue;
+    if (light.kind == Light::Kind::directional && glm::dot(light.vector, light.vector) == 0.0f) continue;
+    if (light.kind == Light::Kind::spot &&
+        (!finite(light.spot_direction) || glm::dot(light.spot_direction, light.spot_direction) == 0.0f ||
+         !std::isfinite(light.inner_cone) || !std::isfinite(light.outer_cone)))
+      continue;
+    if (!(light.range >= 0.0f) || !std::isfinite(light.range)) continue;
+    out.push_back(PunctualLight::from(light));
+  }
+  return out;
+}
+
+}  // namespace
+
 detail::FrameContext detail::frame_context(const View& view, const SceneOptions& options) {
-  return {&view, &options, view.clip_from_view * view.view_from_world, glm::vec3(glm::inverse(view.view_from_world)[3]),
-          make_light_block(options)};
+  return {&view,
+          &options,
+          view.clip_from_view * view.view_from_world,
+          glm::vec3(glm::inverse(view.view_from_world)[3]),
+          make_light_block(options),
+          punctual_lights(options)};
 }
 
 float Scene::Impl::view_z(const detail::FrameContext& frame, std::size_t instance) const {

@@ -191,6 +191,16 @@ TEST(SurfaceLanes, PbrMatchesTheScalarFragment) {
       {"half metal, rough, no environment, no tone mapping", glm::rotate(glm::mat4(1.0f), 0.6f, glm::vec3(1, 0.2f, 0)),
        0.5f, 1.0f, nullptr, ToneMapping::none},
   };
+  // A directional light, a point light with a range, and a spot whose cone edge crosses the geometry.
+  Light spot{Light::Kind::spot, glm::vec3(0.2f, 0.1f, 2.5f), glm::vec3(1.0f, 0.9f, 0.7f), 8.0f};
+  spot.spot_direction = glm::vec3(0.0f, 0.0f, -1.0f);
+  spot.inner_cone = 0.15f;
+  spot.outer_cone = 0.35f;
+  Light point{Light::Kind::point, glm::vec3(1.5f, 2.0f, 1.0f), glm::vec3(0.6f, 0.3f, 0.2f), 4.0f};
+  point.range = 3.0f;
+  const PunctualLight lights[] = {
+      PunctualLight::from({Light::Kind::directional, glm::vec3(-0.3f, 0.5f, 0.8f), glm::vec3(1.0f, 1.1f, 1.2f), 2.0f}),
+      PunctualLight::from(point), PunctualLight::from(spot)};
   for (const Case& c : cases) {
     PbrShader shader;
     shader.transforms = ObjectTransforms::make(clip_from_world, c.world_from_object);
@@ -198,9 +208,8 @@ TEST(SurfaceLanes, PbrMatchesTheScalarFragment) {
     shader.material.metallic = c.metallic;
     shader.material.roughness = c.roughness;
     shader.material.emissive = glm::vec3(0.05f, 0.0f, 0.1f);
-    shader.lights.add_directional(glm::vec3(-0.3f, 0.5f, 0.8f), glm::vec3(2.0f, 2.2f, 2.4f));
-    shader.lights.add_point(glm::vec3(1.5f, 2.0f, 1.0f), glm::vec3(0.6f, 0.3f, 0.2f));
-    shader.lights.ambient = glm::vec3(0.12f);
+    shader.lights = lights;
+    shader.ambient = glm::vec3(0.12f);
     shader.environment = c.environment;
     shader.eye = eye;
     shader.tone_mapping = c.tone_mapping;

@@ -17,7 +17,7 @@
 #include "facet/image_io.hpp"
 #include "facet/model_io.hpp"
 #include "facet/render_job.hpp"
-#include "support/base64.hpp"
+#include "support/gltf_square.hpp"
 #include "support/load_problem.hpp"
 #include "support/npy.hpp"
 #include "support/scratch_dir.hpp"
@@ -41,27 +41,12 @@ TEST(FileCameras, ReadWithTheirNodesPose) {
   EXPECT_EQ(orthographic.magnification, glm::vec2(1.0f));
 }
 
-// A 2 x 2 square at z = 0, facing +z, and cameras on nodes: at z = 5 looking down -z, and turned half round at
-// z = -5. `material`, if given, is the square's material.
+// The square of gltf_square.hpp, and cameras on nodes: at z = 5 looking down -z, and turned half round at z = -5.
+// `material`, if given, is the square's material.
 std::string square_with_cameras(const std::string& cameras, const std::string& material = "") {
-  const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
-  const std::uint32_t indices[] = {0, 1, 2, 0, 2, 3};
-  std::string buffer(sizeof positions + sizeof indices, '\0');
-  std::memcpy(buffer.data(), positions, sizeof positions);
-  std::memcpy(buffer.data() + sizeof positions, indices, sizeof indices);
-  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1,2]}],)"
-         R"("nodes":[{"mesh":0},{"camera":0,"translation":[0,0,5]},)"
-         R"({"camera":1,"translation":[0,0,-5],"rotation":[0,1,0,0]}],)"
-         R"("cameras":)" +
-         cameras + (material.empty() ? std::string() : R"(,"materials":[)" + material + "]") +
-         R"(,"meshes":[{"primitives":[{"attributes":{"POSITION":0},"indices":1)" +
-         (material.empty() ? std::string() : R"(,"material":0)") +
-         R"(}]}],)"
-         R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]},)"
-         R"({"bufferView":1,"componentType":5125,"count":6,"type":"SCALAR"}],)"
-         R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":24}],)"
-         R"("buffers":[{"byteLength":72,"uri":"data:application/octet-stream;base64,)" +
-         test::base64(buffer) + R"("}]})";
+  return test::square_gltf(R"({"camera":0,"translation":[0,0,5]},)"
+                           R"({"camera":1,"translation":[0,0,-5],"rotation":[0,1,0,0]})",
+                           2, R"(,"cameras":)" + cameras, material);
 }
 
 // The rows and columns the mask covers: first and one past the last.

@@ -3,15 +3,15 @@
 
 #include <array>
 #include <cstdint>
-#include <type_traits>
+#include <span>
 
 #include "facet/environment.hpp"
 #include "facet/fragment_lanes.hpp"
 #include "facet/shader.hpp"
 #include "facet/shaders/brdf.hpp"
-#include "facet/shaders/lighting.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
 #include "facet/shaders/normal_mapping.hpp"
+#include "facet/shaders/punctual.hpp"
 #include "facet/simd.hpp"
 #include "facet/texture.hpp"
 
@@ -41,8 +41,9 @@ struct PbrMaterial {
 // The physically based look: radiance = emission + sum over lights of f(l, v) E_light NdotL + the environment's
 // light by the split sum (brdf.hpp), then exposure, tone mapping and the sRGB encoding. Vertex colours arrive as
 // displayed and are decoded per vertex. Lights are radiometric: a directional light's colour times intensity is
-// the irradiance it gives a surface facing it; point lights have no falloff here. Without an environment the
-// ambient colour lights the diffuse part evenly.
+// the irradiance it gives a surface facing it, a point or spot light's falls off as punctual.hpp says; any number
+// of them, the span pointing at the caller's array. Without an environment the ambient colour lights the diffuse
+// part evenly.
 struct PbrShader {
   using Vertex = MeshVertex;
   static constexpr bool may_discard = false;
@@ -57,7 +58,8 @@ struct PbrShader {
 
   ObjectTransforms transforms{};
   PbrMaterial material{};
-  LightBlock lights{};
+  std::span<const PunctualLight> lights{};
+  glm::vec3 ambient{0.0f};  // linear; used only without an environment
   const Environment* environment = nullptr;
   glm::vec3 eye{0.0f};  // world space
   ToneMapping tone_mapping = ToneMapping::neutral;
@@ -201,14 +203,15 @@ struct PbrShader {
     const F n_dot_v_raw = dot(n, v);
     const F n_dot_v = brdf::saturate(n_dot_v_raw);
     Rgb<F> color = in.emissive;
-    for (int i = 0; i < lights.count; ++i) {
-      const glm::vec4 vk = lights.vector_kind[static_cast<std::size_t>(i)];
-      const glm::vec3 lc = lights.color[static_cast<std::size_t>(i)];
-      const V3 l = vk.w == 0.0f ? uniform<V3>(glm::vec3(vk)) : normalize(glm::vec3(vk) - world);
+    for (const PunctualLight& light : lights) {
+      V3 l;
+      F falloff;
+      incident_light(light, world, l, falloff);
       const V3 h = normalize(v + l);
       const F n_dot_l = brdf::saturate(dot(n, l));
       const Rgb<F> r = brdf::reflect_light(s, n_dot_l, n_dot_v, brdf::saturate(dot(n, h)), brdf::saturate(dot(v, h)));
-      color = color + r * Rgb<F>{brdf::constant<F>(lc.r), brdf::constant<F>(lc.g), brdf::constant<F>(lc.b)};
+      const glm::vec3 c = light.color;
+      color = color + r * Rgb<F>{c.r * falloff, c.g * falloff, c.b * falloff};
     }
     Rgb<F> irradiance, radiance;
     F a, b;
@@ -252,21 +255,12 @@ struct PbrShader {
   }
 
  private:
-  template <class V3>
-  static V3 uniform(glm::vec3 u) {
-    if constexpr (std::is_same_v<V3, glm::vec3>) {
-      return u;
-    } else {
-      return V3{simd::splat(u.x), simd::splat(u.y), simd::splat(u.z)};
-    }
-  }
-
   // E(n), the prefiltered radiance along r and the split-sum table, or, without an environment, the ambient colour
   // as a uniform irradiance of pi * ambient and no reflection.
   void environment_terms(glm::vec3 n, glm::vec3 r, float n_dot_v, float roughness, brdf::Rgb<float>& irradiance,
                          brdf::Rgb<float>& radiance, float& a, float& b) const {
     if (!environment) {
-      const glm::vec3 e = lights.ambient * brdf::kPi;
+      const glm::vec3 e = ambient * brdf::kPi;
       irradiance = {e.r, e.g, e.b};
       radiance = {0.0f, 0.0f, 0.0f};
       a = b = 0.0f;
@@ -283,7 +277,7 @@ struct PbrShader {
                                             const simd::Float& roughness, brdf::Rgb<simd::Float>& irradiance,
                                             brdf::Rgb<simd::Float>& radiance, simd::Float& a, simd::Float& b) const {
     if (!environment) {
-      const glm::vec3 e = lights.ambient * brdf::kPi;
+      const glm::vec3 e = ambient * brdf::kPi;
       irradiance = {simd::splat(e.r), simd::splat(e.g), simd::splat(e.b)};
       radiance = {simd::splat(0.0f), simd::splat(0.0f), simd::splat(0.0f)};
       a = b = simd::splat(0.0f);

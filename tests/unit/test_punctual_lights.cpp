@@ -1,0 +1,169 @@
+// test_punctual_lights.cpp - lights a glTF file places (KHR_lights_punctual): read, checked, falling off, drawn.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "facet/image_io.hpp"
+#include "facet/model_io.hpp"
+#include "facet/render_job.hpp"
+#include "facet/shaders/punctual.hpp"
+#include "facet/warnings.hpp"
+#include "support/gltf_square.hpp"
+#include "support/load_problem.hpp"
+#include "support/scratch_dir.hpp"
+
+namespace facet {
+namespace {
+
+namespace fs = std::filesystem;
+
+// The square with light nodes after it; `lights` is the extension's array of lights.
+std::string square_with_lights(const std::string& light_nodes, int count, const std::string& lights,
+                               const std::string& material = "") {
+  return test::square_gltf(light_nodes, count,
+                           R"(,"extensionsUsed":["KHR_lights_punctual"],)"
+                           R"("extensions":{"KHR_lights_punctual":{"lights":)" +
+                               lights + "}}",
+                           material);
+}
+
+std::string light_node(int light, const std::string& transform) {
+  return R"({"extensions":{"KHR_lights_punctual":{"light":)" + std::to_string(light) + "}}" +
+         (transform.empty() ? "" : "," + transform) + "}";
+}
+
+void expect_near(glm::vec3 a, glm::vec3 b) {
+  EXPECT_NEAR(a.x, b.x, 1e-5f);
+  EXPECT_NEAR(a.y, b.y, 1e-5f);
+  EXPECT_NEAR(a.z, b.z, 1e-5f);
+}
+
+TEST(PunctualLights, ReadAsTheirNodesPlaceThem) {
+  const fs::path dir = test::scratch_dir("punctual_lights");
+  const std::string nodes = light_node(0, R"("rotation":[-0.70710678,0,0,0.70710678])") + "," +
+                            light_node(1, R"("translation":[1,2,3])") + "," +
+                            light_node(2, R"("translation":[0,0,2],"rotation":[0,1,0,0])") + "," + light_node(3, "");
+  const fs::path model = test::write_file(
+      dir, "lights.gltf",
+      square_with_lights(nodes, 4,
+                         R"([{"type":"directional","color":[1,0.5,0.25],"intensity":3,"name":"sun"},)"
+                         R"({"type":"point","intensity":10,"range":5},)"
+                         R"({"type":"spot","intensity":20,"spot":{"innerConeAngle":0.1,"outerConeAngle":0.3}},)"
+                         R"({"type":"point","intensity":-1}])"));
+  WarningCapture warnings;
+  const Mesh mesh = load_model(model);
+  ASSERT_EQ(mesh.lights.size(), 3u);
+  const Light& sun = mesh.lights[0];
+  EXPECT_EQ(sun.kind, Light::Kind::directional);
+  EXPECT_EQ(sun.name, "sun");
+  EXPECT_EQ(sun.color, glm::vec3(1.0f, 0.5f, 0.25f));
+  EXPECT_EQ(sun.intensity, 3.0f);
+  expect_near(sun.vector, glm::vec3(0.0f, 1.0f, 0.0f));  // shines down its node's -Z, turned to -Y
+  const Light& point = mesh.lights[1];
+  EXPECT_EQ(point.kind, Light::Kind::point);
+  EXPECT_EQ(point.vector, glm::vec3(1.0f, 2.0f, 3.0f));
+  EXPECT_EQ(point.range, 5.0f);
+  EXPECT_EQ(point.color, glm::vec3(1.0f));
+  const Light& spot = mesh.lights[2];
+  EXPECT_EQ(spot.kind, Light::Kind::spot);
+  EXPECT_EQ(spot.vector, glm::vec3(0.0f, 0.0f, 2.0f));
+  expect_near(spot.spot_direction, glm::vec3(0.0f, 0.0f, 1.0f));  // turned half round about +Y
+  EXPECT_FLOAT_EQ(spot.inner_cone, 0.1f);
+  EXPECT_FLOAT_EQ(spot.outer_cone, 0.3f);
+  ASSERT_EQ(warnings.messages().size(), 1u);
+  EXPECT_NE(warnings.messages()[0].find("light 3 has a negative or non-finite colour or intensity"), std::string::npos)
+      << warnings.messages()[0];
+}
+
+TEST(PunctualLights, BadConesAreClampedAndMissingLightsRefused) {
+  const fs::path dir = test::scratch_dir("punctual_lights");
+  WarningCapture warnings;
+  const Mesh mesh = load_model(test::write_file(
+      dir, "cone.gltf",
+      square_with_lights(light_node(0, ""), 1,
+                         R"([{"type":"spot","spot":{"innerConeAngle":0.9,"outerConeAngle":2.5}}])")));
+  ASSERT_EQ(mesh.lights.size(), 1u);
+  EXPECT_LT(mesh.lights[0].inner_cone, mesh.lights[0].outer_cone);
+  EXPECT_LE(mesh.lights[0].outer_cone, 1.5707964f);
+  ASSERT_EQ(warnings.messages().size(), 1u);
+  EXPECT_NE(warnings.messages()[0].find("clamped"), std::string::npos);
+
+  const fs::path missing =
+      test::write_file(dir, "missing.gltf", square_with_lights(light_node(9, ""), 1, R"([{"type":"point"}])"));
+  EXPECT_EQ(test::load_problem(missing), "light 9 does not exist");
+}
+
+// KHR_lights_punctual's recommended falloff: inverse square, windowed by the range, a spot's cone smoothly cut.
+TEST(PunctualLights, FallOffAsTheExtensionRecommends) {
+  Light point{Light::Kind::point, glm::vec3(0.0f, 0.0f, 2.0f), glm::vec3(1.0f), 4.0f};
+  glm::vec3 l;
+  float falloff = 0.0f;
+  incident_light(PunctualLight::from(point), glm::vec3(0.0f), l, falloff);
+  EXPECT_EQ(l, glm::vec3(0.0f, 0.0f, 1.0f));
+  EXPECT_FLOAT_EQ(falloff, 0.25f);
+  point.range = 4.0f;  // d = range / 2
+  incident_light(PunctualLight::from(point), glm::vec3(0.0f), l, falloff);
+  EXPECT_FLOAT_EQ(falloff, (1.0f - 1.0f / 16.0f) / 4.0f);
+  incident_light(PunctualLight::from(point), glm::vec3(0.0f, 0.0f, -3.0f), l, falloff);
+  EXPECT_EQ(falloff, 0.0f);  // beyond the range
+
+  Light spot{Light::Kind::spot, glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(1.0f), 1.0f};
+  spot.spot_direction = glm::vec3(0.0f, 0.0f, -1.0f);
+  spot.inner_cone = 0.2f;
+  spot.outer_cone = 0.4f;
+  const PunctualLight s = PunctualLight::from(spot);
+  const auto at_angle = [&](float angle) {
+    const glm::vec3 p(std::tan(angle), 0.0f, 0.0f);
+    incident_light(s, p, l, falloff);
+    return falloff * glm::dot(spot.vector - p, spot.vector - p);  // the distance's share taken out
+  };
+  EXPECT_NEAR(at_angle(0.0f), 1.0f, 1e-5f);
+  EXPECT_NEAR(at_angle(0.19f), 1.0f, 1e-5f);
+  EXPECT_EQ(at_angle(0.41f), 0.0f);
+  const float mid = (std::cos(0.3f) - std::cos(0.4f)) / (std::cos(0.2f) - std::cos(0.4f));
+  EXPECT_NEAR(at_angle(0.3f), mid * mid, 1e-4f);
+
+  Light sun;
+  sun.vector = glm::vec3(0.0f, 3.0f, 4.0f);
+  incident_light(PunctualLight::from(sun), glm::vec3(7.0f), l, falloff);
+  expect_near(l, glm::vec3(0.0f, 0.6f, 0.8f));
+  EXPECT_EQ(falloff, 1.0f);
+}
+
+// A spot above the square's middle lights a disc there and nothing outside its cone; --no-model-lights drops it.
+TEST(PunctualLights, ASpotLightsItsConeInTheModelsOwnLook) {
+  const fs::path dir = test::scratch_dir("punctual_lights");
+  const std::string camera = R"({"camera":0,"translation":[0,0,5]})";
+  const fs::path model = test::write_file(
+      dir, "spot.gltf",
+      test::square_gltf(camera + "," + light_node(0, R"("translation":[0,0,2])"), 2,
+                        R"(,"cameras":[{"type":"perspective","perspective":{"yfov":0.7610127,"znear":0.1}}],)"
+                        R"("extensions":{"KHR_lights_punctual":{"lights":)"
+                        R"([{"type":"spot","intensity":8,"spot":{"innerConeAngle":0.2,"outerConeAngle":0.3}}]}})",
+                        R"({"pbrMetallicRoughness":{"metallicFactor":0,"roughnessFactor":0.8}})"));
+  Renderer renderer(2);
+  const auto render_look = [&](bool model_lights) {
+    RenderJob job;
+    job.model = model;
+    job.width = job.height = 64;
+    job.camera.file_camera = 0;
+    job.look.model_lights = model_lights;
+    job.outputs = {.color = dir / "c.png"};
+    render(job, renderer);
+    int w = 0, h = 0;
+    return read_png(dir / "c.png", w, h);
+  };
+  const std::vector<std::uint8_t> lit = render_look(true), unlit = render_look(false);
+  // The square spans pixels 16..47; its middle lies in the cone, (18, 18) well outside it.
+  const auto red = [](const std::vector<std::uint8_t>& rgba, int x, int y) { return rgba[(y * 64 + x) * 4]; };
+  EXPECT_GT(red(lit, 32, 32), red(unlit, 32, 32) + 60);
+  EXPECT_EQ(red(lit, 18, 18), red(unlit, 18, 18));
+}
+
+}  // namespace
+}  // namespace facet
