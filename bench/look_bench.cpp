@@ -15,6 +15,8 @@
 #include "facet/scene.hpp"
 #include "facet/view_spec.hpp"
 
+// The looks: Blinn-Phong's headlight; the physically based look lit by the studio; the same with a key light; with
+// the key light's shadows; and with ambient occlusion too.
 // Usage: facet_look_bench MODEL WIDTH HEIGHT SAMPLES THREADS ROUNDS FRAMES. Alternates the looks ROUNDS times, each
 // round drawing FRAMES frames of each after one warm-up frame, and prints per look the median over rounds of the
 // mean milliseconds per frame (clear, draw, finish), and the ratio of each look to the first.
@@ -40,10 +42,22 @@ int main(int argc, char** argv) {
   facet::LookSpec phong;
   phong.shading = facet::Shading::blinn_phong;
   const glm::vec3 background = facet::kDefaultBackground;
+  // The physically based look with a key light from above front left, then with its shadows.
+  facet::LookSpec key;
+  key.light_direction = glm::vec3(-0.4f, 1.0f, 0.6f);
+  facet::LookSpec shadows = key;
+  shadows.shadows = true;
+  facet::LookSpec occlusion = shadows;
+  occlusion.ambient_occlusion = true;
+  const auto options = [&](const facet::LookSpec& look) {
+    return facet::scene_options(look, view.view_from_world, facet::Shading::automatic, background);
+  };
   const std::vector<Look> looks = {
-      {"blinn-phong", facet::scene_options(phong, view.view_from_world, facet::Shading::automatic, background)},
-      {"pbr+studio",
-       facet::scene_options(facet::LookSpec{}, view.view_from_world, facet::Shading::automatic, background)},
+      {"blinn-phong", options(phong)},
+      {"pbr+studio", options(facet::LookSpec{})},
+      {"pbr+key", options(key)},
+      {"pbr+shadows", options(shadows)},
+      {"pbr+shadows+ao", options(occlusion)},
   };
   std::vector<std::vector<double>> times(looks.size());
   for (int round = 0; round < rounds; ++round)
@@ -65,6 +79,6 @@ int main(int argc, char** argv) {
     medians.push_back(t[t.size() / 2]);
   }
   for (std::size_t l = 0; l < looks.size(); ++l)
-    std::printf("%-12s %8.3f ms  %.2fx\n", looks[l].name, medians[l], medians[l] / medians[0]);
+    std::printf("%-15s %8.3f ms  %.2fx\n", looks[l].name, medians[l], medians[l] / medians[0]);
   return 0;
 }

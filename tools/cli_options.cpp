@@ -224,6 +224,10 @@ void add_look_options(CLI::App& app, LookArgs& args) {
       "How the model's own look maps light to colour (default: neutral, Khronos PBR Neutral)");
   app.add_flag("--no-model-lights", args.no_model_lights,
                "Leave out the lights the model's file places (glTF KHR_lights_punctual) from its own look");
+  app.add_flag("--shadows", args.shadows,
+               "Directional and spot lights (the model's and --light-direction's) cast shadows in its own look");
+  app.add_flag("--ambient-occlusion", args.ambient_occlusion,
+               "Darken the environment's light in creases and contact (screen-space) in the model's own look");
   app.add_option("--exposure", args.exposure, "Scale the light of the model's own look before tone mapping (1)")
       ->check(number_in(1e-6, 1e6))
       ->type_name("X");
@@ -315,6 +319,8 @@ LookSpec look_spec(const LookArgs& args) {
   look.hdri_background = args.hdri_background;
   look.hdri_blur = args.hdri_blur;
   look.model_lights = !args.no_model_lights;
+  look.shadows = args.shadows;
+  look.ambient_occlusion = args.ambient_occlusion;
   return look;
 }
 

@@ -92,6 +92,8 @@ struct LookArgs {
   bool hdri_background = false;
   float hdri_blur = 0.0f;
   bool no_model_lights = false;
+  bool shadows = false;
+  bool ambient_occlusion = false;
   int threads = 0;
   int samples = 4;  // multisample anti-aliasing
 };

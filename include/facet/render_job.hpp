@@ -42,6 +42,8 @@ struct LookSpec {
   bool hdri_background = false;  // draw the environment behind the model instead of the background colour
   float hdri_blur = 0.0f;        // how blurred: 0 sharp to 1
   bool model_lights = true;      // the physically based look: light the model by the lights its file places too
+  bool shadows = false;          // the physically based look: directional and spot lights cast shadows
+  bool ambient_occlusion = false;  // the physically based look: screen-space ambient occlusion
 };
 
 // The files a render writes; empty paths are not written.

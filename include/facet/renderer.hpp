@@ -3,6 +3,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <functional>
 #include <glm/glm.hpp>
 #include <memory>
 #include <span>
@@ -42,6 +43,10 @@ class Renderer {
   Renderer& operator=(const Renderer&) = delete;
 
   int threads() const;
+
+  // Calls body(i) for every i in [0, count) on the renderer's threads and returns when all are done, each index
+  // exactly once, in no set order: for passes over a frame's buffers between draws (ambient occlusion).
+  void parallel_for(std::size_t count, const std::function<void(std::size_t)>& body);
 
   // Records a clear; each tile applies it the first time it is drawn (while hot in cache) or at finish().
   void clear(Framebuffer& target, glm::vec4 color = {0, 0, 0, 1}, float depth = 1.0f);

@@ -64,7 +64,16 @@ struct SceneOptions {
   // background_blur: a roughness, 0 sharp to 1 the roughest level.
   bool environment_background = false;
   float background_blur = 0.0f;
+  // The physically based look: every directional and spot light casts shadows, from a shadow_map_size²
+  // (1..8192) map rendered each frame; point lights and the environment cast none.
+  bool shadows = false;
+  int shadow_map_size = 1024;
+  // The physically based look: screen-space ambient occlusion darkens the environment's and the ambient light in
+  // creases and contact, within kOcclusionRadius of the scene's bounding radius of each surface.
+  bool ambient_occlusion = false;
 };
+
+inline constexpr float kOcclusionRadius = 0.15f;
 
 inline constexpr int kMaxLights = 4;
 static_assert(kMaxLights <= kLightSlots);

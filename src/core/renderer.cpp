@@ -50,6 +50,10 @@ Renderer::~Renderer() = default;
 
 int Renderer::threads() const { return work_->pool.size(); }
 
+void Renderer::parallel_for(std::size_t count, const std::function<void(std::size_t)>& body) {
+  work_->pool.parallel_for(count, [&](std::size_t i, int) { body(i); });
+}
+
 void Renderer::clear(Framebuffer& target, glm::vec4 color, float depth) { target.request_clear(color, depth); }
 
 void Renderer::finish(Framebuffer& target) {

@@ -75,6 +75,12 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
       shader.eye = frame.eye;
       shader.tone_mapping = options.tone_mapping;
       shader.exposure = options.exposure;
+      // A blended surface lies in front of the opaque surfaces the occlusion was measured on.
+      if (material.alpha_mode != AlphaMode::blend) {
+        shader.screen_occlusion = frame.occlusion;
+        shader.screen_occlusion_width = frame.occlusion_width;
+        shader.screen_occlusion_height = frame.occlusion_height;
+      }
       if (masked) {
         Masked<PbrShader> cut{shader};
         cut.alpha_cutoff = material.alpha_cutoff;

@@ -1,4 +1,5 @@
 // look.cpp - a LookSpec applied: the scene's drawing options and lights, the mesh's colour, the clear colour.
+#include <algorithm>
 #include <cmath>
 #include <map>
 #include <memory>
@@ -8,6 +9,7 @@
 #include <utility>
 
 #include "facet/render_job.hpp"
+#include "facet/warnings.hpp"
 
 namespace facet {
 
@@ -41,6 +43,12 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
     options.lights.clear();
     if (look.model_lights) options.lights.assign(model_lights.begin(), model_lights.end());
     if (look.light_direction) options.lights.push_back(Light{Light::Kind::directional, light, glm::vec3(1.0f), kPi});
+    options.shadows = look.shadows;
+    options.ambient_occlusion = look.ambient_occlusion;
+    if (look.shadows && std::none_of(options.lights.begin(), options.lights.end(),
+                                     [](const Light& l) { return l.kind != Light::Kind::point; }))
+      warn("shadows: no directional or spot light to cast them (the environment casts none); give a light "
+           "direction");
   } else {
     options.lights = {Light{Light::Kind::directional, light, glm::vec3(1.0f), 1.0f}};
   }

@@ -20,6 +20,7 @@ void Scene::add(Instance instance) {
   const Mesh* mesh = instance.mesh.get();
   if (!impl_->prepared.contains(mesh)) impl_->prepared.emplace(mesh, detail::prepare_mesh(*mesh, impl_->textures));
   impl_->instances.push_back(std::move(instance));
+  impl_->shadows.key = {};  // a new mesh may sit where a removed one was: the cache's pointers no longer tell
 }
 
 void Scene::set_transform(std::size_t index, const glm::mat4& world_from_object) {
@@ -33,6 +34,7 @@ void Scene::remove(std::size_t index) {
   // The address keys the prepared data only while an instance holds the mesh alive (see Impl::prepared).
   if (std::none_of(instances.begin(), instances.end(), [&](const Instance& i) { return i.mesh == mesh; }))
     impl_->prepared.erase(mesh.get());
+  impl_->shadows.key = {};
 }
 
 std::size_t Scene::size() const { return impl_->instances.size(); }
@@ -139,7 +141,19 @@ std::vector<std::size_t> Scene::Impl::blended(const detail::FrameContext& frame,
 }
 
 std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options) {
-  const detail::FrameContext frame = detail::frame_context(view, options);
+  detail::FrameContext frame = detail::frame_context(view, options);
+  if (options.shadows && options.shading == Shading::automatic) {
+    if (options.shadow_map_size < 1 || options.shadow_map_size > 8192)
+      throw std::invalid_argument("shadow map size: must lie in 1..8192");
+    impl_->shadow_lights(renderer, options, frame.punctual, options.shadow_map_size);
+  }
+  if (options.ambient_occlusion && options.shading == Shading::automatic) {
+    impl_->ambient_occlusion(renderer, options, view, target.width(), target.height(),
+                             kOcclusionRadius * impl_->bounding_radius());
+    frame.occlusion = impl_->occlusion.open.data();
+    frame.occlusion_width = impl_->occlusion.width;
+    frame.occlusion_height = impl_->occlusion.height;
+  }
   if (options.environment_background && options.environment && options.shading == Shading::automatic)
     detail::draw_environment_background(renderer, target, frame);
   const std::vector<std::size_t> order = impl_->visible(frame);

@@ -198,9 +198,20 @@ TEST(SurfaceLanes, PbrMatchesTheScalarFragment) {
   spot.outer_cone = 0.35f;
   Light point{Light::Kind::point, glm::vec3(1.5f, 2.0f, 1.0f), glm::vec3(0.6f, 0.3f, 0.2f), 4.0f};
   point.range = 3.0f;
-  const PunctualLight lights[] = {
+  PunctualLight lights[] = {
       PunctualLight::from({Light::Kind::directional, glm::vec3(-0.3f, 0.5f, 0.8f), glm::vec3(1.0f, 1.1f, 1.2f), 2.0f}),
       PunctualLight::from(point), PunctualLight::from(spot)};
+  // The directional light shadowed by a map of random depths, so every lane reads texels of its own.
+  std::vector<float> depths(64 * 64);
+  std::mt19937 random(7);
+  for (float& d : depths) d = std::uniform_real_distribution<float>(0.3f, 0.7f)(random);
+  const ShadowMap shadow(glm::ortho(-2.0f, 2.0f, -2.0f, 2.0f, 0.0f, 4.0f) *
+                             glm::lookAt(glm::vec3(-0.6f, 1.0f, 1.6f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)),
+                         64, std::span<const float>(depths), 0.01f);
+  lights[0].shadow = &shadow;
+  // Screen-space occlusion of the target's size (203 is no multiple of the 8-pixel strip: edge lanes clamp).
+  std::vector<float> open(203 * 151);
+  for (float& o : open) o = std::uniform_real_distribution<float>(0.3f, 1.0f)(random);
   for (const Case& c : cases) {
     PbrShader shader;
     shader.transforms = ObjectTransforms::make(clip_from_world, c.world_from_object);
@@ -210,6 +221,9 @@ TEST(SurfaceLanes, PbrMatchesTheScalarFragment) {
     shader.material.emissive = glm::vec3(0.05f, 0.0f, 0.1f);
     shader.lights = lights;
     shader.ambient = glm::vec3(0.12f);
+    shader.screen_occlusion = open.data();
+    shader.screen_occlusion_width = 203;
+    shader.screen_occlusion_height = 151;
     shader.environment = c.environment;
     shader.eye = eye;
     shader.tone_mapping = c.tone_mapping;

@@ -174,6 +174,20 @@ TEST(PbrShader, EmissionIsAddedInLinearLight) {
   EXPECT_NEAR(c.b, 0.0f, 2e-4f);
 }
 
+// Without an environment a white metal (glTF's default material) is still lit by a light: no 0 / 0 in the
+// multiple-scattering term, whose table terms are then zero.
+TEST(PbrShader, AWhiteMetalWithoutEnvironmentIsLit) {
+  PbrShader shader;
+  shader.eye = glm::vec3(0.0f, 0.0f, 1.0f);
+  shader.ambient = glm::vec3(0.1f);
+  const PunctualLight light = PunctualLight::from(Light{Light::Kind::directional, glm::vec3(0.0f, 0.3f, 1.0f)});
+  shader.lights = std::span<const PunctualLight>(&light, 1);
+  const PbrShader::Inputs<float> in{{1.0f, 1.0f, 1.0f}, 1.0f, 1.0f, 1.0f, 1.0f, {0.0f, 0.0f, 0.0f}};
+  const brdf::Rgb<float> c = shader.shade(in, glm::vec3(0, 0, 1), glm::vec3(0.0f));
+  EXPECT_TRUE(std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b));
+  EXPECT_GT(c.r, 0.05f);
+}
+
 // Khronos PBR Neutral leaves dark colours nearly as they are, keeps greys grey and brings any light into [0, 1];
 // ACES too. Both rise with the light.
 TEST(ToneMapping, NeutralAndAcesStayInRangeAndRise) {

@@ -3,14 +3,18 @@
 
 #include <cmath>
 #include <filesystem>
+#include <memory>
+#include <stdexcept>
 #include <string>
 #include <vector>
 
 #include <glm/glm.hpp>
+#include <glm/gtc/matrix_transform.hpp>
 
 #include "facet/image_io.hpp"
 #include "facet/model_io.hpp"
 #include "facet/render_job.hpp"
+#include "facet/scene.hpp"
 #include "facet/shaders/punctual.hpp"
 #include "facet/warnings.hpp"
 #include "support/gltf_square.hpp"
@@ -163,6 +167,100 @@ TEST(PunctualLights, ASpotLightsItsConeInTheModelsOwnLook) {
   const auto red = [](const std::vector<std::uint8_t>& rgba, int x, int y) { return rgba[(y * 64 + x) * 4]; };
   EXPECT_GT(red(lit, 32, 32), red(unlit, 32, 32) + 60);
   EXPECT_EQ(red(lit, 18, 18), red(unlit, 18, 18));
+}
+
+// A small square held above the floor square, a directional light from 45 degrees: with shadows, the floor darkens
+// where the small square hides the light and nowhere else.
+TEST(PunctualLights, DirectionalLightsCastShadowsWhenAsked) {
+  const fs::path dir = test::scratch_dir("punctual_lights");
+  const std::string nodes = R"({"camera":0,"translation":[0,0,5]},)"
+                            R"({"mesh":0,"translation":[0,0,0.5],"scale":[0.3,0.3,1]},)" +
+                            light_node(0, R"("rotation":[0,0.3826834,0,0.9238795])");
+  const fs::path model = test::write_file(
+      dir, "shadow.gltf",
+      test::square_gltf(nodes, 3,
+                        R"(,"cameras":[{"type":"perspective","perspective":{"yfov":0.7610127,"znear":0.1}}],)"
+                        R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"directional","intensity":3}]}})",
+                        R"({"pbrMetallicRoughness":{"metallicFactor":0,"roughnessFactor":0.8},"doubleSided":true})"));
+  Renderer renderer(2);
+  const auto render_look = [&](bool shadows) {
+    RenderJob job;
+    job.model = model;
+    job.width = job.height = 64;
+    job.samples = 1;
+    job.camera.file_camera = 0;
+    job.look.shadows = shadows;
+    job.outputs = {.color = dir / (shadows ? "shadowed.png" : "unshadowed.png")};
+    render(job, renderer);
+    int w = 0, h = 0;
+    return read_png(job.outputs.color, w, h);
+  };
+  const std::vector<std::uint8_t> shadowed = render_look(true), unshadowed = render_look(false);
+  const auto red = [](const std::vector<std::uint8_t>& rgba, int x, int y) { return rgba[(y * 64 + x) * 4]; };
+  // 16 pixels a unit on the floor: the shadow falls on x in [-0.8, -0.2], the occluder hides x in [-0.33, 0.33].
+  EXPECT_LT(red(shadowed, 22, 32) + 40, red(unshadowed, 22, 32));  // x = -0.6: in the shadow
+  EXPECT_EQ(red(shadowed, 42, 32), red(unshadowed, 42, 32));       // x = +0.6: lit either way
+  EXPECT_EQ(red(shadowed, 32, 32), red(unshadowed, 32, 32));       // the occluder itself is lit
+}
+
+// Shadows asked of a look with no light that casts them say so; an absurd map size is refused before drawing.
+TEST(PunctualLights, ShadowsWithoutACasterWarnAndBadMapSizesAreRefused) {
+  LookSpec look;
+  look.shadows = true;
+  {
+    WarningCapture warnings;
+    const SceneOptions options = scene_options(look, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.0f));
+    EXPECT_TRUE(options.shadows);
+    ASSERT_EQ(warnings.messages().size(), 1u);
+    EXPECT_NE(warnings.messages()[0].find("no directional or spot light"), std::string::npos);
+  }
+  look.light_direction = glm::vec3(0.0f, 1.0f, 0.0f);
+  WarningCapture warnings;
+  SceneOptions options = scene_options(look, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.0f));
+  EXPECT_TRUE(warnings.messages().empty());
+  Scene scene;
+  scene.add(Instance{std::make_shared<const Mesh>(load_model("/usr/share/assimp/models/OBJ/box.obj"))});
+  Renderer renderer(1);
+  Framebuffer target(16, 16);
+  const View view{glm::translate(glm::mat4(1.0f), glm::vec3(0.0f, 0.0f, -5.0f)),
+                  glm::perspective(0.8f, 1.0f, 0.1f, 20.0f)};
+  for (const int size : {0, -3, 8193}) {
+    options.shadow_map_size = size;
+    EXPECT_THROW(scene.render(renderer, target, view, options), std::invalid_argument) << size;
+  }
+  options.shadow_map_size = 64;
+  EXPECT_EQ(scene.render(renderer, target, view, options), 1u);
+}
+
+// A small square just above the floor square: ambient occlusion darkens the floor beside it, where the small
+// square hides part of the sky, and leaves the open floor farther off and the small square's top as they were.
+TEST(AmbientOcclusion, DarkensTheFloorBesideWhatStandsOnIt) {
+  const fs::path dir = test::scratch_dir("ambient_occlusion");
+  const std::string nodes = R"({"camera":0,"translation":[0,0,5]},)"
+                            R"({"mesh":0,"translation":[0,0,0.1],"scale":[0.3,0.3,1]})";
+  const fs::path model = test::write_file(
+      dir, "contact.gltf",
+      test::square_gltf(nodes, 2, R"(,"cameras":[{"type":"perspective","perspective":{"yfov":0.7610127,"znear":0.1}}])",
+                        R"({"pbrMetallicRoughness":{"metallicFactor":0,"roughnessFactor":0.8},"doubleSided":true})"));
+  Renderer renderer(2);
+  const auto render_look = [&](bool occlusion) {
+    RenderJob job;
+    job.model = model;
+    job.width = job.height = 128;
+    job.samples = 1;
+    job.camera.file_camera = 0;
+    job.look.ambient_occlusion = occlusion;
+    job.outputs = {.color = dir / (occlusion ? "occluded.png" : "open.png")};
+    render(job, renderer);
+    int w = 0, h = 0;
+    return read_png(job.outputs.color, w, h);
+  };
+  const std::vector<std::uint8_t> occluded = render_look(true), open = render_look(false);
+  const auto red = [](const std::vector<std::uint8_t>& rgba, int x, int y) { return rgba[(y * 128 + x) * 4]; };
+  // 32 pixels a unit on the floor; the small square covers x in [-0.3, 0.3].
+  EXPECT_LT(red(occluded, 76, 64) + 15, red(open, 76, 64));  // x = 0.4: beside it
+  EXPECT_EQ(red(occluded, 94, 64), red(open, 94, 64));       // x = 0.95: open floor
+  EXPECT_EQ(red(occluded, 64, 64), red(open, 64, 64));       // its top
 }
 
 }  // namespace

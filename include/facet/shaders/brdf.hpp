@@ -36,6 +36,8 @@ inline float select(bool m, float a, float b) { return m ? a : b; }
 using simd::select;
 inline float sqrt(float v) { return std::sqrt(v); }
 using simd::sqrt;
+inline float floor(float v) { return std::floor(v); }
+using simd::floor;
 // std::max's and std::min's comparisons (NaN handled as they handle it).
 template <class F>
 FACET_LANES_INLINE F max(const F& a, const F& b) {
@@ -44,6 +46,13 @@ FACET_LANES_INLINE F max(const F& a, const F& b) {
 template <class F>
 FACET_LANES_INLINE F min(const F& a, const F& b) {
   return select(b < a, b, a);
+}
+// a or b, for conditions per pixel (bool) or per lane (simd::Mask).
+inline bool either(bool a, bool b) { return a || b; }
+FACET_LANES_INLINE simd::Mask either(const simd::Mask& a, const simd::Mask& b) { return a | b; }
+template <class F>
+FACET_LANES_INLINE F abs(const F& v) {
+  return select(v < 0.0f, -v, v);
 }
 template <class F>
 FACET_LANES_INLINE F saturate(const F& v) {
@@ -138,7 +147,8 @@ FACET_LANES_INLINE Rgb<F> reflect_environment(const Surface<F>& s, const F& a, c
   const auto scatter = [&](const F& f0, F& single) {
     single = f0 * a + b;
     const F f_avg = f0 + (1.0f - f0) * (1.0f / 21.0f);
-    return single * f_avg / (1.0f - e_ms * f_avg) * e_ms;
+    // Kept off zero: a white metal (f_avg 1) with no environment (a = b = 0, e_ms 1) would give 0 / 0.
+    return single * f_avg / max(1.0f - e_ms * f_avg, constant<F>(1e-6f)) * e_ms;
   };
   Rgb<F> single, multi;
   multi.r = scatter(s.f0.r, single.r);

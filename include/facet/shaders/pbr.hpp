@@ -1,6 +1,7 @@
 // pbr.hpp - PbrShader: glTF's metallic-roughness material lit by an environment and lights, tone-mapped.
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -12,6 +13,7 @@
 #include "facet/shaders/mesh_vertex.hpp"
 #include "facet/shaders/normal_mapping.hpp"
 #include "facet/shaders/punctual.hpp"
+#include "facet/shaders/shadow_map.hpp"
 #include "facet/simd.hpp"
 #include "facet/texture.hpp"
 
@@ -64,6 +66,10 @@ struct PbrShader {
   glm::vec3 eye{0.0f};  // world space
   ToneMapping tone_mapping = ToneMapping::neutral;
   float exposure = 1.0f;
+  // Screen-space ambient occlusion, 1 open to 0 occluded, per 2 x 2 pixels of the target (width x height values,
+  // top row first); multiplies the material's occlusion. nullptr: none.
+  const float* screen_occlusion = nullptr;
+  int screen_occlusion_width = 0, screen_occlusion_height = 0;
 
   VertexOut<Varyings> vertex(const Vertex& v) const {
     const glm::vec4 p(v.position, 1.0f);
@@ -124,7 +130,9 @@ struct PbrShader {
     glm::vec3 n = glm::normalize(f.varyings.normal);
     if (!transforms.front_side(f.front_facing)) n = -n;
     if (material.normal_map) n = mapped_normal(n, f, *material.normal_map, material.sampler, material.normal_scale);
-    const Inputs<float> in = inputs(f);
+    Inputs<float> in = inputs(f);
+    if (screen_occlusion)
+      in.occlusion = in.occlusion * screen_open(f.screen.x, f.screen.y);
     const brdf::Rgb<float> c = display(shade(in, n, f.varyings.world));
     return {c.r, c.g, c.b, in.alpha};
   }
@@ -138,7 +146,12 @@ struct PbrShader {
     Vec3 n = normalize(f.get(&Varyings::normal));
     const Mask back = transforms.mirrored ? f.front_facing : ~f.front_facing;
     n = Vec3{select(back, -n.x, n.x), select(back, -n.y, n.y), select(back, -n.z, n.z)};
-    const Inputs<Float> in = inputs_lanes(f);
+    Inputs<Float> in = inputs_lanes(f);
+    if (screen_occlusion) {
+      Float open;
+      for (int k = 0; k < kLanes; ++k) open[k] = screen_open(f.screen_x[k], f.screen_y[k]);
+      in.occlusion = in.occlusion * open;
+    }
     const brdf::Rgb<Float> out = display(shade(in, n, f.get(&Varyings::world)));
     return {out.r, out.g, out.b, in.alpha};
   }
@@ -207,6 +220,7 @@ struct PbrShader {
       V3 l;
       F falloff;
       incident_light(light, world, l, falloff);
+      if (light.shadow) falloff = falloff * light.shadow->visibility<F>(world, n);
       const V3 h = normalize(v + l);
       const F n_dot_l = brdf::saturate(dot(n, l));
       const Rgb<F> r = brdf::reflect_light(s, n_dot_l, n_dot_v, brdf::saturate(dot(n, h)), brdf::saturate(dot(v, h)));
@@ -255,6 +269,14 @@ struct PbrShader {
   }
 
  private:
+  // The screen-space occlusion at a pixel centre; helper lanes past the target's edge read its last column or row.
+  float screen_open(float x, float y) const {
+    const int column = std::min(static_cast<int>(x) >> 1, screen_occlusion_width - 1);
+    const int row = std::min(static_cast<int>(y) >> 1, screen_occlusion_height - 1);
+    return screen_occlusion[static_cast<std::size_t>(row) * static_cast<std::size_t>(screen_occlusion_width) +
+                            static_cast<std::size_t>(column)];
+  }
+
   // E(n), the prefiltered radiance along r and the split-sum table, or, without an environment, the ambient colour
   // as a uniform irradiance of pi * ambient and no reflection.
   void environment_terms(glm::vec3 n, glm::vec3 r, float n_dot_v, float roughness, brdf::Rgb<float>& irradiance,

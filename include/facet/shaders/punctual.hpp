@@ -26,7 +26,10 @@ struct PunctualLight {
   glm::vec3 spot_direction{0.0f, 0.0f, -1.0f};  // unit; the way a spot shines
   float inverse_range_4 = 0.0f;                 // 1 / range^4; 0: unlimited
   float cone_scale = 0.0f, cone_offset = 1.0f;  // a point light: every direction at 1
+  float outer_cone = 0.0f;                      // a spot's, for its shadow map
   const ShadowMap* shadow = nullptr;            // none: unshadowed
+
+  bool is_spot() const { return cone_scale > 0.0f; }
 
   static PunctualLight from(const Light& light) {
     PunctualLight out;
@@ -42,6 +45,7 @@ struct PunctualLight {
       const float cos_outer = std::cos(light.outer_cone), cos_inner = std::cos(light.inner_cone);
       out.cone_scale = 1.0f / std::max(0.001f, cos_inner - cos_outer);
       out.cone_offset = -cos_outer * out.cone_scale;
+      out.outer_cone = light.outer_cone;
     }
     return out;
   }
@@ -67,7 +71,7 @@ FACET_LANES_INLINE void incident_light(const PunctualLight& light, const V3& wor
   l = d * inverse_d;
   falloff = constant<F>(1.0f) / d2;
   if (light.inverse_range_4 > 0.0f) falloff = falloff * brdf::saturate(constant<F>(1.0f) - d2 * d2 * light.inverse_range_4);
-  if (light.cone_scale > 0.0f) {
+  if (light.is_spot()) {
     const F cone = brdf::saturate(-dot(l, light.spot_direction) * light.cone_scale + light.cone_offset);
     falloff = falloff * cone * cone;
   }
