@@ -7,9 +7,11 @@
     buffers = facet.render("model.glb", width=640, height=480, buffers=["color", "depth", "normal", "ids"])
 """
 from ._facet import LoadError
+from .light import DirectionalLight, PointLight, SpotLight
+from .material import MetallicRoughnessMaterial
 from .renderer import BUFFERS, OffscreenRenderer, RenderFlags, render
-from .scene import (DirectionalLight, IntrinsicsCamera, Mesh, Node, OrthographicCamera, PerspectiveCamera,
-                    PointLight, Scene)
+from .scene import IntrinsicsCamera, Mesh, Node, OrthographicCamera, PerspectiveCamera, Scene
 
-__all__ = ["BUFFERS", "DirectionalLight", "IntrinsicsCamera", "LoadError", "Mesh", "Node", "OffscreenRenderer",
-           "OrthographicCamera", "PerspectiveCamera", "PointLight", "RenderFlags", "Scene", "render"]
+__all__ = ["BUFFERS", "DirectionalLight", "IntrinsicsCamera", "LoadError", "Mesh", "MetallicRoughnessMaterial",
+           "Node", "OffscreenRenderer", "OrthographicCamera", "PerspectiveCamera", "PointLight", "RenderFlags",
+           "Scene", "SpotLight", "render"]

@@ -6,6 +6,7 @@ import os
 import numpy as np
 
 from . import _facet
+from .light import DirectionalLight, light_tuple
 from .scene import DEFAULT_MAX_TEXTURE_SIZE, DEFAULT_MAX_TRIANGLES
 
 
@@ -15,7 +16,7 @@ class RenderFlags(enum.IntFlag):
     NONE = 0
     DEPTH_ONLY = 1  # return the depth alone
     ALL_WIREFRAME = 8  # draw every mesh as lines
-    SKIP_CULL_FACES = 1024  # draw back faces too (they are culled otherwise, as in pyrender)
+    SKIP_CULL_FACES = 1024  # draw back faces too (otherwise those of single-sided materials are culled, as in pyrender)
     RGBA = 2048  # colour H x W x 4, alpha 0 where the background shows through a transparent bg_color
     FLAT = 4096  # one lit colour per face
     SEG = 8192  # return the id buffer (H x W x 2 uint32: node id, face id) in place of colour
@@ -23,8 +24,11 @@ class RenderFlags(enum.IntFlag):
 
 BUFFERS = ("color", "depth", "normal", "ids", "mask")
 
-# The headlight of a scene without lights: from the camera, above left, as `facet render` lights models.
-_HEADLIGHT = np.array([-0.3, 0.5, 0.8])
+# The headlight of a scene without lights: from the camera, above left, as `facet render` lights models; its pose
+# relative to the camera's turns its +z axis towards that direction.
+_HEADLIGHT = DirectionalLight()
+_HEADLIGHT_POSE = np.eye(4)
+_HEADLIGHT_POSE[:3, 2] = np.array([-0.3, 0.5, 0.8])
 
 
 class OffscreenRenderer:
@@ -75,13 +79,9 @@ class OffscreenRenderer:
             if name not in BUFFERS:
                 raise ValueError(f"buffers: unknown buffer {name!r} (one of {', '.join(BUFFERS)})")
         view = self._view(scene)
-        lights = []
-        for node in scene.light_nodes:
-            light = node.light
-            vector = node.pose[:3, 3] if light.kind == "point" else node.pose[:3, 2]
-            lights.append((light.kind, vector, light.color, light.intensity))
+        lights = [light_tuple(node.light, node.pose) for node in scene.light_nodes]
         if not lights:
-            lights.append(("directional", view["pose"][:3, :3] @ _HEADLIGHT, np.ones(3), 1.0))
+            lights.append(light_tuple(_HEADLIGHT, view["pose"] @ _HEADLIGHT_POSE))
         shading = "flat" if flags & RenderFlags.FLAT else "automatic"
         return self._core.render(scene._core, view["view"], view["projection"], view["near"], view["far"], shading,
                                  not flags & RenderFlags.SKIP_CULL_FACES, bool(flags & RenderFlags.ALL_WIREFRAME),

@@ -1,9 +1,12 @@
-"""scene.py - meshes, cameras, lights and the scene graph, in pyrender's shapes."""
+"""scene.py - meshes, cameras and the scene graph that places them and the lights, in pyrender's shapes."""
 import math
+import warnings
 
 import numpy as np
 
 from . import _facet
+from .light import DirectionalLight, PointLight, SpotLight, _color
+from .material import MetallicRoughnessMaterial
 
 
 def _pose(pose, name="pose"):
@@ -18,19 +21,6 @@ def _pose(pose, name="pose"):
     return m
 
 
-def _color(value, default, name):
-    """An RGB(A) colour as a float array of 4, alpha 1 if not given; uint8 values are scaled by 1/255."""
-    if value is None:
-        value = default
-    c = np.asarray(value)
-    if c.dtype == np.uint8:
-        c = c / 255.0
-    c = np.asarray(c, dtype=np.float64).reshape(-1)
-    if c.size not in (3, 4) or not np.all(np.isfinite(c)):
-        raise ValueError(f"{name}: expected 3 or 4 finite values, got {value!r}")
-    return np.append(c, 1.0) if c.size == 3 else c
-
-
 # The limits model files are read within by default, as `facet render` reads them (LoadOptions in the C++ library's
 # model_io.hpp): files a model names are read only from inside its folder tree, at most 100 million triangles are
 # placed, and textures up to 16384 texels a side are decoded.
@@ -39,15 +29,22 @@ DEFAULT_MAX_TEXTURE_SIZE = _facet.MAX_TEXTURE_SIZE
 
 
 class Mesh:
-    """A triangle mesh: positions N x 3, faces F x 3, and optional per-vertex normals, uvs and colours and a texture.
+    """A triangle mesh: positions N x 3, faces F x 3, and optional per-vertex normals, uvs and colours, a texture
+    and a MetallicRoughnessMaterial.
 
     Any float and integer dtypes and memory orders are accepted; faces must be integers. Colours are floats in 0..1
-    or uint8, N x 3 or N x 4. A texture is an image H x W (x 3 or 4), top row first, uint8 or floats in 0..1, drawn
-    with the uvs (v = 0 at the image's bottom row, as in OpenGL and pyrender). Bad arrays raise ValueError.
+    or uint8, N x 3 or N x 4, as displayed (sRGB-encoded), multiplying the material's base colour. A texture is an
+    image H x W (x 3 or 4), top row first, uint8 or floats in 0..1, drawn with the uvs (v = 0 at the image's bottom
+    row, as in OpenGL and pyrender); a material's own baseColorTexture replaces it. Without a material the mesh is
+    white, a dielectric of roughness 0.5, single-sided. Bad arrays and values raise ValueError.
     """
 
-    def __init__(self, positions, faces, normals=None, uvs=None, colors=None, texture=None):
-        self._core = _facet.MeshCore(positions, faces, normals, uvs, colors, texture)
+    material = None  # the MetallicRoughnessMaterial it was made with; None for meshes from files
+
+    def __init__(self, positions, faces, normals=None, uvs=None, colors=None, texture=None, material=None):
+        description = _material_description(material)
+        self.material = material
+        self._core = _facet.MeshCore(positions, faces, normals, uvs, colors, texture, description)
 
     @classmethod
     def from_file(cls, path, *, allow_external_files=False, max_triangles=DEFAULT_MAX_TRIANGLES,
@@ -68,14 +65,21 @@ class Mesh:
         return mesh
 
     @classmethod
-    def from_trimesh(cls, mesh):
-        """From a trimesh.Trimesh (its vertices, faces, vertex normals and vertex colours)."""
+    def from_trimesh(cls, mesh, material=None, smooth=True):
+        """From a trimesh.Trimesh: its vertices, faces and vertex normals, with `material`, or else with its vertex
+        colours (as pyrender takes them). smooth=False draws each face flat, with its face normal."""
         colors = None
         visual = getattr(mesh, "visual", None)
-        if visual is not None and getattr(visual, "kind", None) == "vertex":
+        if material is None and visual is not None and getattr(visual, "kind", None) == "vertex":
             colors = np.asarray(visual.vertex_colors)
-        return cls(np.asarray(mesh.vertices), np.asarray(mesh.faces), normals=np.asarray(mesh.vertex_normals),
-                   colors=colors)
+        vertices, faces = np.asarray(mesh.vertices), np.asarray(mesh.faces)
+        if smooth:
+            return cls(vertices, faces, normals=np.asarray(mesh.vertex_normals), colors=colors, material=material)
+        # Three vertices of its own per face, each with the face's normal, as pyrender splits them.
+        corners = faces.reshape(-1)
+        normals = np.repeat(np.asarray(mesh.face_normals), 3, axis=0)
+        return cls(vertices[corners], np.arange(corners.size).reshape(-1, 3), normals=normals,
+                   colors=None if colors is None else colors[corners], material=material)
 
     @property
     def bounds(self):
@@ -175,22 +179,20 @@ def _depth_rows(p, n, f):
     p[3, 2] = -1.0
 
 
-class DirectionalLight:
-    """Light from the direction its node's +z axis points to (it shines along -z), colour times intensity."""
-
-    kind = "directional"
-
-    def __init__(self, color=None, intensity=1.0, name=None):
-        self.color, self.intensity, self.name = _color(color, (1.0, 1.0, 1.0), "color")[:3], float(intensity), name
+_LIGHTS = (DirectionalLight, PointLight, SpotLight)
 
 
-class PointLight:
-    """Light from its node's position, colour times intensity, not attenuated with distance."""
-
-    kind = "point"
-
-    def __init__(self, color=None, intensity=1.0, name=None):
-        self.color, self.intensity, self.name = _color(color, (1.0, 1.0, 1.0), "color")[:3], float(intensity), name
+def _material_description(material):
+    """A mesh's material as the compiled module takes it; warns where facet draws it differently from pyrender."""
+    if material is None:
+        return None
+    if not isinstance(material, MetallicRoughnessMaterial):
+        raise ValueError(f"material: expected a facet.MetallicRoughnessMaterial, got {type(material).__name__}")
+    description = material._core_dict()
+    if material.wireframe:
+        warnings.warn("facet draws a material's wireframe as a surface; RenderFlags.ALL_WIREFRAME draws every mesh "
+                      "as lines", stacklevel=3)
+    return description
 
 
 class Node:
@@ -209,7 +211,7 @@ class Node:
 
     @property
     def light(self):
-        return self.obj if isinstance(self.obj, (DirectionalLight, PointLight)) else None
+        return self.obj if isinstance(self.obj, _LIGHTS) else None
 
 
 class Scene:
@@ -284,8 +286,7 @@ class Scene:
         return self.add_node(node)
 
     def add_node(self, node):
-        if not isinstance(node.obj, (Mesh, PerspectiveCamera, IntrinsicsCamera, OrthographicCamera,
-                                     DirectionalLight, PointLight)):
+        if not isinstance(node.obj, (Mesh, PerspectiveCamera, IntrinsicsCamera, OrthographicCamera) + _LIGHTS):
             raise ValueError(f"cannot add a {type(node.obj).__name__} to a scene")
         if node in self._nodes:
             raise ValueError("the node is already in the scene")

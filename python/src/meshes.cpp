@@ -7,49 +7,12 @@
 #include "facet/error.hpp"
 #include "facet/model_io.hpp"
 #include "facet/texture.hpp"
+#include "materials.hpp"
 
 namespace facet::python {
 
-namespace {
-
-// Texture images come top row first, as image files and numpy images do; texture row 0 is v = 0, the bottom.
-std::shared_ptr<const Texture> texture_of(py::handle image) {
-  const py::array a = py::array::ensure(image);
-  if (!a) value_error("texture: expected an image array");
-  const bool bytes = a.dtype().kind() == 'u' && a.dtype().itemsize() == 1;
-  const int dims = static_cast<int>(a.ndim());
-  if (dims != 2 && dims != 3) value_error("texture: expected H x W, H x W x 3 or H x W x 4");
-  const auto f = checked_array<float>(a, "texture", "fiu", dims, {});
-  const py::ssize_t h = f.shape(0), w = f.shape(1), c = dims == 3 ? f.shape(2) : 1;
-  if (c != 1 && c != 3 && c != 4) value_error("texture: expected 1, 3 or 4 channels, got " + std::to_string(c));
-  if (h < 1 || w < 1 || h > kMaxTextureSize || w > kMaxTextureSize)
-    value_error("texture: " + std::to_string(w) + "x" + std::to_string(h) + " is outside 1.." +
-                std::to_string(kMaxTextureSize) + " per side");
-  const float scale = bytes ? 1.0f : 255.0f;
-  const float* v = f.data();
-  std::vector<std::uint32_t> texels(static_cast<std::size_t>(w * h));
-  for (py::ssize_t y = 0; y < h; ++y)
-    for (py::ssize_t x = 0; x < w; ++x) {
-      const float* p = v + (y * w + x) * c;
-      std::uint32_t rgba[4] = {0, 0, 0, 255};
-      for (py::ssize_t k = 0; k < 4; ++k) {
-        const float value = k < 3 ? p[c >= 3 ? k : 0] : (c == 4 ? p[3] : (bytes ? 255.0f : 1.0f));
-        if (!(value >= 0.0f && value * scale <= 255.5f))
-          value_error(bytes ? "texture: bad value" : "texture: float values must lie in 0..1");
-        rgba[k] = static_cast<std::uint32_t>(value * scale + 0.5f);
-      }
-      texels[static_cast<std::size_t>((h - 1 - y) * w + x)] = rgba[0] | rgba[1] << 8 | rgba[2] << 16 | rgba[3] << 24;
-    }
-  auto texture =
-      std::make_shared<Texture>(static_cast<int>(w), static_cast<int>(h), std::move(texels), TexelEncoding::srgb);
-  texture->generate_mipmaps();
-  return texture;
-}
-
-}  // namespace
-
 MeshCore MeshCore::from_arrays(py::handle positions, py::handle faces, py::handle normals, py::handle uvs,
-                               py::handle colors, py::handle texture) {
+                               py::handle colors, py::handle texture, py::handle material) {
   Mesh mesh;
   mesh.positions = finite_rows<3>(positions, "positions");
   if (mesh.positions.empty()) value_error("positions: the mesh has no vertices");
@@ -94,14 +57,19 @@ MeshCore MeshCore::from_arrays(py::handle positions, py::handle faces, py::handl
       mesh.colors.push_back(rgba);
     }
   }
+  // Every triangle gets a material, so that it is culled as its material's sides say (make_sides_explicit).
+  Material look = material.is_none() ? default_material() : material_of(material, !mesh.uvs.empty());
   if (!texture.is_none()) {
     if (mesh.uvs.empty()) value_error("texture: a textured mesh needs uvs");
-    Material material;
-    material.name = "texture";
-    material.diffuse_map = texture_of(texture);
-    mesh.materials.push_back(std::move(material));
-    mesh.face_materials.assign(mesh.triangle_count(), 0);
+    if (material.is_none()) {
+      look.name = "texture";
+      look.specular = glm::vec3(0.0f);  // as textured meshes have always been drawn
+    }
+    // The material's own baseColorTexture, when it has one, is the one drawn.
+    if (!look.diffuse_map) look.diffuse_map = texture_of(texture, "texture", TexelEncoding::srgb);
   }
+  mesh.materials.push_back(std::move(look));
+  mesh.face_materials.assign(mesh.triangle_count(), 0);
   try {
     validate(mesh, "mesh");
   } catch (const InputError& e) {
@@ -153,6 +121,17 @@ Bounds SceneCore::world_bounds() const {
   return out;
 }
 
+MeshCore load_mesh_file(const std::string& path, const LoadOptions& options) {
+  Mesh mesh;
+  {
+    py::gil_scoped_release released;
+    std::string format;
+    mesh = load_model(path, format, options);
+    make_sides_explicit(mesh, format);
+  }
+  return MeshCore{std::make_shared<const Mesh>(std::move(mesh))};
+}
+
 LoadOptions load_options_of(bool allow_external_files, py::handle max_triangles, py::handle max_texture_size) {
   constexpr long long kMostTriangles = 1LL << 40;
   return LoadOptions{
@@ -163,9 +142,11 @@ LoadOptions load_options_of(bool allow_external_files, py::handle max_triangles,
 
 py::tuple read_model_file(const std::string& path, const LoadOptions& options) {
   Model model;
+  std::string format;
   {
     py::gil_scoped_release released;
-    model = read_model(path, options);
+    model = read_model(path, format, options);
+    for (Mesh& mesh : model.meshes) make_sides_explicit(mesh, format);
   }
   py::list meshes, instances, cameras;
   for (Mesh& mesh : model.meshes) meshes.append(MeshCore{std::make_shared<const Mesh>(std::move(mesh))});

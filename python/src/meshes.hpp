@@ -20,10 +20,11 @@ struct MeshCore {
   std::shared_ptr<const Mesh> mesh;
 
   // From numpy arrays: positions N x 3, faces F x 3 (integers), and optionally normals N x 3, uvs N x 2, colours
-  // N x 3 or N x 4 (floats in 0..1 or uint8), texture H x W (x 3 or 4), top row first (uint8, or floats in 0..1).
-  // Raises ValueError for a wrong shape or dtype, a non-finite value or an index out of range.
+  // N x 3 or N x 4 (floats in 0..1 or uint8), texture H x W (x 3 or 4), top row first (uint8, or floats in 0..1),
+  // and a material (a MetallicRoughnessMaterial's _core_dict(); materials.hpp). Raises ValueError for a wrong
+  // shape or dtype, a non-finite value or an index out of range.
   static MeshCore from_arrays(py::handle positions, py::handle faces, py::handle normals, py::handle uvs,
-                              py::handle colors, py::handle texture);
+                              py::handle colors, py::handle texture, py::handle material);
   py::array bounds() const;  // 2 x 3: min and max corner
 };
 
@@ -44,7 +45,11 @@ struct SceneCore {
 // `facet render` accepts for its flags; raises ValueError outside them.
 LoadOptions load_options_of(bool allow_external_files, py::handle max_triangles, py::handle max_texture_size);
 
-// read_model for Python: (meshes, [(mesh index, 4x4 pose, node id)], [camera dicts]).
+// load_model for Python: the whole file as one world-space mesh, its sides made explicit (materials.hpp).
+MeshCore load_mesh_file(const std::string& path, const LoadOptions& options);
+
+// read_model for Python, the meshes' sides made explicit: (meshes, [(mesh index, 4x4 pose, node id)],
+// [camera dicts]).
 py::tuple read_model_file(const std::string& path, const LoadOptions& options);
 
 }  // namespace facet::python

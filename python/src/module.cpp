@@ -1,6 +1,7 @@
 // module.cpp - facet._facet, the compiled core of the Python package: renderers that return frames as numpy arrays.
 #include <pybind11/stl.h>
 
+#include <cmath>
 #include <memory>
 #include <mutex>
 #include <optional>
@@ -43,6 +44,42 @@ BufferRequest request_of(const std::vector<std::string>& names) {
     else value_error("buffers: unknown buffer '" + n + "' (color, depth, normal, ids, mask)");
   }
   return r;
+}
+
+// A light as renderer.py describes it: (kind, vector, colour, intensity, spot direction, range or None, inner cone,
+// outer cone), the vector being the direction towards a directional light or a point or spot light's position.
+// The Python classes check the values; this guards the module against hand-made tuples.
+Light light_of(py::handle description) {
+  const auto t = description.cast<py::tuple>();
+  if (t.size() != 8) value_error("light: expected (kind, vector, color, intensity, direction, range, inner, outer)");
+  const auto vec3 = [&](std::size_t i, const char* name) {
+    return finite_rows<3>(py::array::ensure(t[i]).reshape({1, 3}), name)[0];
+  };
+  Light out;
+  const std::string kind = t[0].cast<std::string>();
+  if (kind == "directional") out.kind = Light::Kind::directional;
+  else if (kind == "point") out.kind = Light::Kind::point;
+  else if (kind == "spot") out.kind = Light::Kind::spot;
+  else value_error("light: unknown kind '" + kind + "'");
+  out.vector = vec3(1, "light");
+  out.color = vec3(2, "light colour");
+  out.intensity = t[3].cast<float>();
+  if (!(out.intensity >= 0.0f) || !std::isfinite(out.intensity))
+    value_error("light: intensity must be finite and not negative");
+  out.spot_direction = vec3(4, "light direction");
+  // A pose whose axis is zero gives no direction; normalizing it would light every pixel with NaN.
+  if (out.kind == Light::Kind::directional && glm::dot(out.vector, out.vector) == 0.0f)
+    value_error("light: a directional light's pose has a zero z axis");
+  if (out.kind == Light::Kind::spot && glm::dot(out.spot_direction, out.spot_direction) == 0.0f)
+    value_error("light: a spot light's pose has a zero z axis");
+  out.range = t[5].is_none() ? 0.0f : t[5].cast<float>();
+  if (!(out.range >= 0.0f)) value_error("light: range must not be negative");
+  if (std::isinf(out.range)) out.range = 0.0f;  // unlimited, as None
+  out.inner_cone = t[6].cast<float>();
+  out.outer_cone = t[7].cast<float>();
+  if (!(out.inner_cone >= 0.0f && out.inner_cone < out.outer_cone && out.outer_cone <= 1.5707964f))
+    value_error("light: cone angles need 0 <= inner < outer <= pi/2");
+  return out;
 }
 
 // The colour of packed RGBA pixels as bytes, with alpha or without: what the colour array holds.
@@ -96,18 +133,13 @@ class RendererCore {
     const View view = view_of(view_from_world, clip_from_view, near, far);
     SceneOptions options;
     options.shading = shading_named(shading);
-    options.cull = cull_back ? CullMode::back : CullMode::none;
-    options.cull_single_sided = !cull_back;
+    // Back faces are culled per material, as pyrender culls them: single-sided materials only, and every mesh the
+    // module makes names its materials' sides (materials.hpp); SKIP_CULL_FACES draws every back face.
+    options.cull = CullMode::none;
+    options.cull_single_sided = cull_back;
     options.wireframe = wireframe;
     options.lights.clear();
-    for (const py::handle light : lights) {
-      const auto t = light.cast<py::tuple>();
-      const bool point = t[0].cast<std::string>() == "point";
-      const glm::vec3 vector = finite_rows<3>(py::array::ensure(t[1]).reshape({1, 3}), "light")[0];
-      const glm::vec3 color = finite_rows<3>(py::array::ensure(t[2]).reshape({1, 3}), "light colour")[0];
-      options.lights.push_back(
-          Light{point ? Light::Kind::point : Light::Kind::directional, vector, color, t[3].cast<float>()});
-    }
+    for (const py::handle light : lights) options.lights.push_back(light_of(light));
     options.ambient = finite_rows<3>(py::array::ensure(ambient).reshape({1, 3}), "ambient_light")[0];
     const glm::vec4 clear = finite_rows<4>(py::array::ensure(background).reshape({1, 4}), "bg_color")[0];
     const BufferRequest request = request_of(buffers);
@@ -221,18 +253,12 @@ PYBIND11_MODULE(_facet, m) {
 
   py::class_<MeshCore>(m, "MeshCore")
       .def(py::init(&MeshCore::from_arrays), py::arg("positions"), py::arg("faces"), py::arg("normals"), py::arg("uvs"),
-           py::arg("colors"), py::arg("texture"))
+           py::arg("colors"), py::arg("texture"), py::arg("material"))
       .def_static(
           "from_file",
           [](const std::string& path, bool allow_external_files, py::handle max_triangles,
              py::handle max_texture_size) {
-            const facet::LoadOptions options = load_options_of(allow_external_files, max_triangles, max_texture_size);
-            facet::Mesh mesh;
-            {
-              py::gil_scoped_release released;
-              mesh = facet::load_model(path, options);
-            }
-            return MeshCore{std::make_shared<const facet::Mesh>(std::move(mesh))};
+            return load_mesh_file(path, load_options_of(allow_external_files, max_triangles, max_texture_size));
           },
           py::arg("path"), py::arg("allow_external_files"), py::arg("max_triangles"), py::arg("max_texture_size"))
       .def_property_readonly("vertex_count", [](const MeshCore& c) { return c.mesh->vertex_count(); })

@@ -28,3 +28,14 @@ def test_the_dataset_example_writes_every_view(tmp_path):
     first = np.load(views[0])
     assert set(first.files) == {"color", "depth", "normal", "ids", "mask"}
     assert (first["mask"] == 255).any()
+
+
+def test_the_materials_and_lights_example_renders():
+    names = {}
+    exec(example("Materials and lights"), names)
+    color, depth = names["color"], names["depth"]
+    assert color.shape == (480, 640, 3) and (depth > 0).mean() > 0.2
+    # The floor right below the spot, (0, 0, 0.5), shows at pixel (359, 320), and (-1.5, 0, -1.5), outside the
+    # cone, at (316, 207): the spot's disc is far brighter than the floor outside it.
+    below, outside = color[355:364, 316:325].mean(), color[312:321, 203:212].mean()
+    assert (depth[312:321, 203:212] > 0).all() and below > 3 * outside + 30
