@@ -20,6 +20,7 @@ struct Light {
   float range = 0.0f;                           // point, spot: where its light fades to nothing; 0 = unlimited
   float inner_cone = 0.0f;                      // spot: half-angles in radians, 0 <= inner < outer <= pi/2; full
   float outer_cone = 0.7853982f;                //   light inside inner, none outside outer
+  bool casts_shadows = true;  // directional and spot: when the options draw shadows
   std::string name{};
 };
 

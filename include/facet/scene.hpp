@@ -64,8 +64,8 @@ struct SceneOptions {
   // background_blur: a roughness, 0 sharp to 1 the roughest level.
   bool environment_background = false;
   float background_blur = 0.0f;
-  // The physically based look: every directional and spot light casts shadows, from a shadow_map_size²
-  // (1..8192) map rendered each frame; point lights and the environment cast none.
+  // The physically based look: every directional and spot light whose Light::casts_shadows is set casts shadows,
+  // from a shadow_map_size² (1..8192) map; point lights and the environment cast none.
   bool shadows = false;
   int shadow_map_size = 1024;
   // The physically based look: screen-space ambient occlusion darkens the environment's and the ambient light in

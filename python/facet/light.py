@@ -84,9 +84,10 @@ class SpotLight:
         self.innerConeAngle, self.outerConeAngle = inner, outer
 
 
-def light_tuple(light, pose):
+def light_tuple(light, pose, shadows=False):
     """The light at pose as the compiled renderer takes it: (kind, vector, colour, intensity, spot direction, range,
-    inner cone, outer cone), the vector being the direction towards a directional light or the light's position."""
+    inner cone, outer cone, casts shadows), the vector being the direction towards a directional light or the
+    light's position."""
     if light.kind == "directional":
         vector = pose[:3, 2]
     else:
@@ -95,7 +96,8 @@ def light_tuple(light, pose):
     direction = -pose[:3, 2]
     inner = getattr(light, "innerConeAngle", 0.0)
     outer = getattr(light, "outerConeAngle", math.pi / 4.0)
-    return (light.kind, vector, light.color, light.intensity, direction, getattr(light, "range", None), inner, outer)
+    return (light.kind, vector, light.color, light.intensity, direction, getattr(light, "range", None), inner, outer,
+            bool(shadows))
 
 
 __all__ = ["DirectionalLight", "PointLight", "SpotLight"]

@@ -16,6 +16,10 @@ class RenderFlags(enum.IntFlag):
     NONE = 0
     DEPTH_ONLY = 1  # return the depth alone
     ALL_WIREFRAME = 8  # draw every mesh as lines
+    SHADOWS_DIRECTIONAL = 32  # directional lights cast shadows
+    SHADOWS_POINT = 64  # accepted; point lights cast no shadows in facet
+    SHADOWS_SPOT = 128  # spot lights cast shadows
+    SHADOWS_ALL = 32 | 64 | 128
     SKIP_CULL_FACES = 1024  # draw back faces too (otherwise those of single-sided materials are culled, as in pyrender)
     RGBA = 2048  # colour H x W x 4, alpha 0 where the background shows through a transparent bg_color
     FLAT = 4096  # one lit colour per face
@@ -79,7 +83,9 @@ class OffscreenRenderer:
             if name not in BUFFERS:
                 raise ValueError(f"buffers: unknown buffer {name!r} (one of {', '.join(BUFFERS)})")
         view = self._view(scene)
-        lights = [light_tuple(node.light, node.pose) for node in scene.light_nodes]
+        casting = {"directional": bool(flags & RenderFlags.SHADOWS_DIRECTIONAL),
+                   "spot": bool(flags & RenderFlags.SHADOWS_SPOT), "point": False}
+        lights = [light_tuple(node.light, node.pose, casting[node.light.kind]) for node in scene.light_nodes]
         if not lights:
             lights.append(light_tuple(_HEADLIGHT, view["pose"] @ _HEADLIGHT_POSE))
         shading = "flat" if flags & RenderFlags.FLAT else "automatic"

@@ -1,6 +1,7 @@
 // module.cpp - facet._facet, the compiled core of the Python package: renderers that return frames as numpy arrays.
 #include <pybind11/stl.h>
 
+#include <algorithm>
 #include <cmath>
 #include <memory>
 #include <mutex>
@@ -47,11 +48,12 @@ BufferRequest request_of(const std::vector<std::string>& names) {
 }
 
 // A light as renderer.py describes it: (kind, vector, colour, intensity, spot direction, range or None, inner cone,
-// outer cone), the vector being the direction towards a directional light or a point or spot light's position.
+// outer cone, casts shadows), the vector being the direction towards a directional light or a point or spot light's position.
 // The Python classes check the values; this guards the module against hand-made tuples.
 Light light_of(py::handle description) {
   const auto t = description.cast<py::tuple>();
-  if (t.size() != 8) value_error("light: expected (kind, vector, color, intensity, direction, range, inner, outer)");
+  if (t.size() != 9)
+    value_error("light: expected (kind, vector, color, intensity, direction, range, inner, outer, shadows)");
   const auto vec3 = [&](std::size_t i, const char* name) {
     return finite_rows<3>(py::array::ensure(t[i]).reshape({1, 3}), name)[0];
   };
@@ -79,6 +81,7 @@ Light light_of(py::handle description) {
   out.outer_cone = t[7].cast<float>();
   if (!(out.inner_cone >= 0.0f && out.inner_cone < out.outer_cone && out.outer_cone <= 1.5707964f))
     value_error("light: cone angles need 0 <= inner < outer <= pi/2");
+  out.casts_shadows = t[8].cast<bool>();
   return out;
 }
 
@@ -140,6 +143,9 @@ class RendererCore {
     options.wireframe = wireframe;
     options.lights.clear();
     for (const py::handle light : lights) options.lights.push_back(light_of(light));
+    // Shadows are drawn for the lights the flags ask them of (each tuple says whether its light casts).
+    options.shadows = std::any_of(options.lights.begin(), options.lights.end(),
+                                  [](const Light& l) { return l.casts_shadows && l.kind != Light::Kind::point; });
     options.ambient = finite_rows<3>(py::array::ensure(ambient).reshape({1, 3}), "ambient_light")[0];
     const glm::vec4 clear = finite_rows<4>(py::array::ensure(background).reshape({1, 4}), "bg_color")[0];
     const BufferRequest request = request_of(buffers);

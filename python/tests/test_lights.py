@@ -116,3 +116,31 @@ def test_pyrenders_defaults_and_a_right_angle_cone():
     scene = facet.Scene()
     node = scene.add(spot, pose=np.eye(4))
     assert scene.light_nodes == [node] and node.light is spot
+
+
+def test_shadow_flags_let_directional_and_spot_lights_cast_shadows():
+    """A small plate above the floor and a directional light at 45 degrees: SHADOWS_DIRECTIONAL darkens the floor
+    where the plate hides the light (beside the plate, as the camera looks straight down) and nowhere else;
+    SHADOWS_SPOT leaves a directional light unshadowed."""
+    plate = facet.Mesh(np.array([[-0.5, 1.0, -0.5], [0.5, 1.0, -0.5], [0.5, 1.0, 0.5], [-0.5, 1.0, 0.5]], dtype=float),
+                       [[0, 2, 1], [0, 3, 2]], normals=np.tile([0.0, 1.0, 0.0], (4, 1)))
+    sun = look_at((1.0, 1.0, 0.0), (0.0, 0.0, 0.0))  # shines along -z of its pose: towards -x, down
+    scene = facet.Scene(ambient_light=(0, 0, 0), bg_color=(0, 0, 0, 1))
+    scene.add(floor())
+    scene.add(plate)
+    scene.add(facet.OrthographicCamera(xmag=EXTENT, ymag=EXTENT, znear=0.5, zfar=20.0),
+              pose=look_at((0, 6, 0), (0, 0, 0), up=(0, 0, -1)))
+    scene.add(facet.DirectionalLight(intensity=3.0), pose=sun)
+    renderer = facet.OffscreenRenderer(SIZE, SIZE, threads=1, samples=1)
+    plain = renderer.render(scene)[0].astype(int).sum(axis=-1)
+    shadowed = renderer.render(scene, flags=facet.RenderFlags.SHADOWS_DIRECTIONAL)[0].astype(int).sum(axis=-1)
+    spot_only = renderer.render(scene, flags=facet.RenderFlags.SHADOWS_SPOT)[0].astype(int).sum(axis=-1)
+    centres = (np.arange(SIZE) + 0.5) / SIZE * 2 * EXTENT - EXTENT
+    x, z = np.meshgrid(centres, centres)
+    # The plate at height 1 throws its shadow 1 towards -x: x in [-1.5, -0.5], z in [-0.5, 0.5].
+    in_shadow = (x > -1.4) & (x < -0.6) & (np.abs(z) < 0.4)
+    open_floor = (x > 1.0) | (np.abs(z) > 1.0)
+    assert in_shadow.sum() > 20
+    assert np.all(shadowed[in_shadow] < plain[in_shadow] // 4)
+    assert np.array_equal(shadowed[open_floor], plain[open_floor])
+    assert np.array_equal(spot_only, plain)

@@ -46,7 +46,7 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
     options.shadows = look.shadows;
     options.ambient_occlusion = look.ambient_occlusion;
     if (look.shadows && std::none_of(options.lights.begin(), options.lights.end(),
-                                     [](const Light& l) { return l.kind != Light::Kind::point; }))
+                                     [](const Light& l) { return l.kind != Light::Kind::point && l.casts_shadows; }))
       warn("shadows: no directional or spot light to cast them (the environment casts none); give a light "
            "direction");
   } else {

@@ -122,7 +122,7 @@ void Scene::Impl::shadow_lights(Renderer& renderer, const SceneOptions& options,
   ShadowCache::Key key{size, {}, {}, options.color};
   std::vector<LightView> views;
   for (const PunctualLight& light : lights) {
-    if (!light.directional && !light.is_spot()) continue;
+    if (!light.casts_shadows) continue;
     views.push_back(light.directional ? directional_view(light, sphere, size)
                                       : spot_view(light, sphere, light.outer_cone, size));
     key.views.push_back(views.back().clip_from_world);
@@ -144,7 +144,7 @@ void Scene::Impl::shadow_lights(Renderer& renderer, const SceneOptions& options,
   }
   std::size_t next = 0;
   for (PunctualLight& light : lights)
-    if (light.directional || light.is_spot()) light.shadow = &shadows.maps[next++];
+    if (light.casts_shadows) light.shadow = &shadows.maps[next++];
 }
 
 }  // namespace facet

@@ -27,6 +27,7 @@ struct PunctualLight {
   float inverse_range_4 = 0.0f;                 // 1 / range^4; 0: unlimited
   float cone_scale = 0.0f, cone_offset = 1.0f;  // a point light: every direction at 1
   float outer_cone = 0.0f;                      // a spot's, for its shadow map
+  bool casts_shadows = false;                   // a directional or spot light whose Light casts them
   const ShadowMap* shadow = nullptr;            // none: unshadowed
 
   bool is_spot() const { return cone_scale > 0.0f; }
@@ -35,6 +36,7 @@ struct PunctualLight {
     PunctualLight out;
     out.color = light.color * light.intensity;
     out.directional = light.kind == Light::Kind::directional;
+    out.casts_shadows = light.casts_shadows && light.kind != Light::Kind::point;
     out.vector = out.directional ? glm::normalize(light.vector) : light.vector;
     if (light.range > 0.0f) {
       const float r2 = light.range * light.range;
