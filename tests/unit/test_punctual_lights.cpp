@@ -47,6 +47,27 @@ void expect_near(glm::vec3 a, glm::vec3 b) {
   EXPECT_NEAR(a.z, b.z, 1e-5f);
 }
 
+// A render of `model` through its camera 0, size x size, 1 sample, with `look`, written to `png` and read back.
+struct Picture {
+  std::vector<std::uint8_t> rgba;
+  int size = 0;
+  int red(int x, int y) const { return rgba[(static_cast<std::size_t>(y) * size + x) * 4]; }
+};
+
+Picture render_look(const fs::path& model, int size, const LookSpec& look, const fs::path& png) {
+  Renderer renderer(2);
+  RenderJob job;
+  job.model = model;
+  job.width = job.height = size;
+  job.samples = 1;
+  job.camera.file_camera = 0;
+  job.look = look;
+  job.outputs = {.color = png};
+  render(job, renderer);
+  int w = 0, h = 0;
+  return {read_png(png, w, h), size};
+}
+
 TEST(PunctualLights, ReadAsTheirNodesPlaceThem) {
   const fs::path dir = test::scratch_dir("punctual_lights");
   const std::string nodes = light_node(0, R"("rotation":[-0.70710678,0,0,0.70710678])") + "," +
@@ -150,23 +171,13 @@ TEST(PunctualLights, ASpotLightsItsConeInTheModelsOwnLook) {
                         R"("extensions":{"KHR_lights_punctual":{"lights":)"
                         R"([{"type":"spot","intensity":8,"spot":{"innerConeAngle":0.2,"outerConeAngle":0.3}}]}})",
                         R"({"pbrMetallicRoughness":{"metallicFactor":0,"roughnessFactor":0.8}})"));
-  Renderer renderer(2);
-  const auto render_look = [&](bool model_lights) {
-    RenderJob job;
-    job.model = model;
-    job.width = job.height = 64;
-    job.camera.file_camera = 0;
-    job.look.model_lights = model_lights;
-    job.outputs = {.color = dir / "c.png"};
-    render(job, renderer);
-    int w = 0, h = 0;
-    return read_png(dir / "c.png", w, h);
-  };
-  const std::vector<std::uint8_t> lit = render_look(true), unlit = render_look(false);
+  LookSpec look;
+  const Picture lit = render_look(model, 64, look, dir / "lit.png");
+  look.model_lights = false;
+  const Picture unlit = render_look(model, 64, look, dir / "unlit.png");
   // The square spans pixels 16..47; its middle lies in the cone, (18, 18) well outside it.
-  const auto red = [](const std::vector<std::uint8_t>& rgba, int x, int y) { return rgba[(y * 64 + x) * 4]; };
-  EXPECT_GT(red(lit, 32, 32), red(unlit, 32, 32) + 60);
-  EXPECT_EQ(red(lit, 18, 18), red(unlit, 18, 18));
+  EXPECT_GT(lit.red(32, 32), unlit.red(32, 32) + 60);
+  EXPECT_EQ(lit.red(18, 18), unlit.red(18, 18));
 }
 
 // A small square held above the floor square, a directional light from 45 degrees: with shadows, the floor darkens
@@ -182,25 +193,14 @@ TEST(PunctualLights, DirectionalLightsCastShadowsWhenAsked) {
                         R"(,"cameras":[{"type":"perspective","perspective":{"yfov":0.7610127,"znear":0.1}}],)"
                         R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"directional","intensity":3}]}})",
                         R"({"pbrMetallicRoughness":{"metallicFactor":0,"roughnessFactor":0.8},"doubleSided":true})"));
-  Renderer renderer(2);
-  const auto render_look = [&](bool shadows) {
-    RenderJob job;
-    job.model = model;
-    job.width = job.height = 64;
-    job.samples = 1;
-    job.camera.file_camera = 0;
-    job.look.shadows = shadows;
-    job.outputs = {.color = dir / (shadows ? "shadowed.png" : "unshadowed.png")};
-    render(job, renderer);
-    int w = 0, h = 0;
-    return read_png(job.outputs.color, w, h);
-  };
-  const std::vector<std::uint8_t> shadowed = render_look(true), unshadowed = render_look(false);
-  const auto red = [](const std::vector<std::uint8_t>& rgba, int x, int y) { return rgba[(y * 64 + x) * 4]; };
+  LookSpec look;
+  const Picture unshadowed = render_look(model, 64, look, dir / "unshadowed.png");
+  look.shadows = true;
+  const Picture shadowed = render_look(model, 64, look, dir / "shadowed.png");
   // 16 pixels a unit on the floor: the shadow falls on x in [-0.8, -0.2], the occluder hides x in [-0.33, 0.33].
-  EXPECT_LT(red(shadowed, 22, 32) + 40, red(unshadowed, 22, 32));  // x = -0.6: in the shadow
-  EXPECT_EQ(red(shadowed, 42, 32), red(unshadowed, 42, 32));       // x = +0.6: lit either way
-  EXPECT_EQ(red(shadowed, 32, 32), red(unshadowed, 32, 32));       // the occluder itself is lit
+  EXPECT_LT(shadowed.red(22, 32) + 40, unshadowed.red(22, 32));  // x = -0.6: in the shadow
+  EXPECT_EQ(shadowed.red(42, 32), unshadowed.red(42, 32));       // x = +0.6: lit either way
+  EXPECT_EQ(shadowed.red(32, 32), unshadowed.red(32, 32));       // the occluder itself is lit
 }
 
 // Shadows asked of a look with no light that casts them say so; an absurd map size is refused before drawing.
@@ -242,25 +242,14 @@ TEST(AmbientOcclusion, DarkensTheFloorBesideWhatStandsOnIt) {
       dir, "contact.gltf",
       test::square_gltf(nodes, 2, R"(,"cameras":[{"type":"perspective","perspective":{"yfov":0.7610127,"znear":0.1}}])",
                         R"({"pbrMetallicRoughness":{"metallicFactor":0,"roughnessFactor":0.8},"doubleSided":true})"));
-  Renderer renderer(2);
-  const auto render_look = [&](bool occlusion) {
-    RenderJob job;
-    job.model = model;
-    job.width = job.height = 128;
-    job.samples = 1;
-    job.camera.file_camera = 0;
-    job.look.ambient_occlusion = occlusion;
-    job.outputs = {.color = dir / (occlusion ? "occluded.png" : "open.png")};
-    render(job, renderer);
-    int w = 0, h = 0;
-    return read_png(job.outputs.color, w, h);
-  };
-  const std::vector<std::uint8_t> occluded = render_look(true), open = render_look(false);
-  const auto red = [](const std::vector<std::uint8_t>& rgba, int x, int y) { return rgba[(y * 128 + x) * 4]; };
+  LookSpec look;
+  const Picture open = render_look(model, 128, look, dir / "open.png");
+  look.ambient_occlusion = true;
+  const Picture occluded = render_look(model, 128, look, dir / "occluded.png");
   // 32 pixels a unit on the floor; the small square covers x in [-0.3, 0.3].
-  EXPECT_LT(red(occluded, 76, 64) + 15, red(open, 76, 64));  // x = 0.4: beside it
-  EXPECT_EQ(red(occluded, 94, 64), red(open, 94, 64));       // x = 0.95: open floor
-  EXPECT_EQ(red(occluded, 64, 64), red(open, 64, 64));       // its top
+  EXPECT_LT(occluded.red(76, 64) + 15, open.red(76, 64));  // x = 0.4: beside it
+  EXPECT_EQ(occluded.red(94, 64), open.red(94, 64));       // x = 0.95: open floor
+  EXPECT_EQ(occluded.red(64, 64), open.red(64, 64));       // its top
 }
 
 }  // namespace
