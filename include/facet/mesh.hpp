@@ -50,6 +50,15 @@ struct Material {
   // glTF occlusionTexture (red channel) and its strength: how much of the environment's light reaches the surface.
   std::shared_ptr<const Texture> occlusion_map{};
   float occlusion_strength = 1.0f;
+  // The dielectric's index of refraction, which sets its reflectance at normal incidence (glTF KHR_materials_ior);
+  // 0 is the extension's specular-glossiness mode, reflecting fully (then specular_color_factor sets f0).
+  float ior = 1.5f;
+  // glTF KHR_materials_specular: the dielectric's specular strength in [0, 1] (times specular_map's alpha) and its
+  // f0 colour, linear and possibly above 1 (times specular_color_map, sRGB-encoded). Metals ignore both.
+  float specular_factor = 1.0f;
+  std::shared_ptr<const Texture> specular_map{};
+  glm::vec3 specular_color_factor{1.0f};
+  std::shared_ptr<const Texture> specular_color_map{};
   // The file's filtering and wrapping for the texture (glTF samplers); unset: the scene's (SceneOptions::sampler).
   std::optional<Sampler> sampler{};
   // Drawn with its colour alone, no lighting, when the shading is Shading::automatic (glTF KHR_materials_unlit).

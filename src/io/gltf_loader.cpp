@@ -37,6 +37,7 @@ namespace {
 // (EXT_meshopt_compression).
 const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization", "KHR_texture_transform",
                                                   "KHR_materials_unlit", "KHR_materials_emissive_strength",
+                                                  "KHR_materials_ior", "KHR_materials_specular",
                                                   "KHR_lights_punctual",
                                                   "KHR_draco_mesh_compression",
 #ifndef FACET_NO_MESHOPT

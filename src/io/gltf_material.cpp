@@ -1,8 +1,10 @@
-// gltf_material.cpp - a glTF file's materials as facet's Material: factors, textures, samplers, texture transforms.
+// gltf_material.cpp - a glTF file's materials as facet's Material: factors, textures, samplers, texture transforms,
+// and the extensions that refine them (emissive strength, unlit, ior, specular).
 #include "io/gltf_material.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <optional>
 #include <vector>
 
@@ -106,6 +108,58 @@ glm::vec<N, float> unit_vector(const std::vector<double>& values) {
   return out;
 }
 
+// The texture index of a textureInfo inside an extension's JSON; -1 when absent or malformed.
+int texture_index_of(const tinygltf::Value& extension, const char* key) {
+  if (!extension.Has(key) || !extension.Get(key).IsObject()) return -1;
+  const tinygltf::Value& index = extension.Get(key).Get("index");
+  return index.IsInt() ? index.GetNumberAsInt() : -1;
+}
+
+// A number of an extension's JSON, or nullopt when it is absent; a present non-number gives NaN, so that the
+// caller's range check warns about it.
+std::optional<double> number_of(const tinygltf::Value& extension, const char* key) {
+  if (!extension.Has(key)) return std::nullopt;
+  const tinygltf::Value& v = extension.Get(key);
+  return v.IsNumber() ? v.GetNumberAsDouble() : std::nan("");
+}
+
+// KHR_materials_ior and KHR_materials_specular into `out`. Values the specification does not allow are warned
+// about and replaced by its defaults, so a malformed file still draws as the core material would.
+template <class DecodeTexture>
+void read_dielectric_extensions(const tinygltf::Material& m, const std::string& source, Material& out,
+                                const DecodeTexture& texture) {
+  const std::string material = "material '" + printable(m.name) + "': ";
+  if (const auto e = m.extensions.find("KHR_materials_ior"); e != m.extensions.end() && e->second.IsObject()) {
+    if (const std::optional<double> ior = number_of(e->second, "ior")) {
+      // 0 is allowed (the specular-glossiness mode); otherwise an index of refraction is at least that of vacuum.
+      if (*ior == 0.0 || (std::isfinite(*ior) && *ior >= 1.0)) out.ior = static_cast<float>(*ior);
+      else warn(source, material + "KHR_materials_ior's ior must be 0 or a finite number of at least 1; using 1.5");
+    }
+  }
+  const auto e = m.extensions.find("KHR_materials_specular");
+  if (e == m.extensions.end() || !e->second.IsObject()) return;
+  const tinygltf::Value& specular = e->second;
+  if (const std::optional<double> factor = number_of(specular, "specularFactor")) {
+    // Above 1 is clamped as the other unit factors are; negative or not a number is an error.
+    if (std::isfinite(*factor) && *factor >= 0.0) out.specular_factor = unit_factor(*factor, 1.0f);
+    else warn(source, material + "specularFactor must be a finite number in [0, 1]; using 1");
+  }
+  if (specular.Has("specularColorFactor")) {
+    const tinygltf::Value& c = specular.Get("specularColorFactor");
+    glm::vec3 color(1.0f);
+    bool valid = c.IsArray() && c.ArrayLen() == 3;
+    for (int i = 0; valid && i < 3; ++i) {
+      const double v = c.Get(i).IsNumber() ? c.Get(i).GetNumberAsDouble() : -1.0;
+      valid = std::isfinite(v) && v >= 0.0 && v <= std::numeric_limits<float>::max();
+      color[i] = static_cast<float>(v);
+    }
+    if (valid) out.specular_color_factor = color;
+    else warn(source, material + "specularColorFactor must be three finite numbers of at least 0; using 1, 1, 1");
+  }
+  out.specular_map = texture(texture_index_of(specular, "specularTexture"), TexelEncoding::linear);
+  out.specular_color_map = texture(texture_index_of(specular, "specularColorTexture"), TexelEncoding::srgb);
+}
+
 }  // namespace
 
 // KHR_texture_transform of a texture reference as one matrix on (u, v, 1): translation * rotation * scale, in the
@@ -176,6 +230,7 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
   }
   out.emissive_map = texture(m.emissiveTexture.index, TexelEncoding::srgb);
   out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
+  read_dielectric_extensions(m, source, out, texture);
   out.double_sided = m.doubleSided;
   if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::blend;
   if (m.alphaMode == "MASK") {

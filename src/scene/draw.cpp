@@ -45,12 +45,17 @@ PbrMaterial pbr_material(const Material& material, const SurfaceColor& surface) 
   m.roughness = material.roughness;
   m.emissive = material.emissive;
   m.occlusion_strength = material.occlusion_strength;
+  m.dielectric_f0 = brdf::dielectric_f0(material.ior);
+  m.specular = material.specular_factor;
+  m.specular_color = material.specular_color_factor;
   m.face_colors = surface.face_colors;
   m.base_color_map = surface.texture;
   m.metallic_roughness_map = material.metallic_roughness_map.get();
   m.occlusion_map = material.occlusion_map.get();
   m.emissive_map = material.emissive_map.get();
   m.normal_map = material.normal_map.get();
+  m.specular_map = material.specular_map.get();
+  m.specular_color_map = material.specular_color_map.get();
   m.normal_scale = material.normal_scale;
   m.sampler = surface.sampler;
   m.opaque = surface.opaque;

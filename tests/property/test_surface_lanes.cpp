@@ -174,6 +174,11 @@ TEST(SurfaceLanes, PbrMatchesTheScalarFragment) {
   for (std::uint32_t& t : texels) t = static_cast<std::uint32_t>(rng()) | 0xff000000u;
   Texture texture(16, 16, texels, TexelEncoding::srgb), linear(16, 16, texels);
   texture.generate_mipmaps();
+  // Random alpha too, for the specular strength texture.
+  std::vector<std::uint32_t> alphas(16 * 16);
+  for (std::uint32_t& t : alphas) t = static_cast<std::uint32_t>(rng());
+  Texture translucent(16, 16, alphas);
+  translucent.generate_mipmaps();
   const glm::vec3 eye(0.4f, 1.8f, 2.6f);
   const glm::mat4 clip_from_world = glm::perspective(glm::radians(50.0f), 203.0f / 151.0f, 0.1f, 10.0f) *
                                     glm::lookAt(eye, glm::vec3(0.0f), {0, 1, 0});
@@ -238,6 +243,25 @@ TEST(SurfaceLanes, PbrMatchesTheScalarFragment) {
     shader.material.emissive_map = &texture;
     shader.material.occlusion_strength = 0.7f;
     expect_lanes_match(shader, g, std::string("PBR, textured, ") + c.name);
+    // KHR_materials_ior and KHR_materials_specular: another f0, a weaker specular and a colour past 1 (clamped),
+    // first alone, then with their textures (strength from a varying alpha) on top of the others.
+    PbrShader tinted = shader;
+    tinted.material = PbrMaterial{};
+    tinted.material.base_color = shader.material.base_color;
+    tinted.material.metallic = c.metallic;
+    tinted.material.roughness = c.roughness;
+    tinted.material.dielectric_f0 = brdf::dielectric_f0(1.8f);
+    tinted.material.specular = 0.7f;
+    tinted.material.specular_color = glm::vec3(1.6f, 0.8f, 0.3f);
+    expect_lanes_match(tinted, g, std::string("PBR, ior and specular, ") + c.name);
+    expect_same(draw_with(ScalarOf<PbrShader>{tinted}, g), draw_with(UntexturedPbrShader{tinted}, g), c.name);
+    tinted.material = shader.material;
+    tinted.material.dielectric_f0 = brdf::dielectric_f0(0.0f);
+    tinted.material.specular = 0.9f;
+    tinted.material.specular_color = glm::vec3(0.5f, 2.0f, 0.1f);
+    tinted.material.specular_map = &translucent;
+    tinted.material.specular_color_map = &texture;
+    expect_lanes_match(tinted, g, std::string("PBR, textured, ior and specular, ") + c.name);
   }
 }
 

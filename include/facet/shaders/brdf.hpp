@@ -99,43 +99,70 @@ FACET_LANES_INLINE F schlick_weight(const F& v_dot_h) {
   return m2 * m2 * m;
 }
 
-// What a metallic-roughness material reflects, from its glTF inputs (Appendix B, "Metal BRDF and dielectric BRDF"):
-//   c_diff = lerp(baseColor, black, metallic), f0 = lerp(0.04, baseColor, metallic), alpha = roughness^2
+// The dielectric's reflectance at normal incidence for an index of refraction (KHR_materials_ior):
+// ((ior - 1) / (ior + 1))^2, 1 for ior 0 (the extension's specular-glossiness mode, Fresnel 1 everywhere). Worked
+// in double so that the default 1.5 gives exactly 0.04f, the constant the core specification uses.
+inline float dielectric_f0(float ior) {
+  const double r = (static_cast<double>(ior) - 1.0) / (static_cast<double>(ior) + 1.0);
+  return static_cast<float>(r * r);
+}
+
+// What a metallic-roughness material reflects, from its glTF inputs (Appendix B, "Metal BRDF and dielectric BRDF",
+// with KHR_materials_specular's dielectric f0 and f90):
+//   c_diff = lerp(baseColor, black, metallic), f0 = lerp(f0_dielectric, baseColor, metallic),
+//   f90 = lerp(f90_dielectric, 1, metallic), alpha = roughness^2
+// f0_diffuse is f0 with the dielectric part's largest channel for every channel: the diffuse part loses what the
+// dielectric's Fresnel term reflects at its strongest (the extension's max_value), so a coloured specular takes no
+// complementary colour out of the diffuse. With a grey dielectric f0 it equals f0.
 template <class F>
 struct Surface {
-  Rgb<F> c_diff, f0;
-  F roughness, alpha;
+  Rgb<F> c_diff, f0, f0_diffuse;
+  F f90, roughness, alpha;
 };
+// f0_dielectric = min(f0(ior) specularColor, 1) specular, f90_dielectric = specular. The defaults (0.04 and 1)
+// give the core specification's material with the same operations, so its pictures do not change.
 template <class F>
-FACET_LANES_INLINE Surface<F> surface(const Rgb<F>& base_color, const F& metallic, const F& roughness) {
+FACET_LANES_INLINE Surface<F> surface(const Rgb<F>& base_color, const F& metallic, const F& roughness,
+                                      const Rgb<F>& f0_dielectric, const F& f90_dielectric) {
   const F dielectric = 1.0f - metallic;
-  const F f0_dielectric = 0.04f * dielectric;
+  const F grey = max(max(f0_dielectric.r, f0_dielectric.g), f0_dielectric.b) * dielectric;
   return {{base_color.r * dielectric, base_color.g * dielectric, base_color.b * dielectric},
-          {f0_dielectric + base_color.r * metallic, f0_dielectric + base_color.g * metallic,
-           f0_dielectric + base_color.b * metallic},
+          {f0_dielectric.r * dielectric + base_color.r * metallic,
+           f0_dielectric.g * dielectric + base_color.g * metallic,
+           f0_dielectric.b * dielectric + base_color.b * metallic},
+          {grey + base_color.r * metallic, grey + base_color.g * metallic, grey + base_color.b * metallic},
+          // 1 - (1 - metallic)(1 - specular): exactly 1 when specular is 1, whatever the metallic.
+          1.0f - dielectric * (1.0f - f90_dielectric),
           roughness,
           roughness * roughness};
 }
+template <class F>
+FACET_LANES_INLINE Surface<F> surface(const Rgb<F>& base_color, const F& metallic, const F& roughness) {
+  const F f0 = constant<F>(0.04f);
+  return surface(base_color, metallic, roughness, Rgb<F>{f0, f0, f0}, constant<F>(1.0f));
+}
 
 // f(l, v) |NdotL| for one light direction (Appendix B's sample implementation):
-//   F = f0 + (1 - f0) (1 - |VdotH|)^5
-//   f_diffuse = (1 - F) c_diff / pi,   f_specular = F D V
+//   F = f0 + (f90 - f0) (1 - |VdotH|)^5
+//   f_diffuse = (1 - F') c_diff / pi,   f_specular = F D V      (F': F with f0_diffuse)
 // The caller multiplies by the light's colour and intensity. n_dot_l and n_dot_v clamped to [0, 1] by the caller.
 template <class F>
 FACET_LANES_INLINE Rgb<F> reflect_light(const Surface<F>& s, const F& n_dot_l, const F& n_dot_v, const F& n_dot_h,
                                         const F& v_dot_h) {
   const F weight = schlick_weight(v_dot_h);
   const F dv = distribution_ggx(n_dot_h, s.alpha) * visibility_smith_ggx(n_dot_l, n_dot_v, s.alpha);
-  const auto channel = [&](const F& c_diff, const F& f0) {
-    const F fresnel = f0 + (1.0f - f0) * weight;
-    return ((1.0f - fresnel) * c_diff * (1.0f / kPi) + fresnel * dv) * n_dot_l;
+  const auto channel = [&](const F& c_diff, const F& f0, const F& f0_diffuse) {
+    const F fresnel = f0 + (s.f90 - f0) * weight;
+    const F diffuse_fresnel = f0_diffuse + (s.f90 - f0_diffuse) * weight;
+    return ((1.0f - diffuse_fresnel) * c_diff * (1.0f / kPi) + fresnel * dv) * n_dot_l;
   };
-  return {channel(s.c_diff.r, s.f0.r), channel(s.c_diff.g, s.f0.g), channel(s.c_diff.b, s.f0.b)};
+  return {channel(s.c_diff.r, s.f0.r, s.f0_diffuse.r), channel(s.c_diff.g, s.f0.g, s.f0_diffuse.g),
+          channel(s.c_diff.b, s.f0.b, s.f0_diffuse.b)};
 }
 
 // Image-based light by the split sum, with Fdez-Aguera's multiple-scattering term ("A Multiple-Scattering
 // Microfacet Model for Real-Time Image-based Lighting", 2019), as three.js does it:
-//   FssEss = f0 A + B          (A, B: the split-sum table at NdotV and roughness; f90 = 1)
+//   FssEss = f0 A + f90 B      (A, B: the split-sum table at NdotV and roughness)
 //   Ems = 1 - (A + B),  Favg = f0 + (1 - f0) / 21,  Fms = FssEss Favg / (1 - Ems Favg)
 //   specular = FssEss radiance + Fms Ems irradiance / pi
 //   diffuse  = c_diff (1 - max(FssEss + Fms Ems)) irradiance / pi
@@ -145,7 +172,7 @@ FACET_LANES_INLINE Rgb<F> reflect_environment(const Surface<F>& s, const F& a, c
                                               const Rgb<F>& irradiance) {
   const F e_ms = 1.0f - (a + b);
   const auto scatter = [&](const F& f0, F& single) {
-    single = f0 * a + b;
+    single = f0 * a + s.f90 * b;
     const F f_avg = f0 + (1.0f - f0) * (1.0f / 21.0f);
     // Kept off zero: a white metal (f_avg 1) with no environment (a = b = 0, e_ms 1) would give 0 / 0.
     return single * f_avg / max(1.0f - e_ms * f_avg, constant<F>(1e-6f)) * e_ms;

@@ -25,18 +25,26 @@ struct PbrMaterial {
   float metallic = 0.0f, roughness = 0.5f;
   glm::vec3 emissive{0.0f};
   float occlusion_strength = 1.0f;
+  // The dielectric's reflectance (KHR_materials_ior: brdf::dielectric_f0 of its ior; 0.04 for ior 1.5), and
+  // KHR_materials_specular's strength and linear colour, which scale it.
+  float dielectric_f0 = 0.04f;
+  float specular = 1.0f;
+  glm::vec3 specular_color{1.0f};
   const glm::vec4* face_colors = nullptr;   // as displayed, indexed by Fragment::primitive; nullptr = none
   const Texture* base_color_map = nullptr;  // sRGB-encoded
   const Texture* metallic_roughness_map = nullptr;
   const Texture* occlusion_map = nullptr;
   const Texture* emissive_map = nullptr;  // sRGB-encoded
   const Texture* normal_map = nullptr;
+  const Texture* specular_map = nullptr;        // strength in alpha, multiplying specular
+  const Texture* specular_color_map = nullptr;  // sRGB-encoded, multiplying specular_color
   float normal_scale = 1.0f;
   Sampler sampler{};
   bool opaque = false;  // alpha 1 whatever the inputs say (AlphaMode::opaque)
 
   bool textured() const {
-    return base_color_map || metallic_roughness_map || occlusion_map || emissive_map || normal_map;
+    return base_color_map || metallic_roughness_map || occlusion_map || emissive_map || normal_map || specular_map ||
+           specular_color_map;
   }
 };
 
@@ -86,6 +94,8 @@ struct PbrShader {
     brdf::Rgb<F> base;
     F alpha, metallic, roughness, occlusion;
     brdf::Rgb<F> emissive;
+    F specular;  // KHR_materials_specular's strength and colour (linear)
+    brdf::Rgb<F> specular_color;
   };
 
   Inputs<float> inputs(const Fragment<Varyings>& f) const {
@@ -96,7 +106,9 @@ struct PbrShader {
                      m.metallic,
                      m.roughness,
                      1.0f,
-                     {m.emissive.r, m.emissive.g, m.emissive.b}};
+                     {m.emissive.r, m.emissive.g, m.emissive.b},
+                     m.specular,
+                     {m.specular_color.r, m.specular_color.g, m.specular_color.b}};
     const float* decode = detail::srgb_decode_curve_table();
     const auto multiply_decoded = [&](glm::vec4 t) {
       in.base = in.base * brdf::Rgb<float>{detail::srgb_decode(t.r, decode), detail::srgb_decode(t.g, decode),
@@ -120,6 +132,11 @@ struct PbrShader {
     if (m.emissive_map) {
       const glm::vec4 t = m.emissive_map->sample_linear(uv, dx, dy, m.sampler);
       in.emissive = in.emissive * brdf::Rgb<float>{t.r, t.g, t.b};
+    }
+    if (m.specular_map) in.specular *= m.specular_map->sample(uv, dx, dy, m.sampler).a;
+    if (m.specular_color_map) {
+      const glm::vec4 t = m.specular_color_map->sample_linear(uv, dx, dy, m.sampler);
+      in.specular_color = in.specular_color * brdf::Rgb<float>{t.r, t.g, t.b};
     }
     if (m.opaque) in.alpha = 1.0f;
     return in;
@@ -166,7 +183,9 @@ struct PbrShader {
                      splat(m.metallic),
                      splat(m.roughness),
                      splat(1.0f),
-                     {splat(m.emissive.r), splat(m.emissive.g), splat(m.emissive.b)}};
+                     {splat(m.emissive.r), splat(m.emissive.g), splat(m.emissive.b)},
+                     splat(m.specular),
+                     {splat(m.specular_color.r), splat(m.specular_color.g), splat(m.specular_color.b)}};
     const float* decode = detail::srgb_decode_curve_table();
     const auto multiply_decoded = [&](int k, glm::vec4 t) {
       in.base.r[k] = in.base.r[k] * detail::srgb_decode(t.r, decode);
@@ -201,6 +220,13 @@ struct PbrShader {
           in.emissive.g[k] = in.emissive.g[k] * t.g;
           in.emissive.b[k] = in.emissive.b[k] * t.b;
         }
+        if (m.specular_map) in.specular[k] *= m.specular_map->sample(at, dx, dy, m.sampler).a;
+        if (m.specular_color_map) {
+          const glm::vec4 t = m.specular_color_map->sample_linear(at, dx, dy, m.sampler);
+          in.specular_color.r[k] = in.specular_color.r[k] * t.r;
+          in.specular_color.g[k] = in.specular_color.g[k] * t.g;
+          in.specular_color.b[k] = in.specular_color.b[k] * t.b;
+        }
       }
     }
     if (m.opaque) in.alpha = splat(1.0f);
@@ -211,7 +237,13 @@ struct PbrShader {
   template <class F, class V3>
   FACET_LANES_INLINE brdf::Rgb<F> shade(const Inputs<F>& in, const V3& n, const V3& world) const {
     using brdf::Rgb;
-    const brdf::Surface<F> s = brdf::surface(in.base, in.metallic, in.roughness);
+    // KHR_materials_specular: the dielectric's f0 coloured, kept at most 1 (the colour factor may exceed 1), then
+    // weighted by the strength, which is also its f90.
+    const auto f0 = [&](const F& color) {
+      return brdf::min(color * material.dielectric_f0, brdf::constant<F>(1.0f)) * in.specular;
+    };
+    const brdf::Rgb<F> f0_dielectric{f0(in.specular_color.r), f0(in.specular_color.g), f0(in.specular_color.b)};
+    const brdf::Surface<F> s = brdf::surface(in.base, in.metallic, in.roughness, f0_dielectric, in.specular);
     const V3 v = normalize(eye - world);
     const F n_dot_v_raw = dot(n, v);
     const F n_dot_v = brdf::saturate(n_dot_v_raw);
