@@ -168,35 +168,7 @@ void add_camera_options(CLI::App& app, CameraArgs& args) {
       ->type_name("N");
 }
 
-void add_look_options(CLI::App& app, LookArgs& args) {
-  add_enum_option<Shading>(
-      app, "--shading",
-      {{"unlit", Shading::unlit},
-       {"flat", Shading::flat},
-       {"gouraud", Shading::gouraud},
-       {"phong", Shading::phong},
-       {"blinn-phong", Shading::blinn_phong},
-       {"normals", Shading::normals},
-       {"depth", Shading::depth}},
-      [&args](Shading s) { args.shading = s; }, "Shading (default: the model's own look)");
-  app.add_flag("--wireframe", args.wireframe, "Draw only the edges");
-  app.add_flag("--edges", args.edges, "Draw the edges over the surfaces");
-  add_enum_option<CullMode>(
-      app, "--culling", {{"back", CullMode::back}, {"front", CullMode::front}, {"none", CullMode::none}},
-      [&args](CullMode c) { args.culling = c; },
-      "Face culling (default: none, but glTF's single-sided materials cull back faces)");
-  app.add_flag("--no-depth-test", args.no_depth_test, "Draw in submission order without the depth test");
-  app.add_flag("--painter", args.painter, "Painter's algorithm: sort triangles back to front, no depth test");
-  const auto color_check = [](const std::string& name) {
-    return parse_check([name](const std::string& v) { parse_color(v, name); }, "");
-  };
-  app.add_option("--background-color", args.background_color, "Background colour R,G,B in 0..1")
-      ->check(color_check("--background-color"))
-      ->type_name("R,G,B");
-  app.add_flag("--no-background", args.no_background, "Transparent background (RGBA PNG)");
-  app.add_option("--color", args.color, "Surface colour R,G,B in 0..1, replacing the materials' colours")
-      ->check(color_check("--color"))
-      ->type_name("R,G,B");
+void add_lighting_options(CLI::App& app, LookArgs& args) {
   add_floats_option(app, "--light-direction", args.light_direction, 3,
                     "Direction towards the light, world space (default: a headlight above left)")
       ->check(parse_check(
@@ -231,6 +203,38 @@ void add_look_options(CLI::App& app, LookArgs& args) {
   app.add_option("--exposure", args.exposure, "Scale the light of the model's own look before tone mapping (1)")
       ->check(number_in(1e-6, 1e6))
       ->type_name("X");
+}
+
+void add_look_options(CLI::App& app, LookArgs& args) {
+  add_enum_option<Shading>(
+      app, "--shading",
+      {{"unlit", Shading::unlit},
+       {"flat", Shading::flat},
+       {"gouraud", Shading::gouraud},
+       {"phong", Shading::phong},
+       {"blinn-phong", Shading::blinn_phong},
+       {"normals", Shading::normals},
+       {"depth", Shading::depth}},
+      [&args](Shading s) { args.shading = s; }, "Shading (default: the model's own look)");
+  app.add_flag("--wireframe", args.wireframe, "Draw only the edges");
+  app.add_flag("--edges", args.edges, "Draw the edges over the surfaces");
+  add_enum_option<CullMode>(
+      app, "--culling", {{"back", CullMode::back}, {"front", CullMode::front}, {"none", CullMode::none}},
+      [&args](CullMode c) { args.culling = c; },
+      "Face culling (default: none, but glTF's single-sided materials cull back faces)");
+  app.add_flag("--no-depth-test", args.no_depth_test, "Draw in submission order without the depth test");
+  app.add_flag("--painter", args.painter, "Painter's algorithm: sort triangles back to front, no depth test");
+  const auto color_check = [](const std::string& name) {
+    return parse_check([name](const std::string& v) { parse_color(v, name); }, "");
+  };
+  app.add_option("--background-color", args.background_color, "Background colour R,G,B in 0..1")
+      ->check(color_check("--background-color"))
+      ->type_name("R,G,B");
+  app.add_flag("--no-background", args.no_background, "Transparent background (RGBA PNG)");
+  app.add_option("--color", args.color, "Surface colour R,G,B in 0..1, replacing the materials' colours")
+      ->check(color_check("--color"))
+      ->type_name("R,G,B");
+  add_lighting_options(app, args);
   app.add_option("--threads", args.threads, "Render threads (0 = all cores)")
       ->check(number_in(0, 1024, true))
       ->type_name("N");

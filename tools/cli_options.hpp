@@ -98,6 +98,9 @@ struct LookArgs {
   int samples = 4;  // multisample anti-aliasing
 };
 void add_look_options(CLI::App& app, LookArgs& args);
+// The model's own look's light alone (key light, environment, tone mapping, model lights, shadows, ambient
+// occlusion): add_look_options adds them, and the viewer, whose keys switch the rest, takes them alone.
+void add_lighting_options(CLI::App& app, LookArgs& args);
 LookSpec look_spec(const LookArgs& args);
 
 // What a model file may make facet read and allocate (LoadOptions), shared by render, batch, view and info.

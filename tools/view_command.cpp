@@ -37,6 +37,7 @@ CLI::App* add_view_command(CLI::App& app, ViewArgs& args) {
       ->type_name("KEYS");
   view->add_option("--screenshot", args.screenshot, "Write the last frame shown as a PNG")->type_name("FILE.png");
   add_input_options(*view, args.input);
+  add_lighting_options(*view, args.look);
   return view;
 }
 
@@ -55,6 +56,7 @@ int run_view(const ViewArgs& args) {
   options.keys = args.keys;
   options.screenshot = args.screenshot;
   options.load = load_options(args.input);
+  options.look = look_spec(args.look);
   return viewer::run_viewer(options);
 #else
   throw std::runtime_error("view: this facet was built without SDL2 (install libsdl2-dev and rebuild)");

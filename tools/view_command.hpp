@@ -18,6 +18,7 @@ struct ViewArgs {
   std::string keys;
   std::string screenshot;
   InputArgs input;
+  LookArgs look;  // the lighting options only (add_lighting_options)
 };
 
 // Adds the `view` subcommand, filling `args` when it is parsed.

@@ -176,7 +176,7 @@ int run_viewer(const ViewerOptions& options) {
       animation = options.frames ? frames / 60.0 : animation + std::chrono::duration<double>(now - last).count();
     last = now;
     window.size(width, height);
-    draw_frame(renderer, target, width, height, showing, animation, toggles, orbit);
+    draw_frame(renderer, target, width, height, showing, animation, toggles, orbit, options.look);
     // The framebuffer goes to the window as it is, unless it is written over.
     composed = toggles.help || !error.empty();
     if (composed) {

@@ -6,6 +6,7 @@
 
 #include "facet/demo_scenes.hpp"
 #include "facet/model_io.hpp"
+#include "facet/render_job.hpp"
 
 namespace facet::viewer {
 
@@ -18,6 +19,9 @@ struct ViewerOptions {
   std::string keys;        // pressed in order before the first frame
   std::string screenshot;  // the last frame shown is written here as PNG
   LoadOptions load;        // what model files (the first and those dropped on the window) may make facet read
+  // The model's own look's light: environment, key light, tone mapping, model lights, shadows, ambient occlusion;
+  // the keys switch the shading and the rest.
+  LookSpec look;
 };
 
 // Opens the window (SDL2; under X11, Wayland, or Xvfb for tests) and runs until it is closed, q or Esc, or

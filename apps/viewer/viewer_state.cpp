@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <numeric>
 #include <random>
+#include <span>
 #include <utility>
 
 #include "facet/error.hpp"
@@ -77,9 +78,10 @@ void Showing::rebuild_scene(int shuffles) {
   scene_shuffles_ = shuffles;
 }
 
-Showing::Frame Showing::frame(double seconds, float aspect, const Toggles& toggles, const Orbit& orbit) {
+Showing::Frame Showing::frame(double seconds, float aspect, const Toggles& toggles, const Orbit& orbit,
+                              const LookSpec& base) {
   if (scene_shuffles_ != toggles.shuffles) rebuild_scene(toggles.shuffles);
-  LookSpec look;
+  LookSpec look = base;
   look.shading = toggles.shading;
   look.wireframe = toggles.wireframe;
   look.edges = toggles.edges && !toggles.wireframe;
@@ -123,16 +125,17 @@ Showing::Frame Showing::frame(double seconds, float aspect, const Toggles& toggl
   }
   view.clip_from_view = scale(glm::vec3(orbit.zoom, orbit.zoom, 1.0f)) * view.clip_from_view;
   const glm::vec4 clear = clear_color(look, background);
-  return Frame{&scene_, view, scene_options(look, view.view_from_world, own, glm::vec3(clear)), clear};
+  const std::span<const Light> lights = demo_ ? std::span<const Light>() : std::span<const Light>(mesh_->lights);
+  return Frame{&scene_, view, scene_options(look, view.view_from_world, own, glm::vec3(clear), lights), clear};
 }
 
 void draw_frame(Renderer& renderer, std::optional<Framebuffer>& target, int width, int height, Showing& showing,
-                double seconds, const Toggles& toggles, const Orbit& orbit) {
+                double seconds, const Toggles& toggles, const Orbit& orbit, const LookSpec& base) {
   const int samples = toggles.antialias ? 4 : 1;
   if (!target || target->width() != width || target->height() != height || target->samples() != samples)
     target.emplace(width, height, samples);
   const Showing::Frame frame =
-      showing.frame(seconds, static_cast<float>(width) / static_cast<float>(height), toggles, orbit);
+      showing.frame(seconds, static_cast<float>(width) / static_cast<float>(height), toggles, orbit, base);
   renderer.clear(*target, frame.clear, 1.0f);
   frame.scene->render(renderer, *target, frame.view, frame.options);
   renderer.finish(*target);

@@ -64,7 +64,8 @@ class Showing {
     SceneOptions options;
     glm::vec4 clear;
   };
-  Frame frame(double seconds, float aspect, const Toggles& toggles, const Orbit& orbit);
+  // `base` gives what the toggles leave alone (the environment and lights of the model's own look).
+  Frame frame(double seconds, float aspect, const Toggles& toggles, const Orbit& orbit, const LookSpec& base = {});
 
  private:
   void rebuild_scene(int shuffles);
@@ -80,7 +81,7 @@ class Showing {
 // Draws what is shown at `seconds` of its animation into `target`, first (re)made at width x height with the
 // samples the toggles ask for.
 void draw_frame(Renderer& renderer, std::optional<Framebuffer>& target, int width, int height, Showing& showing,
-                double seconds, const Toggles& toggles, const Orbit& orbit);
+                double seconds, const Toggles& toggles, const Orbit& orbit, const LookSpec& base = {});
 
 // A copy of mesh with its triangles in a pseudo-random order fixed by `seed` (every per-triangle array moved
 // with them), for showing what drawing order does without a depth test.

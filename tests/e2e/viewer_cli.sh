@@ -91,6 +91,13 @@ fi
 # A model file, and the errors of a scripted run.
 model=/usr/share/assimp/models/OBJ/WusonOBJ.obj
 if shot wuson "$model" --frames 2 --keys 4; then ok "a model file: $(cat "$scratch/wuson.err")"; else bad "model" "$(cat "$scratch/wuson.err")"; fi
+# The model's own look takes the lighting options: a key light with shadows and ambient occlusion changes it.
+if shot wuson_own "$model" --frames 1 && shot wuson_lit "$model" --frames 1 --light-direction 0,1,0.3 --shadows \
+  --ambient-occlusion && ! cmp -s "$scratch/wuson_own.png" "$scratch/wuson_lit.png"; then
+  ok "--light-direction --shadows --ambient-occlusion change the model's own look"
+else
+  bad "lighting options" "$(cat "$scratch/wuson_lit.err")"
+fi
 expect_error() {
   local name=$1 status=$2
   shift 2
@@ -106,6 +113,7 @@ expect_error missing_model 1 "$scratch/none.obj"
 expect_error model_and_demo 2 "$model" --demo cube
 expect_error unknown_key 2 --demo cube --keys "wx"
 expect_error screenshot_format 2 --demo cube --screenshot "$scratch/x.jpg"
+expect_error missing_hdri 1 "$model" --hdri "$scratch/none.hdr"
 # No display at all: a clean error, not a crash.
 env -u DISPLAY -u WAYLAND_DISPLAY SDL_VIDEODRIVER=x11 "$facet" view --demo cube --frames 1 2>"$scratch/nodisplay.err"
 status=$?
