@@ -75,6 +75,7 @@ int run_info(const InfoArgs& args) {
   for (const Material& m : mesh.materials) textured += m.diffuse_map || !m.diffuse_texture.empty();
   std::printf("textured materials: %zu\n", textured);
   std::printf("cameras: %zu\n", mesh.cameras.size());
+  std::printf("lights: %zu\n", mesh.lights.size());
   std::printf("meshes: %zu\n", meshes);
   std::printf("instances: %zu\n", instances);
   print_vec3("bounds min", box.min);

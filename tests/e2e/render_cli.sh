@@ -234,7 +234,8 @@ fi
 # facet info: counts and bounds, one item per line.
 if info=$("$facet" info "$models/box.obj" 2>"$scratch/info.log") &&
   grep -qx 'vertices: 8' <<<"$info" && grep -qx 'triangles: 12' <<<"$info" && grep -qx 'edges: 18' <<<"$info" &&
-  grep -qx 'materials: 0' <<<"$info" && grep -qx 'bounds min: -0.5 -0.5 -0.5' <<<"$info" &&
+  grep -qx 'materials: 0' <<<"$info" && grep -qx 'lights: 0' <<<"$info" &&
+  grep -qx 'bounds min: -0.5 -0.5 -0.5' <<<"$info" &&
   grep -qx 'format: OBJ' <<<"$info" &&
   grep -qx 'bounds max: 0.5 0.5 0.5' <<<"$info"; then
   ok "info box.obj"
