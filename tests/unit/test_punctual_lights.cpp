@@ -123,6 +123,41 @@ TEST(PunctualLights, BadConesAreClampedAndMissingLightsRefused) {
   EXPECT_EQ(test::load_problem(missing), "light 9 does not exist");
 }
 
+// Hostile light declarations: each is refused with a one-line error naming the file, or drawn without the light
+// with a warning; none crashes or hangs.
+TEST(PunctualLights, HostileDeclarationsAreRefusedOrLeftOut) {
+  const fs::path dir = test::scratch_dir("punctual_lights");
+  struct Case {
+    const char* name;
+    std::string node, lights;
+    bool refused;
+  };
+  const Case cases[] = {
+      {"negative index", light_node(-1, ""), R"([{"type":"point"}])", true},
+      {"string index", R"({"extensions":{"KHR_lights_punctual":{"light":"0"}}})", R"([{"type":"point"}])", true},
+      {"fractional index", R"({"extensions":{"KHR_lights_punctual":{"light":0.5}}})", R"([{"type":"point"}])", true},
+      {"huge index", R"({"extensions":{"KHR_lights_punctual":{"light":1e300}}})", R"([{"type":"point"}])", true},
+      {"two-channel colour", light_node(0, ""), R"([{"type":"point","color":[1,1]}])", false},
+      {"unknown type", light_node(0, ""), R"([{"type":"area"}])", false},
+      {"NaN-making scale", light_node(0, R"("scale":[0,0,0])"), R"([{"type":"directional"}])", false},
+      {"huge intensity", light_node(0, ""), R"([{"type":"point","intensity":1e39}])", false},
+  };
+  for (const Case& c : cases) {
+    const fs::path model = test::write_file(dir, "hostile.gltf", square_with_lights(c.node, 1, c.lights));
+    WarningCapture warnings;
+    if (c.refused) {
+      EXPECT_FALSE(test::load_problem(model).empty()) << c.name;
+      continue;
+    }
+    try {
+      const Mesh mesh = load_model(model);
+      EXPECT_TRUE(mesh.lights.empty()) << c.name;
+    } catch (const InputError& e) {
+      ADD_FAILURE() << c.name << ": refused: " << e.what();
+    }
+  }
+}
+
 // KHR_lights_punctual's recommended falloff: inverse square, windowed by the range, a spot's cone smoothly cut.
 TEST(PunctualLights, FallOffAsTheExtensionRecommends) {
   Light point{Light::Kind::point, glm::vec3(0.0f, 0.0f, 2.0f), glm::vec3(1.0f), 4.0f};
