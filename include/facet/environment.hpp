@@ -39,12 +39,14 @@ EnvironmentImage studio_environment();
 //   an octahedral map, sampled bilinearly and blended between the two nearest roughnesses (Karis, "Real Shading in
 //   Unreal Engine 4", 2013: the split sum's first factor, with N = V = R);
 // - the split sum's second factor, the table of A and B over NdotV and roughness (brdf_table below).
-// `rotation_degrees` turns the image about the up axis (+Y) before use; `intensity` scales its radiance.
+// `rotation_degrees` turns the image about the up axis (+Y) before use; `world_from_upright` then turns that up
+// axis to the world's (a Z-up model's +Z); `intensity` scales its radiance.
 class Environment {
  public:
   static constexpr int kRoughnessLevels = 6;
 
-  explicit Environment(const EnvironmentImage& image, float rotation_degrees = 0.0f, float intensity = 1.0f);
+  explicit Environment(const EnvironmentImage& image, float rotation_degrees = 0.0f, float intensity = 1.0f,
+                       const glm::mat3& world_from_upright = glm::mat3(1.0f));
 
   // E(n) for a unit normal n (world space): the light a diffuse surface facing n receives; a Lambertian surface
   // of colour c reflects c E / pi.

@@ -124,11 +124,13 @@ inline constexpr glm::vec3 kDefaultBackground{0.42f, 0.45f, 0.5f};
 // std::invalid_argument for a zero light direction or a bad exposure or rotation, InputError for an unreadable
 // environment file.
 SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_world, Shading default_shading,
-                           glm::vec3 background, std::span<const Light> model_lights = {});
+                           glm::vec3 background, std::span<const Light> model_lights = {},
+                           UpAxis up = UpAxis::pos_y);
 
 // The prefiltered environment of a look: the built-in studio, or its .hdr/.exr file read and prefiltered on first
 // use and kept for the process (a batch, a turntable or a sheet prefilters each file once).
-std::shared_ptr<const Environment> environment_for(const LookSpec& look);
+// `up` is the model's up axis (CameraSpec::up): the environment's up turns to it.
+std::shared_ptr<const Environment> environment_for(const LookSpec& look, UpAxis up = UpAxis::pos_y);
 
 // A colour the look asks for replaces the mesh's vertex and face colours too (the shaders prefer those over the
 // material), so the whole model takes it. Does nothing without one.

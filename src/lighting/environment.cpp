@@ -147,7 +147,8 @@ glm::mat3 frame_around(glm::vec3 n) {
 
 }  // namespace
 
-Environment::Environment(const EnvironmentImage& image, float rotation_degrees, float intensity)
+Environment::Environment(const EnvironmentImage& image, float rotation_degrees, float intensity,
+                         const glm::mat3& world_from_upright)
     : table_(detail::brdf_table_entries()) {
   if (image.width < 1 || image.height < 1 ||
       image.texels.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
@@ -159,7 +160,8 @@ Environment::Environment(const EnvironmentImage& image, float rotation_degrees, 
   // Turning the environment by +angle about +Y (counter-clockwise seen from above) maps image direction d to
   // world direction R d; lookups go the other way.
   const float c = std::cos(angle), s = std::sin(angle);
-  const glm::mat3 world_from_image(glm::vec3(c, 0.0f, -s), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(s, 0.0f, c));
+  const glm::mat3 world_from_image =
+      world_from_upright * glm::mat3(glm::vec3(c, 0.0f, -s), glm::vec3(0.0f, 1.0f, 0.0f), glm::vec3(s, 0.0f, c));
   const glm::mat3 image_from_world = glm::transpose(world_from_image);
 
   EnvironmentImage small = shrink(image, 512);

@@ -6,6 +6,7 @@
 #include <mutex>
 #include <stdexcept>
 #include <string>
+#include <tuple>
 #include <utility>
 
 #include "facet/render_job.hpp"
@@ -18,7 +19,7 @@ constexpr float kPi = 3.14159265358979f;
 }  // namespace
 
 SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_world, Shading default_shading,
-                           glm::vec3 background, std::span<const Light> model_lights) {
+                           glm::vec3 background, std::span<const Light> model_lights, UpAxis up) {
   SceneOptions options;
   options.shading = look.shading.value_or(default_shading);
   glm::vec3 light;
@@ -33,7 +34,7 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
   if (options.shading == Shading::automatic) {
     if (!(look.exposure > 0.0f) || !std::isfinite(look.exposure))
       throw std::invalid_argument("exposure: must be a finite number above 0");
-    options.environment = environment_for(look);
+    options.environment = environment_for(look, up);
     options.tone_mapping = look.tone_mapping;
     options.exposure = look.exposure;
     if (!(look.hdri_blur >= 0.0f && look.hdri_blur <= 1.0f))
@@ -65,18 +66,20 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
   return options;
 }
 
-std::shared_ptr<const Environment> environment_for(const LookSpec& look) {
+std::shared_ptr<const Environment> environment_for(const LookSpec& look, UpAxis up) {
   if (!std::isfinite(look.hdri_rotation)) throw std::invalid_argument("environment rotation: must be finite");
-  if (look.hdri.empty() && look.hdri_rotation == 0.0f) return studio_lighting();
+  if (look.hdri.empty() && look.hdri_rotation == 0.0f && up == UpAxis::pos_y) return studio_lighting();
   // A few environments at most in a process; each is a few MB once prefiltered.
   static std::mutex mutex;
-  static std::map<std::pair<std::string, float>, std::shared_ptr<const Environment>> cache;
-  const std::pair<std::string, float> key{look.hdri.string(), look.hdri_rotation};
+  static std::map<std::tuple<std::string, float, UpAxis>, std::shared_ptr<const Environment>> cache;
+  const std::tuple<std::string, float, UpAxis> key{look.hdri.string(), look.hdri_rotation, up};
   const std::lock_guard<std::mutex> lock(mutex);
   std::shared_ptr<const Environment>& found = cache[key];
   if (!found) {
     const EnvironmentImage image = look.hdri.empty() ? studio_environment() : read_environment_image(look.hdri);
-    found = std::make_shared<const Environment>(image, look.hdri_rotation);
+    // The environment's up (+Y) turned to the model's up axis, as the camera's view up is.
+    found = std::make_shared<const Environment>(image, look.hdri_rotation, 1.0f,
+                                                glm::transpose(upright_from_model(up)));
   }
   return found;
 }

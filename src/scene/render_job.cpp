@@ -209,7 +209,8 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
                    ? file_camera_view(*mesh, *job.camera.file_camera, framing, aspect, job.model.string())
                    : make_view(job.camera, framing, aspect);
   frame.clear = clear_color(job.look, kDefaultBackground);
-  frame.options = scene_options(job.look, frame.view.view_from_world, Shading::automatic, glm::vec3(frame.clear), mesh->lights);
+  frame.options = scene_options(job.look, frame.view.view_from_world, Shading::automatic, glm::vec3(frame.clear),
+                                mesh->lights, job.camera.up);
   frame.scene.add(Instance{mesh, glm::mat4(1.0f)});
   if (timings) timings->prepare = clock.lap();
   return frame;
@@ -252,7 +253,8 @@ void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timin
     const SheetView view = job.views[static_cast<std::size_t>(k)];
     const View v = make_view(sheet_camera(view, job.camera, framing, aspect), framing, aspect);
     const SceneOptions options = scene_options(job.look, v.view_from_world, Shading::automatic,
-                                               glm::vec3(frame.clear), frame.scene.instances()[0].mesh->lights);
+                                               glm::vec3(frame.clear), frame.scene.instances()[0].mesh->lights,
+                                               job.camera.up);
     renderer.clear(cell, frame.clear, 1.0f);
     frame.scene.render(renderer, cell, v, options);
     renderer.finish(cell);
@@ -294,7 +296,8 @@ void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* t
     camera.azimuth_degrees += 360.0f * static_cast<float>(k) / static_cast<float>(job.turntable);
     const View view = make_view(camera, framing, aspect);
     const SceneOptions options = scene_options(job.look, view.view_from_world, Shading::automatic,
-                                               glm::vec3(frame.clear), frame.scene.instances()[0].mesh->lights);
+                                               glm::vec3(frame.clear), frame.scene.instances()[0].mesh->lights,
+                                               job.camera.up);
     renderer.clear(target, frame.clear, 1.0f);
     frame.scene.render(renderer, target, view, options);
     renderer.finish(target);

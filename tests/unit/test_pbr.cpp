@@ -5,9 +5,10 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include <cmath>
+#include <array>
 #include <memory>
-#include <utility>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "facet/color.hpp"
@@ -19,6 +20,7 @@
 #include "facet/shaders/brdf.hpp"
 #include "facet/shaders/pbr.hpp"
 #include "facet/texture.hpp"
+#include "facet/view_spec.hpp"
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
@@ -189,6 +191,22 @@ TEST(PbrShader, AWhiteMetalWithoutEnvironmentIsLit) {
   const brdf::Rgb<float> c = shader.shade(in, glm::vec3(0, 0, 1), glm::vec3(0.0f));
   EXPECT_TRUE(std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b));
   EXPECT_GT(c.r, 0.05f);
+}
+
+// A Z-up model's environment has its up turned to +Z: what the upright studio sends down from +Y, the turned one
+// sends down from +Z, and render jobs turn it by the camera's up axis.
+TEST(Environment, TurnsItsUpToTheModelsUpAxis) {
+  const EnvironmentImage image = studio_environment();
+  const Environment upright(image);
+  const Environment z_up(image, 0.0f, 1.0f, glm::transpose(upright_from_model(UpAxis::pos_z)));
+  for (const glm::vec3 n : {glm::vec3(0, 1, 0), glm::vec3(1, 0, 0), glm::vec3(0.3f, 0.8f, -0.5f)}) {
+    const glm::vec3 turned = glm::transpose(upright_from_model(UpAxis::pos_z)) * n;
+    const std::array<float, 3> a = upright.irradiance(n.x, n.y, n.z), b = z_up.irradiance(turned.x, turned.y, turned.z);
+    for (int c = 0; c < 3; ++c) EXPECT_NEAR(b[c], a[c], 1e-3f * (1.0f + a[c])) << n.x << " " << n.y << " " << n.z;
+  }
+  // The studio's dome (above) is brighter than its floor (below): up is +Z once turned.
+  EXPECT_GT(z_up.irradiance(0, 0, 1)[1], 1.5f * z_up.irradiance(0, 0, -1)[1]);
+  EXPECT_NE(environment_for(LookSpec{}, UpAxis::pos_z), environment_for(LookSpec{}, UpAxis::pos_y));
 }
 
 // Khronos PBR Neutral leaves dark colours nearly as they are, keeps greys grey and brings any light into [0, 1];
