@@ -209,14 +209,34 @@ def textured(out):
     g.write(os.path.join(out, 'textured.gltf'))
 
 
+def layers(out):
+    """KHR_materials_clearcoat over a rough red (top row: coat 0, 0.5, 1 and a rough coat), KHR_materials_sheen over
+    a dark blue (middle: white sheen rough to smooth, and a pink one), and both over a metal (bottom)."""
+    g = Gltf()
+    ball = g.geometry(*sphere(0.4))
+    red, blue, gold = (0.8, 0.05, 0.02, 1), (0.02, 0.03, 0.2, 1), (1.0, 0.7, 0.3, 1)
+    coat = lambda f, r: {'KHR_materials_clearcoat': {'clearcoatFactor': f, 'clearcoatRoughnessFactor': r}}
+    sheen = lambda c, r: {'KHR_materials_sheen': {'sheenColorFactor': list(c), 'sheenRoughnessFactor': r}}
+    rows = [[pbr(red, 0, 0.7, extensions=coat(f, r)) for f, r in ((0, 0), (0.5, 0), (1, 0), (1, 0.5))],
+            [pbr(blue, 0, 0.8, extensions=sheen(c, r))
+             for c, r in (((1, 1, 1), 1.0), ((1, 1, 1), 0.6), ((1, 1, 1), 0.3), ((1, 0.2, 0.6), 0.5))],
+            [pbr(gold, 1, 0.5, extensions={**coat(1, 0.1), **sheen(s, 0.5)})
+             for s in ((0, 0, 0), (0.3, 0.3, 0.3), (0.6, 0.6, 0.6), (1, 1, 1))]]
+    for j, row in enumerate(rows):
+        for i, material in enumerate(row):
+            g.node(ball, g.material(**material, name=f'layers_{j}_{i}'), translation=(i - 1.5, 1 - j, 0))
+    g.doc['extensionsUsed'] = ['KHR_materials_clearcoat', 'KHR_materials_sheen']
+    g.write(os.path.join(out, 'layers.gltf'))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit('usage: make_models.py OUT_DIR')
     out = sys.argv[1]
     os.makedirs(out, exist_ok=True)
-    for make in (sweep, default_material, emissive, blend, factors, textured):
+    for make in (sweep, default_material, emissive, blend, factors, textured, layers):
         make(out)
-    print(f'{out}: sweep, default_material, emissive, blend, factors, textured (.gltf)')
+    print(f'{out}: sweep, default_material, emissive, blend, factors, textured, layers (.gltf)')
 
 
 if __name__ == '__main__':

@@ -59,6 +59,17 @@ struct Material {
   std::shared_ptr<const Texture> specular_map{};
   glm::vec3 specular_color_factor{1.0f};
   std::shared_ptr<const Texture> specular_color_map{};
+  // glTF KHR_materials_clearcoat: a clear varnish over the material: its strength in [0, 1] (times clearcoat_map's
+  // red; 0: no coat), its roughness (times clearcoat_roughness_map's green) and its own normal map (none: the coat
+  // is smooth over the geometry's normal).
+  float clearcoat = 0.0f, clearcoat_roughness = 0.0f;
+  std::shared_ptr<const Texture> clearcoat_map{}, clearcoat_roughness_map{}, clearcoat_normal_map{};
+  float clearcoat_normal_scale = 1.0f;
+  // glTF KHR_materials_sheen: the back-scattering sheen of cloth and velvet: its linear colour (times
+  // sheen_color_map, sRGB-encoded; black: no sheen) and roughness (times sheen_roughness_map's alpha).
+  glm::vec3 sheen_color{0.0f};
+  float sheen_roughness = 0.0f;
+  std::shared_ptr<const Texture> sheen_color_map{}, sheen_roughness_map{};
   // The file's filtering and wrapping for the texture (glTF samplers); unset: the scene's (SceneOptions::sampler).
   std::optional<Sampler> sampler{};
   // Drawn with its colour alone, no lighting, when the shading is Shading::automatic (glTF KHR_materials_unlit).

@@ -1,5 +1,5 @@
 // gltf_material.cpp - a glTF file's materials as facet's Material: factors, textures, samplers, texture transforms,
-// and the extensions that refine them (emissive strength, unlit, ior, specular).
+// and the extensions that refine them (emissive strength, unlit, ior, specular, clearcoat, sheen).
 #include "io/gltf_material.hpp"
 
 #include <algorithm>
@@ -160,6 +160,56 @@ void read_dielectric_extensions(const tinygltf::Material& m, const std::string& 
   out.specular_color_map = texture(texture_index_of(specular, "specularColorTexture"), TexelEncoding::srgb);
 }
 
+// An extension object of a material, or nullptr.
+const tinygltf::Value* extension_of(const tinygltf::Material& m, const char* name) {
+  const auto e = m.extensions.find(name);
+  return e != m.extensions.end() && e->second.IsObject() ? &e->second : nullptr;
+}
+
+// KHR_materials_clearcoat and KHR_materials_sheen into `out`. Factors outside [0, 1] are clamped and anything that
+// is not a number is replaced by the default, with a warning naming the material and the key.
+template <class DecodeTexture>
+void read_layer_extensions(const tinygltf::Material& m, const std::string& source, Material& out,
+                           const DecodeTexture& texture) {
+  const std::string material = "material '" + printable(m.name) + "': ";
+  const auto unit = [&](const tinygltf::Value& e, const char* key, float fallback) {
+    const std::optional<double> v = number_of(e, key);
+    if (!v) return fallback;
+    if (*v >= 0.0 && *v <= 1.0) return static_cast<float>(*v);
+    warn(source, material + key + " must be a number in [0, 1]; " +
+                     (std::isfinite(*v) ? "clamping it" : "using its default"));
+    return unit_factor(*v, fallback);
+  };
+  if (const tinygltf::Value* coat = extension_of(m, "KHR_materials_clearcoat")) {
+    out.clearcoat = unit(*coat, "clearcoatFactor", 0.0f);
+    out.clearcoat_map = texture(texture_index_of(*coat, "clearcoatTexture"), TexelEncoding::linear);
+    out.clearcoat_roughness = unit(*coat, "clearcoatRoughnessFactor", 0.0f);
+    out.clearcoat_roughness_map = texture(texture_index_of(*coat, "clearcoatRoughnessTexture"), TexelEncoding::linear);
+    out.clearcoat_normal_map = texture(texture_index_of(*coat, "clearcoatNormalTexture"), TexelEncoding::linear);
+    if (out.clearcoat_normal_map) {
+      const std::optional<double> scale = number_of(coat->Get("clearcoatNormalTexture"), "scale");
+      if (scale && std::isfinite(*scale)) out.clearcoat_normal_scale = static_cast<float>(*scale);
+    }
+  }
+  if (const tinygltf::Value* sheen = extension_of(m, "KHR_materials_sheen")) {
+    if (sheen->Has("sheenColorFactor")) {
+      const tinygltf::Value& c = sheen->Get("sheenColorFactor");
+      glm::vec3 color(0.0f);
+      bool valid = c.IsArray() && c.ArrayLen() == 3;
+      for (int i = 0; valid && i < 3; ++i) {
+        const double v = c.Get(i).IsNumber() ? c.Get(i).GetNumberAsDouble() : std::nan("");
+        valid = v >= 0.0 && v <= 1.0;  // false for NaN
+        color[i] = static_cast<float>(v);
+      }
+      if (valid) out.sheen_color = color;
+      else warn(source, material + "sheenColorFactor must be three numbers in [0, 1]; using black (no sheen)");
+    }
+    out.sheen_color_map = texture(texture_index_of(*sheen, "sheenColorTexture"), TexelEncoding::srgb);
+    out.sheen_roughness = unit(*sheen, "sheenRoughnessFactor", 0.0f);
+    out.sheen_roughness_map = texture(texture_index_of(*sheen, "sheenRoughnessTexture"), TexelEncoding::linear);
+  }
+}
+
 }  // namespace
 
 // KHR_texture_transform of a texture reference as one matrix on (u, v, 1): translation * rotation * scale, in the
@@ -231,6 +281,7 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
   out.emissive_map = texture(m.emissiveTexture.index, TexelEncoding::srgb);
   out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
   read_dielectric_extensions(m, source, out, texture);
+  read_layer_extensions(m, source, out, texture);
   out.double_sided = m.doubleSided;
   if (m.alphaMode == "BLEND") out.alpha_mode = AlphaMode::blend;
   if (m.alphaMode == "MASK") {

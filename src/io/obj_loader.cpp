@@ -199,6 +199,12 @@ std::vector<Material> convert_materials(const std::vector<tinyobj::material_t>& 
       mat.roughness = matte ? 1.0f : std::clamp(std::sqrt(std::sqrt(2.0f / (m.shininess + 2.0f))), 0.0f, 1.0f);
     }
     mat.emissive = srgb_to_linear(glm::vec3(m.emission[0], m.emission[1], m.emission[2]));
+    // The extension's clear coat (Pc, Pcr) and sheen (Ps, a strength: a white sheen of that brightness).
+    mat.clearcoat = std::isfinite(m.clearcoat_thickness) ? std::clamp(m.clearcoat_thickness, 0.0f, 1.0f) : 0.0f;
+    mat.clearcoat_roughness =
+        std::isfinite(m.clearcoat_roughness) ? std::clamp(m.clearcoat_roughness, 0.0f, 1.0f) : 0.0f;
+    mat.sheen_color = glm::vec3(std::isfinite(m.sheen) ? std::clamp(m.sheen, 0.0f, 1.0f) : 0.0f);
+    mat.sheen_roughness = mat.roughness;
     if (!m.diffuse_texname.empty()) {
       const std::string what = "texture '" + printable(m.diffuse_texname) + "' of material '" + printable(m.name) + "'";
       mat.diffuse_texture = usable_texture(policy, options, m.diffuse_texname, what, source).value_or("");

@@ -56,6 +56,16 @@ PbrMaterial pbr_material(const Material& material, const SurfaceColor& surface) 
   m.normal_map = material.normal_map.get();
   m.specular_map = material.specular_map.get();
   m.specular_color_map = material.specular_color_map.get();
+  m.clearcoat = material.clearcoat;
+  m.clearcoat_roughness = material.clearcoat_roughness;
+  m.clearcoat_map = material.clearcoat_map.get();
+  m.clearcoat_roughness_map = material.clearcoat_roughness_map.get();
+  m.clearcoat_normal_map = material.clearcoat_normal_map.get();
+  m.clearcoat_normal_scale = material.clearcoat_normal_scale;
+  m.sheen_color = material.sheen_color;
+  m.sheen_roughness = material.sheen_roughness;
+  m.sheen_color_map = material.sheen_color_map.get();
+  m.sheen_roughness_map = material.sheen_roughness_map.get();
   m.normal_scale = material.normal_scale;
   m.sampler = surface.sampler;
   m.opaque = surface.opaque;

@@ -262,6 +262,31 @@ TEST(SurfaceLanes, PbrMatchesTheScalarFragment) {
     tinted.material.specular_map = &translucent;
     tinted.material.specular_color_map = &texture;
     expect_lanes_match(tinted, g, std::string("PBR, textured, ior and specular, ") + c.name);
+    // KHR_materials_clearcoat and _sheen: the layers alone, then with their textures (the coat's normal map sends
+    // pixels to fragment(), which must agree with itself lane by lane).
+    PbrShader layered = shader;
+    layered.material = PbrMaterial{};
+    layered.material.base_color = shader.material.base_color;
+    layered.material.metallic = c.metallic;
+    layered.material.roughness = c.roughness;
+    layered.material.clearcoat = 0.8f;
+    layered.material.clearcoat_roughness = 0.02f;
+    layered.material.sheen_color = glm::vec3(0.9f, 0.3f, 0.6f);
+    layered.material.sheen_roughness = 0.4f;
+    expect_lanes_match(layered, g, std::string("PBR, clearcoat and sheen, ") + c.name);
+    expect_same(draw_with(ScalarOf<PbrShader>{layered}, g), draw_with(UntexturedPbrShader{layered}, g), c.name);
+    layered.material = shader.material;
+    layered.material.clearcoat = 1.0f;
+    layered.material.clearcoat_roughness = 0.6f;
+    layered.material.clearcoat_map = &linear;
+    layered.material.clearcoat_roughness_map = &linear;
+    layered.material.sheen_color = glm::vec3(1.0f);
+    layered.material.sheen_roughness = 0.9f;
+    layered.material.sheen_color_map = &texture;
+    layered.material.sheen_roughness_map = &translucent;
+    expect_lanes_match(layered, g, std::string("PBR, textured, clearcoat and sheen, ") + c.name);
+    layered.material.clearcoat_normal_map = &linear;
+    expect_lanes_match(layered, g, std::string("PBR, clearcoat normal map, ") + c.name);
   }
 }
 

@@ -118,15 +118,12 @@ brdf::Rgb<float> shade(const PbrMaterial& material, glm::vec3 base) {
       PunctualLight::from({Light::Kind::directional, glm::vec3(0.3f, 0.2f, 1.0f), glm::vec3(1.0f), 2.0f});
   shader.lights = std::span<const PunctualLight>(&light, 1);
   shader.eye = glm::vec3(-0.2f, 0.1f, 3.0f);
-  PbrShader::Inputs<float> in{{base.r, base.g, base.b},
-                              1.0f,
-                              0.0f,
-                              0.4f,
-                              1.0f,
-                              {0.0f, 0.0f, 0.0f},
-                              material.specular,
-                              {material.specular_color.r, material.specular_color.g, material.specular_color.b}};
-  return shader.shade(in, glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f));
+  PbrMaterial inputs = material;
+  inputs.base_color = glm::vec4(1.0f);
+  inputs.metallic = 0.0f;
+  inputs.roughness = 0.4f;
+  const PbrInputs<float> in = factor_inputs<float>(inputs, {base.r, base.g, base.b}, 1.0f);
+  return shader.shade(in, glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f, 0.0f, 1.0f), glm::vec3(0.0f));
 }
 
 // A black dielectric shows only its specular reflection: some at ior 1.5 (the default material's, exactly), next

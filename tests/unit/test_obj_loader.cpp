@@ -127,6 +127,23 @@ TEST_F(ObjLoader, QuadsMaterialsAndTextures) {
   EXPECT_EQ(m.face_materials, (std::vector<std::int32_t>{0, 0, 0, 0, 1, 1, 1, 1, -1, -1, 0, 0}));
 }
 
+// MTL's PBR extension (Pr, Pm, Pc, Pcr, Ps) onto the physically based material; out-of-range values clamped.
+TEST_F(ObjLoader, MtlPbrExtensionIsRead) {
+  write("cube.mtl", "newmtl red\nKd 1 0 0\nPr 0.3\nPm 0.8\nPc 0.7\nPcr 0.2\nPs 0.4\n"
+                    "newmtl wood\nKd 0.6 0.4 0.2\nPc 2\nPs -1\n");
+  const Mesh m = load_model(write("cube.obj", kCubeObj));
+  ASSERT_EQ(m.materials.size(), 2u);
+  const Material& red = m.materials[0];
+  EXPECT_FLOAT_EQ(red.roughness, 0.3f);
+  EXPECT_FLOAT_EQ(red.metallic, 0.8f);
+  EXPECT_FLOAT_EQ(red.clearcoat, 0.7f);
+  EXPECT_FLOAT_EQ(red.clearcoat_roughness, 0.2f);
+  EXPECT_EQ(red.sheen_color, glm::vec3(0.4f));
+  EXPECT_FLOAT_EQ(red.sheen_roughness, 0.3f);
+  EXPECT_FLOAT_EQ(m.materials[1].clearcoat, 1.0f);
+  EXPECT_EQ(m.materials[1].sheen_color, glm::vec3(0.0f));
+}
+
 TEST_F(ObjLoader, MissingMtlAndTextureAreWarnings) {
   const fs::path obj = write("cube.obj", kCubeObj);
   testing::internal::CaptureStderr();

@@ -156,10 +156,12 @@ TEST(PbrShader, WhiteFurnaceReflectsTheEnvironmentEvenly) {
   for (const float metallic : {0.0f, 1.0f})
     for (const float roughness : {0.2f, 0.6f, 1.0f})
       for (const float n_dot_v : {0.3f, 0.7f, 1.0f}) {
-        const PbrShader::Inputs<float> in{
-            {1.0f, 1.0f, 1.0f}, 1.0f, metallic, roughness, 1.0f, {0.0f, 0.0f, 0.0f}, 1.0f, {1.0f, 1.0f, 1.0f}};
+        PbrMaterial m;
+        m.metallic = metallic;
+        m.roughness = roughness;
+        const PbrInputs<float> in = factor_inputs<float>(m, {1.0f, 1.0f, 1.0f}, 1.0f);
         const glm::vec3 n = direction(n_dot_v, 0.0f);
-        const brdf::Rgb<float> c = shader.shade(in, n, glm::vec3(0.0f));
+        const brdf::Rgb<float> c = shader.shade(in, n, n, glm::vec3(0.0f));
         EXPECT_NEAR(c.r, 1.0f, 0.06f) << "metallic " << metallic << ", roughness " << roughness << ", NdotV "
                                       << n_dot_v;
       }
@@ -170,9 +172,12 @@ TEST(PbrShader, EmissionIsAddedInLinearLight) {
   PbrShader shader;
   shader.eye = glm::vec3(0.0f, 0.0f, 1.0f);
   shader.tone_mapping = ToneMapping::none;
-  const PbrShader::Inputs<float> in{
-      {0.0f, 0.0f, 0.0f}, 1.0f, 0.0f, 1.0f, 1.0f, {0.25f, 0.5f, 0.0f}, 1.0f, {1.0f, 1.0f, 1.0f}};
-  const brdf::Rgb<float> c = shader.display(shader.shade(in, glm::vec3(0, 0, 1), glm::vec3(0.0f)));
+  PbrMaterial m;
+  m.roughness = 1.0f;
+  m.emissive = glm::vec3(0.25f, 0.5f, 0.0f);
+  const PbrInputs<float> in = factor_inputs<float>(m, {0.0f, 0.0f, 0.0f}, 1.0f);
+  const brdf::Rgb<float> c = shader.display(
+      shader.shade(in, glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0.0f)));
   EXPECT_NEAR(c.r, linear_to_srgb(0.25f), 2e-4f);
   EXPECT_NEAR(c.g, linear_to_srgb(0.5f), 2e-4f);
   EXPECT_NEAR(c.b, 0.0f, 2e-4f);
@@ -186,9 +191,11 @@ TEST(PbrShader, AWhiteMetalWithoutEnvironmentIsLit) {
   shader.ambient = glm::vec3(0.1f);
   const PunctualLight light = PunctualLight::from(Light{Light::Kind::directional, glm::vec3(0.0f, 0.3f, 1.0f)});
   shader.lights = std::span<const PunctualLight>(&light, 1);
-  const PbrShader::Inputs<float> in{
-      {1.0f, 1.0f, 1.0f}, 1.0f, 1.0f, 1.0f, 1.0f, {0.0f, 0.0f, 0.0f}, 1.0f, {1.0f, 1.0f, 1.0f}};
-  const brdf::Rgb<float> c = shader.shade(in, glm::vec3(0, 0, 1), glm::vec3(0.0f));
+  PbrMaterial m;
+  m.metallic = 1.0f;
+  m.roughness = 1.0f;
+  const PbrInputs<float> in = factor_inputs<float>(m, {1.0f, 1.0f, 1.0f}, 1.0f);
+  const brdf::Rgb<float> c = shader.shade(in, glm::vec3(0, 0, 1), glm::vec3(0, 0, 1), glm::vec3(0.0f));
   EXPECT_TRUE(std::isfinite(c.r) && std::isfinite(c.g) && std::isfinite(c.b));
   EXPECT_GT(c.r, 0.05f);
 }

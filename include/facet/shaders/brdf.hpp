@@ -70,6 +70,12 @@ struct Rgb {
   FACET_LANES_INLINE friend Rgb operator*(const Rgb& x, const F& s) { return {x.r * s, x.g * s, x.b * s}; }
 };
 
+// No light, per pixel or per lane.
+template <class F>
+FACET_LANES_INLINE Rgb<F> black() {
+  return {constant<F>(0.0f), constant<F>(0.0f), constant<F>(0.0f)};
+}
+
 // The microfacet distribution D: Trowbridge-Reitz (GGX), alpha = roughness^2.
 //   D = alpha^2 / (pi (NdotH^2 (alpha^2 - 1) + 1)^2)
 template <class F>

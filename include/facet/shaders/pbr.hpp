@@ -10,43 +10,16 @@
 #include "facet/fragment_lanes.hpp"
 #include "facet/shader.hpp"
 #include "facet/shaders/brdf.hpp"
+#include "facet/shaders/brdf_layers.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
 #include "facet/shaders/normal_mapping.hpp"
+#include "facet/shaders/pbr_material.hpp"
 #include "facet/shaders/punctual.hpp"
 #include "facet/shaders/shadow_map.hpp"
 #include "facet/simd.hpp"
 #include "facet/texture.hpp"
 
 namespace facet {
-
-// One material's inputs, in linear light (Material holds colours as displayed; the scene decodes them once).
-struct PbrMaterial {
-  glm::vec4 base_color{1.0f};  // linear RGB, alpha
-  float metallic = 0.0f, roughness = 0.5f;
-  glm::vec3 emissive{0.0f};
-  float occlusion_strength = 1.0f;
-  // The dielectric's reflectance (KHR_materials_ior: brdf::dielectric_f0 of its ior; 0.04 for ior 1.5), and
-  // KHR_materials_specular's strength and linear colour, which scale it.
-  float dielectric_f0 = 0.04f;
-  float specular = 1.0f;
-  glm::vec3 specular_color{1.0f};
-  const glm::vec4* face_colors = nullptr;   // as displayed, indexed by Fragment::primitive; nullptr = none
-  const Texture* base_color_map = nullptr;  // sRGB-encoded
-  const Texture* metallic_roughness_map = nullptr;
-  const Texture* occlusion_map = nullptr;
-  const Texture* emissive_map = nullptr;  // sRGB-encoded
-  const Texture* normal_map = nullptr;
-  const Texture* specular_map = nullptr;        // strength in alpha, multiplying specular
-  const Texture* specular_color_map = nullptr;  // sRGB-encoded, multiplying specular_color
-  float normal_scale = 1.0f;
-  Sampler sampler{};
-  bool opaque = false;  // alpha 1 whatever the inputs say (AlphaMode::opaque)
-
-  bool textured() const {
-    return base_color_map || metallic_roughness_map || occlusion_map || emissive_map || normal_map || specular_map ||
-           specular_color_map;
-  }
-};
 
 // The physically based look: radiance = emission + sum over lights of f(l, v) E_light NdotL + the environment's
 // light by the split sum (brdf.hpp), then exposure, tone mapping and the sRGB encoding. Vertex colours arrive as
@@ -89,68 +62,27 @@ struct PbrShader {
   }
 
   // What the material is at one pixel.
-  template <class F>
-  struct Inputs {
-    brdf::Rgb<F> base;
-    F alpha, metallic, roughness, occlusion;
-    brdf::Rgb<F> emissive;
-    F specular;  // KHR_materials_specular's strength and colour (linear)
-    brdf::Rgb<F> specular_color;
-  };
-
-  Inputs<float> inputs(const Fragment<Varyings>& f) const {
-    const PbrMaterial& m = material;
+  PbrInputs<float> inputs(const Fragment<Varyings>& f) const {
     const glm::vec4 c = f.varyings.color;
-    Inputs<float> in{{m.base_color.r * c.r, m.base_color.g * c.g, m.base_color.b * c.b},
-                     m.base_color.a * c.a,
-                     m.metallic,
-                     m.roughness,
-                     1.0f,
-                     {m.emissive.r, m.emissive.g, m.emissive.b},
-                     m.specular,
-                     {m.specular_color.r, m.specular_color.g, m.specular_color.b}};
-    const float* decode = detail::srgb_decode_curve_table();
-    const auto multiply_decoded = [&](glm::vec4 t) {
-      in.base = in.base * brdf::Rgb<float>{detail::srgb_decode(t.r, decode), detail::srgb_decode(t.g, decode),
-                                           detail::srgb_decode(t.b, decode)};
-      in.alpha *= t.a;
-    };
-    if (m.face_colors) multiply_decoded(m.face_colors[f.primitive]);
-    const glm::vec2 uv = f.varyings.uv, dx = f.ddx.uv, dy = f.ddy.uv;
-    if (m.base_color_map) {
-      const glm::vec4 t = m.base_color_map->sample_linear(uv, dx, dy, m.sampler);
-      in.base = in.base * brdf::Rgb<float>{t.r, t.g, t.b};
-      in.alpha *= t.a;
-    }
-    if (m.metallic_roughness_map) {
-      const glm::vec4 t = m.metallic_roughness_map->sample(uv, dx, dy, m.sampler);
-      in.roughness *= t.g;
-      in.metallic *= t.b;
-    }
-    if (m.occlusion_map)
-      in.occlusion = 1.0f + m.occlusion_strength * (m.occlusion_map->sample(uv, dx, dy, m.sampler).r - 1.0f);
-    if (m.emissive_map) {
-      const glm::vec4 t = m.emissive_map->sample_linear(uv, dx, dy, m.sampler);
-      in.emissive = in.emissive * brdf::Rgb<float>{t.r, t.g, t.b};
-    }
-    if (m.specular_map) in.specular *= m.specular_map->sample(uv, dx, dy, m.sampler).a;
-    if (m.specular_color_map) {
-      const glm::vec4 t = m.specular_color_map->sample_linear(uv, dx, dy, m.sampler);
-      in.specular_color = in.specular_color * brdf::Rgb<float>{t.r, t.g, t.b};
-    }
-    if (m.opaque) in.alpha = 1.0f;
+    PbrInputs<float> in = factor_inputs<float>(material, {c.r, c.g, c.b}, c.a);
+    if (material.face_colors) multiply_face_color(material.face_colors[f.primitive], in);
+    if (material.textured()) multiply_textures(material, f.varyings.uv, f.ddx.uv, f.ddy.uv, in);
+    if (material.opaque) in.alpha = 1.0f;
     return in;
   }
 
-  // Back faces are lit with the normal reversed (two-sided lighting, as glTF asks of double-sided materials).
+  // Back faces are lit with the normal reversed (two-sided lighting, as glTF asks of double-sided materials). The
+  // coat has the interpolated normal unless it has its own normal map (KHR_materials_clearcoat).
   glm::vec4 fragment(const Fragment<Varyings>& f) const {
     glm::vec3 n = glm::normalize(f.varyings.normal);
     if (!transforms.front_side(f.front_facing)) n = -n;
+    glm::vec3 n_coat = n;
+    if (material.coated() && material.clearcoat_normal_map)
+      n_coat = mapped_normal(n, f, *material.clearcoat_normal_map, material.sampler, material.clearcoat_normal_scale);
     if (material.normal_map) n = mapped_normal(n, f, *material.normal_map, material.sampler, material.normal_scale);
-    Inputs<float> in = inputs(f);
-    if (screen_occlusion)
-      in.occlusion = in.occlusion * screen_open(f.screen.x, f.screen.y);
-    const brdf::Rgb<float> c = display(shade(in, n, f.varyings.world));
+    PbrInputs<float> in = inputs(f);
+    if (screen_occlusion) in.occlusion = in.occlusion * screen_open(f.screen.x, f.screen.y);
+    const brdf::Rgb<float> c = display(shade(in, n, n_coat, f.varyings.world));
     return {c.r, c.g, c.b, in.alpha};
   }
 
@@ -159,83 +91,40 @@ struct PbrShader {
   // shaded by fragment() lane by lane.
   FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
     using namespace simd;
-    if (material.normal_map) return fragment_each_lane(*this, f);
+    if (material.bumped()) return fragment_each_lane(*this, f);
     Vec3 n = normalize(f.get(&Varyings::normal));
     const Mask back = transforms.mirrored ? f.front_facing : ~f.front_facing;
     n = Vec3{select(back, -n.x, n.x), select(back, -n.y, n.y), select(back, -n.z, n.z)};
-    Inputs<Float> in = inputs_lanes(f);
+    PbrInputs<Float> in = inputs_lanes(f);
     if (screen_occlusion) {
       Float open;
       for (int k = 0; k < kLanes; ++k) open[k] = screen_open(f.screen_x[k], f.screen_y[k]);
       in.occlusion = in.occlusion * open;
     }
-    const brdf::Rgb<Float> out = display(shade(in, n, f.get(&Varyings::world)));
+    const brdf::Rgb<Float> out = display(shade(in, n, n, f.get(&Varyings::world)));
     return {out.r, out.g, out.b, in.alpha};
   }
 
-  // inputs() for 16 pixels: the same operations in the same order, textures sampled lane by lane.
-  FACET_LANES_INLINE Inputs<simd::Float> inputs_lanes(const FragmentLanes<Varyings>& f) const {
+  // inputs() for 16 pixels: the same operations in the same order, face colours and textures lane by lane.
+  FACET_LANES_INLINE PbrInputs<simd::Float> inputs_lanes(const FragmentLanes<Varyings>& f) const {
     using namespace simd;
-    const PbrMaterial& m = material;
     const Color c = f.get(&Varyings::color);
-    Inputs<Float> in{{m.base_color.r * c.r, m.base_color.g * c.g, m.base_color.b * c.b},
-                     m.base_color.a * c.a,
-                     splat(m.metallic),
-                     splat(m.roughness),
-                     splat(1.0f),
-                     {splat(m.emissive.r), splat(m.emissive.g), splat(m.emissive.b)},
-                     splat(m.specular),
-                     {splat(m.specular_color.r), splat(m.specular_color.g), splat(m.specular_color.b)}};
-    const float* decode = detail::srgb_decode_curve_table();
-    const auto multiply_decoded = [&](int k, glm::vec4 t) {
-      in.base.r[k] = in.base.r[k] * detail::srgb_decode(t.r, decode);
-      in.base.g[k] = in.base.g[k] * detail::srgb_decode(t.g, decode);
-      in.base.b[k] = in.base.b[k] * detail::srgb_decode(t.b, decode);
-      in.alpha[k] *= t.a;
-    };
-    if (m.face_colors)
-      for (int k = 0; k < kLanes; ++k) multiply_decoded(k, m.face_colors[f.primitive[k]]);
-    if (m.textured()) {
-      const Vec2 uv = f.get(&Varyings::uv);
+    PbrInputs<Float> in = factor_inputs<Float>(material, {c.r, c.g, c.b}, c.a);
+    if (material.face_colors || material.textured()) {
       const std::size_t u = FragmentLanes<Varyings>::float_index(&Varyings::uv);
-      for (int k = 0; k < kLanes; ++k) {
-        const glm::vec2 at(uv.x[k], uv.y[k]), dx(f.ddx[u][k], f.ddx[u + 1][k]), dy(f.ddy[u][k], f.ddy[u + 1][k]);
-        if (m.base_color_map) {
-          const glm::vec4 t = m.base_color_map->sample_linear(at, dx, dy, m.sampler);
-          in.base.r[k] = in.base.r[k] * t.r;
-          in.base.g[k] = in.base.g[k] * t.g;
-          in.base.b[k] = in.base.b[k] * t.b;
-          in.alpha[k] *= t.a;
-        }
-        if (m.metallic_roughness_map) {
-          const glm::vec4 t = m.metallic_roughness_map->sample(at, dx, dy, m.sampler);
-          in.roughness[k] *= t.g;
-          in.metallic[k] *= t.b;
-        }
-        if (m.occlusion_map)
-          in.occlusion[k] = 1.0f + m.occlusion_strength * (m.occlusion_map->sample(at, dx, dy, m.sampler).r - 1.0f);
-        if (m.emissive_map) {
-          const glm::vec4 t = m.emissive_map->sample_linear(at, dx, dy, m.sampler);
-          in.emissive.r[k] = in.emissive.r[k] * t.r;
-          in.emissive.g[k] = in.emissive.g[k] * t.g;
-          in.emissive.b[k] = in.emissive.b[k] * t.b;
-        }
-        if (m.specular_map) in.specular[k] *= m.specular_map->sample(at, dx, dy, m.sampler).a;
-        if (m.specular_color_map) {
-          const glm::vec4 t = m.specular_color_map->sample_linear(at, dx, dy, m.sampler);
-          in.specular_color.r[k] = in.specular_color.r[k] * t.r;
-          in.specular_color.g[k] = in.specular_color.g[k] * t.g;
-          in.specular_color.b[k] = in.specular_color.b[k] * t.b;
-        }
-      }
+      multiply_per_pixel(material, f.primitive, f.get(&Varyings::uv), {f.ddx[u], f.ddx[u + 1]},
+                         {f.ddy[u], f.ddy[u + 1]}, in);
     }
-    if (m.opaque) in.alpha = splat(1.0f);
+    if (material.opaque) in.alpha = splat(1.0f);
     return in;
   }
 
-  // The scene-referred radiance towards the eye, for F = float (with glm::vec3) or simd::Float (with simd::Vec3).
+  // The scene-referred radiance towards the eye, for F = float (with glm::vec3) or simd::Float (with simd::Vec3):
+  // the core BRDF under the lights and the environment, the sheen over it, the clear coat over both (three.js's
+  // layering of KHR_materials_sheen and _clearcoat, emission included under the coat).
   template <class F, class V3>
-  FACET_LANES_INLINE brdf::Rgb<F> shade(const Inputs<F>& in, const V3& n, const V3& world) const {
+  FACET_LANES_INLINE brdf::Rgb<F> shade(const PbrInputs<F>& in, const V3& n, const V3& n_coat,
+                                        const V3& world) const {
     using brdf::Rgb;
     // KHR_materials_specular: the dielectric's f0 coloured, kept at most 1 (the colour factor may exceed 1), then
     // weighted by the strength, which is also its f90.
@@ -245,30 +134,47 @@ struct PbrShader {
     const brdf::Rgb<F> f0_dielectric{f0(in.specular_color.r), f0(in.specular_color.g), f0(in.specular_color.b)};
     const brdf::Surface<F> s = brdf::surface(in.base, in.metallic, in.roughness, f0_dielectric, in.specular);
     const V3 v = normalize(eye - world);
-    const F n_dot_v_raw = dot(n, v);
-    const F n_dot_v = brdf::saturate(n_dot_v_raw);
-    Rgb<F> color = in.emissive;
+    const F n_dot_v = brdf::saturate(dot(n, v));
+    const Layers<F> layer = layers(in, n_dot_v, n_coat, v);
+    Rgb<F> color = in.emissive, coat = brdf::black<F>();
     for (const PunctualLight& light : lights) {
       V3 l;
       F falloff;
       incident_light(light, world, l, falloff);
       if (light.shadow) falloff = falloff * light.shadow->visibility<F>(world, n);
       const V3 h = normalize(v + l);
-      const F n_dot_l = brdf::saturate(dot(n, l));
-      const Rgb<F> r = brdf::reflect_light(s, n_dot_l, n_dot_v, brdf::saturate(dot(n, h)), brdf::saturate(dot(v, h)));
+      const F n_dot_l = brdf::saturate(dot(n, l)), n_dot_h = brdf::saturate(dot(n, h));
+      const F v_dot_h = brdf::saturate(dot(v, h));
+      Rgb<F> r = brdf::reflect_light(s, n_dot_l, n_dot_v, n_dot_h, v_dot_h);
+      if (material.sheened()) {
+        const F albedo = brdf::max(layer.sheen_albedo, brdf::sheen_albedo(n_dot_l, layer.sheen_roughness));
+        r = r * (1.0f - layer.sheen_max * albedo) +
+            in.sheen_color * brdf::reflect_sheen(n_dot_l, n_dot_v, n_dot_h, layer.sheen_alpha);
+      }
       const glm::vec3 c = light.color;
-      color = color + r * Rgb<F>{c.r * falloff, c.g * falloff, c.b * falloff};
+      const Rgb<F> incident{c.r * falloff, c.g * falloff, c.b * falloff};
+      color = color + r * incident;
+      if (material.coated()) {
+        const F coat_n_dot_l = brdf::saturate(dot(n_coat, l)), coat_n_dot_h = brdf::saturate(dot(n_coat, h));
+        coat = coat + incident * brdf::reflect_coat(coat_n_dot_l, layer.coat_n_dot_v, coat_n_dot_h, v_dot_h,
+                                                    layer.coat_alpha);
+      }
     }
     Rgb<F> irradiance, radiance;
     F a, b;
-    // The reflection, bent towards the normal as roughness grows (where the lobe's energy lies), as three.js does.
-    const F alpha = in.roughness * in.roughness;
-    const F k = alpha * alpha;
-    const V3 mirror = n * (2.0f * n_dot_v_raw) - v;
-    const V3 bent = normalize(mirror + (n - mirror) * k);
-    environment_terms(n, bent, n_dot_v, in.roughness, irradiance, radiance, a, b);
-    const Rgb<F> ambient = brdf::reflect_environment(s, a, b, radiance, irradiance);
-    return color + ambient * in.occlusion;
+    environment_terms(n, reflected(n, v, in.roughness), n_dot_v, in.roughness, irradiance, radiance, a, b);
+    Rgb<F> ambient = brdf::reflect_environment(s, a, b, radiance, irradiance);
+    if (material.sheened())
+      ambient = ambient * (1.0f - layer.sheen_max * layer.sheen_albedo) +
+                in.sheen_color * irradiance * (layer.sheen_albedo * (1.0f / brdf::kPi));
+    color = color + ambient * in.occlusion;
+    if (!material.coated()) return color;
+    if (environment) {
+      const Rgb<F> l = radiance_along(reflected(n_coat, v, layer.coat_roughness), layer.coat_roughness);
+      const auto ab = environment->split_sum(layer.coat_n_dot_v, layer.coat_roughness);
+      coat = coat + l * ((brdf::kCoatF0 * ab.x + ab.y) * in.occlusion);
+    }
+    return color * brdf::coat_transmittance(in.clearcoat, layer.coat_n_dot_v) + coat * in.clearcoat;
   }
 
   // Exposure, tone mapping, then sRGB's encoding: the colour as displayed.
@@ -301,6 +207,52 @@ struct PbrShader {
   }
 
  private:
+  // What the sheen and the coat need at a pixel besides the lights (zero for a layer the material lacks).
+  template <class F>
+  struct Layers {
+    F sheen_roughness, sheen_alpha, sheen_albedo, sheen_max;
+    F coat_roughness, coat_alpha, coat_n_dot_v;
+  };
+  // The sheen's roughness kept in [1e-4, 1] and the coat's in [0.045, 1], as three.js keeps them, so that alpha
+  // is never 0 and a glossy coat still shows a light's highlight.
+  template <class F, class V3>
+  FACET_LANES_INLINE Layers<F> layers(const PbrInputs<F>& in, const F& n_dot_v, const V3& n_coat, const V3& v) const {
+    const F zero = brdf::constant<F>(0.0f), one = brdf::constant<F>(1.0f);
+    Layers<F> out{zero, zero, zero, zero, zero, zero, zero};
+    if (material.sheened()) {
+      out.sheen_roughness = brdf::min(brdf::max(in.sheen_roughness, brdf::constant<F>(1e-4f)), one);
+      out.sheen_alpha = out.sheen_roughness * out.sheen_roughness;
+      out.sheen_albedo = brdf::sheen_albedo(n_dot_v, out.sheen_roughness);
+      out.sheen_max = brdf::max3(in.sheen_color);
+    }
+    if (material.coated()) {
+      out.coat_roughness = brdf::min(brdf::max(in.clearcoat_roughness, brdf::constant<F>(0.045f)), one);
+      out.coat_alpha = out.coat_roughness * out.coat_roughness;
+      out.coat_n_dot_v = brdf::saturate(dot(n_coat, v));
+    }
+    return out;
+  }
+
+  // The reflection of v about n, bent towards n as roughness grows (where the lobe's energy lies), as three.js
+  // bends it.
+  template <class F, class V3>
+  FACET_LANES_INLINE static V3 reflected(const V3& n, const V3& v, const F& roughness) {
+    const F alpha = roughness * roughness;
+    const F k = alpha * alpha;
+    const V3 mirror = n * (2.0f * dot(n, v)) - v;
+    return normalize(mirror + (n - mirror) * k);
+  }
+
+  // The prefiltered environment along r at a roughness.
+  brdf::Rgb<float> radiance_along(glm::vec3 r, float roughness) const {
+    const glm::vec3 l = environment->radiance(r, roughness);
+    return {l.r, l.g, l.b};
+  }
+  FACET_LANES_INLINE brdf::Rgb<simd::Float> radiance_along(const simd::Vec3& r, const simd::Float& roughness) const {
+    const simd::Vec3 l = environment->radiance(r, roughness);
+    return {l.x, l.y, l.z};
+  }
+
   // The screen-space occlusion at a pixel centre; helper lanes past the target's edge read its last column or row.
   float screen_open(float x, float y) const {
     const int column = std::min(static_cast<int>(x) >> 1, screen_occlusion_width - 1);
