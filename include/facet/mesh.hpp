@@ -15,6 +15,7 @@
 
 #include "facet/light.hpp"
 #include "facet/sampler.hpp"
+#include "facet/texture_slots.hpp"
 
 namespace facet {
 
@@ -70,6 +71,8 @@ struct Material {
   glm::vec3 sheen_color{0.0f};
   float sheen_roughness = 0.0f;
   std::shared_ptr<const Texture> sheen_color_map{}, sheen_roughness_map{};
+  // The textures that read the second uv set (Mesh::uvs1), as texture_slot bits; the others read the first.
+  std::uint32_t uv1_maps = 0;
   // The file's filtering and wrapping for the texture (glTF samplers); unset: the scene's (SceneOptions::sampler).
   std::optional<Sampler> sampler{};
   // Drawn with its colour alone, no lighting, when the shading is Shading::automatic (glTF KHR_materials_unlit).
@@ -105,6 +108,7 @@ struct Mesh {
   // Each optional per-vertex attribute is either empty or has exactly one entry per position.
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> uvs;
+  std::vector<glm::vec2> uvs1;  // a second set (glTF TEXCOORD_1), read by the textures Material::uv1_maps names
   std::vector<glm::vec4> colors;
   std::vector<std::uint32_t> indices;        // 3 per triangle, counter-clockwise seen from the front
   std::vector<glm::vec4> face_colors;        // empty or one per triangle

@@ -267,12 +267,13 @@ class SceneReader {
     mesh_ = Mesh{};
     local_materials_.assign(materials_.size(), -1);
     all_normals_ = true;
-    any_uvs_ = any_colors_ = false;
+    any_uvs_ = any_uvs1_ = any_colors_ = false;
     std::uint32_t face = 0;
     for (const tinygltf::Primitive& p : model_.meshes[static_cast<std::size_t>(index)].primitives) primitive(p, face);
     if (mesh_.indices.empty()) return kNoTriangles;
     if (!all_normals_) mesh_.normals.clear();
     if (!any_uvs_) mesh_.uvs.clear();
+    if (!any_uvs1_) mesh_.uvs1.clear();
     if (!any_colors_) mesh_.colors.clear();
     if (std::all_of(mesh_.face_materials.begin(), mesh_.face_materials.end(), [](int m) { return m < 0; }))
       mesh_.face_materials.clear();
@@ -319,6 +320,7 @@ class SceneReader {
     out.positions = reader_.floats(attribute("POSITION"), 3, "POSITION");
     if (attribute("NORMAL") >= 0) out.normals = reader_.floats(attribute("NORMAL"), 3, "NORMAL");
     if (attribute("TEXCOORD_0") >= 0) out.uvs = reader_.floats(attribute("TEXCOORD_0"), 2, "TEXCOORD_0");
+    if (attribute("TEXCOORD_1") >= 0) out.uvs1 = reader_.floats(attribute("TEXCOORD_1"), 2, "TEXCOORD_1");
     if (const int colors = attribute("COLOR_0"); colors >= 0) {
       const int type = reader_.model.accessors.at(static_cast<std::size_t>(colors)).type;
       out.color_components = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
@@ -352,6 +354,7 @@ class SceneReader {
     };
     check_count(data.normals, 3, "NORMAL");
     check_count(data.uvs, 2, "TEXCOORD_0");
+    check_count(data.uvs1, 2, "TEXCOORD_1");
     check_count(data.colors, static_cast<std::size_t>(data.color_components), "COLOR_0");
 
     std::vector<std::uint32_t>& corners = data.corners;
@@ -373,7 +376,11 @@ class SceneReader {
     const int material = p.material >= 0 && static_cast<std::size_t>(p.material) < model_.materials.size()
                              ? p.material
                              : static_cast<int>(model_.materials.size());  // the default material
-    append_uvs(data.uvs, count, uv_transforms_[static_cast<std::size_t>(material)]);
+    // The base colour texture's transform goes to the set it reads (KHR_texture_transform is read for it alone).
+    const glm::mat3& transform = uv_transforms_[static_cast<std::size_t>(material)];
+    const bool base_on_set1 = materials_[static_cast<std::size_t>(material)].uv1_maps & texture_slot::base_color;
+    append_uvs(mesh_.uvs, any_uvs_, data.uvs, count, base_on_set1 ? glm::mat3(1.0f) : transform);
+    append_uvs(mesh_.uvs1, any_uvs1_, data.uvs1, count, base_on_set1 ? transform : glm::mat3(1.0f));
     append_colors(data.colors, data.color_components, count);
 
     const std::int32_t local = local_material(material);
@@ -411,15 +418,16 @@ class SceneReader {
   // The material's texture transform is applied here, in glTF's texture space (origin at the image's top-left):
   // each primitive's vertices are its own in the mesh. Then v becomes 1 - v, facet's (and OpenGL's) bottom-left
   // origin, as OBJ, PLY and Assimp's readers give it, so a mesh's uvs mean the same whatever file it came from.
-  void append_uvs(const std::vector<float>& uv, std::size_t count, const glm::mat3& uv_transform) {
+  void append_uvs(std::vector<glm::vec2>& into, bool& any, const std::vector<float>& uv, std::size_t count,
+                  const glm::mat3& uv_transform) {
     if (uv.empty()) {
-      mesh_.uvs.resize(mesh_.positions.size(), glm::vec2(0.0f));
+      into.resize(mesh_.positions.size(), glm::vec2(0.0f));
       return;
     }
-    any_uvs_ = true;
+    any = true;
     for (std::size_t i = 0; i < count; ++i) {
       const glm::vec3 moved = uv_transform * glm::vec3(uv[2 * i], uv[2 * i + 1], 1.0f);
-      mesh_.uvs.emplace_back(moved.x, 1.0f - moved.y);
+      into.emplace_back(moved.x, 1.0f - moved.y);
     }
   }
 
@@ -447,7 +455,7 @@ class SceneReader {
   // The mesh being read.
   Mesh mesh_;
   std::vector<std::int32_t> local_materials_;  // per file material: its index in mesh_.materials, or -1
-  bool all_normals_ = true, any_uvs_ = false, any_colors_ = false, warned_points_ = false;
+  bool all_normals_ = true, any_uvs_ = false, any_uvs1_ = false, any_colors_ = false, warned_points_ = false;
   std::set<int> warned_lights_;
 };
 

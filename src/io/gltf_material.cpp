@@ -115,6 +115,22 @@ int texture_index_of(const tinygltf::Value& extension, const char* key) {
   return index.IsInt() ? index.GetNumberAsInt() : -1;
 }
 
+// The uv set a textureInfo inside an extension's JSON reads (its texCoord; 0 when absent).
+int texcoord_of(const tinygltf::Value& extension, const char* key) {
+  if (!extension.Has(key) || !extension.Get(key).IsObject()) return 0;
+  const tinygltf::Value& set = extension.Get(key).Get("texCoord");
+  return set.IsInt() ? set.GetNumberAsInt() : 0;
+}
+
+// Marks `slot` in out.uv1_maps when its texture reads TEXCOORD_1; another set than 0 or 1 is read as 0, with a
+// warning.
+void read_uv_set(int texcoord, std::uint32_t slot, Material& out, const std::string& source) {
+  if (texcoord == 1) out.uv1_maps |= slot;
+  else if (texcoord != 0)
+    warn(source, "material '" + printable(out.name) + "': a texture reads TEXCOORD_" + std::to_string(texcoord) +
+                     ", which facet does not read; using TEXCOORD_0");
+}
+
 // A number of an extension's JSON, or nullopt when it is absent; a present non-number gives NaN, so that the
 // caller's range check warns about it.
 std::optional<double> number_of(const tinygltf::Value& extension, const char* key) {
@@ -158,6 +174,9 @@ void read_dielectric_extensions(const tinygltf::Material& m, const std::string& 
   }
   out.specular_map = texture(texture_index_of(specular, "specularTexture"), TexelEncoding::linear);
   out.specular_color_map = texture(texture_index_of(specular, "specularColorTexture"), TexelEncoding::srgb);
+  if (out.specular_map) read_uv_set(texcoord_of(specular, "specularTexture"), texture_slot::specular, out, source);
+  if (out.specular_color_map)
+    read_uv_set(texcoord_of(specular, "specularColorTexture"), texture_slot::specular_color, out, source);
 }
 
 // An extension object of a material, or nullptr.
@@ -186,6 +205,9 @@ void read_layer_extensions(const tinygltf::Material& m, const std::string& sourc
     out.clearcoat_roughness = unit(*coat, "clearcoatRoughnessFactor", 0.0f);
     out.clearcoat_roughness_map = texture(texture_index_of(*coat, "clearcoatRoughnessTexture"), TexelEncoding::linear);
     out.clearcoat_normal_map = texture(texture_index_of(*coat, "clearcoatNormalTexture"), TexelEncoding::linear);
+    read_uv_set(texcoord_of(*coat, "clearcoatTexture"), texture_slot::clearcoat, out, source);
+    read_uv_set(texcoord_of(*coat, "clearcoatRoughnessTexture"), texture_slot::clearcoat_roughness, out, source);
+    read_uv_set(texcoord_of(*coat, "clearcoatNormalTexture"), texture_slot::clearcoat_normal, out, source);
     if (out.clearcoat_normal_map) {
       const std::optional<double> scale = number_of(coat->Get("clearcoatNormalTexture"), "scale");
       if (scale && std::isfinite(*scale)) out.clearcoat_normal_scale = static_cast<float>(*scale);
@@ -207,6 +229,8 @@ void read_layer_extensions(const tinygltf::Material& m, const std::string& sourc
     out.sheen_color_map = texture(texture_index_of(*sheen, "sheenColorTexture"), TexelEncoding::srgb);
     out.sheen_roughness = unit(*sheen, "sheenRoughnessFactor", 0.0f);
     out.sheen_roughness_map = texture(texture_index_of(*sheen, "sheenRoughnessTexture"), TexelEncoding::linear);
+    read_uv_set(texcoord_of(*sheen, "sheenColorTexture"), texture_slot::sheen_color, out, source);
+    read_uv_set(texcoord_of(*sheen, "sheenRoughnessTexture"), texture_slot::sheen_roughness, out, source);
   }
 }
 
@@ -227,7 +251,7 @@ glm::mat3 uv_transform_of(const tinygltf::TextureInfo& info, const std::string& 
     return glm::vec2(number(t.Get(key).Get(0), fallback), number(t.Get(key).Get(1), fallback));
   };
   if (t.Has("texCoord") && number(t.Get("texCoord"), 0.0) != 0.0f)
-    warn(source, "KHR_texture_transform selects another texture coordinate set; facet reads TEXCOORD_0 only");
+    warn(source, "KHR_texture_transform's texCoord is not read; the texture keeps its own coordinate set");
   const glm::vec2 offset = pair("offset", 0.0f), scale = pair("scale", 1.0f);
   const float rotation = t.Has("rotation") ? number(t.Get("rotation"), 0.0) : 0.0f;
   const float c = std::cos(rotation), s = std::sin(rotation);
@@ -279,6 +303,13 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
     out.emissive = glm::vec3(unit_vector<3>(m.emissiveFactor)) * strength;
   }
   out.emissive_map = texture(m.emissiveTexture.index, TexelEncoding::srgb);
+  namespace slot = texture_slot;
+  if (out.diffuse_map) read_uv_set(pbr.baseColorTexture.texCoord, slot::base_color, out, source);
+  if (out.metallic_roughness_map)
+    read_uv_set(pbr.metallicRoughnessTexture.texCoord, slot::metallic_roughness, out, source);
+  if (out.normal_map) read_uv_set(m.normalTexture.texCoord, slot::normal, out, source);
+  if (out.occlusion_map) read_uv_set(m.occlusionTexture.texCoord, slot::occlusion, out, source);
+  if (out.emissive_map) read_uv_set(m.emissiveTexture.texCoord, slot::emissive, out, source);
   out.unlit = m.extensions.count("KHR_materials_unlit") > 0;
   read_dielectric_extensions(m, source, out, texture);
   read_layer_extensions(m, source, out, texture);

@@ -41,7 +41,8 @@ bool is_identity(const glm::mat4& m) { return m == glm::mat4(1.0f); }
 
 Mesh flatten(Model model, const std::string& source) {
   std::size_t vertices = 0, triangles = 0;
-  bool all_normals = true, any_uvs = false, any_colors = false, any_face_colors = false, any_ids = false;
+  bool all_normals = true, any_uvs = false, any_uvs1 = false, any_colors = false, any_face_colors = false;
+  bool any_ids = false;
   for (const ModelInstance& instance : model.instances) {
     if (instance.mesh >= model.meshes.size())
       throw InputError(source, "instance " + std::to_string(instance.id) + " places mesh " +
@@ -53,6 +54,7 @@ Mesh flatten(Model model, const std::string& source) {
     triangles += mesh.triangle_count();
     all_normals = all_normals && !mesh.normals.empty();
     any_uvs = any_uvs || !mesh.uvs.empty();
+    any_uvs1 = any_uvs1 || !mesh.uvs1.empty();
     any_colors = any_colors || !mesh.colors.empty();
     any_face_colors = any_face_colors || !mesh.face_colors.empty();
     any_ids = any_ids || instance.id != 0;
@@ -71,6 +73,7 @@ Mesh flatten(Model model, const std::string& source) {
   out.positions.reserve(vertices);
   if (all_normals) out.normals.reserve(vertices);
   if (any_uvs) out.uvs.reserve(vertices);
+  if (any_uvs1) out.uvs1.reserve(vertices);
   if (any_colors) out.colors.reserve(vertices);
   out.indices.reserve(3 * triangles);
   out.face_ids.reserve(triangles);
@@ -102,6 +105,10 @@ Mesh flatten(Model model, const std::string& source) {
     if (any_uvs) {
       if (mesh.uvs.empty()) out.uvs.resize(out.positions.size(), glm::vec2(0.0f));
       else out.uvs.insert(out.uvs.end(), mesh.uvs.begin(), mesh.uvs.end());
+    }
+    if (any_uvs1) {
+      if (mesh.uvs1.empty()) out.uvs1.resize(out.positions.size(), glm::vec2(0.0f));
+      else out.uvs1.insert(out.uvs1.end(), mesh.uvs1.begin(), mesh.uvs1.end());
     }
     if (any_colors) {
       if (mesh.colors.empty()) out.colors.resize(out.positions.size(), glm::vec4(1.0f));

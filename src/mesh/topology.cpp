@@ -354,10 +354,11 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
 
   // Attributes with one entry per vertex are copied along; a wrongly sized one is left alone (the mesh was already
   // invalid, and users check sizes against positions).
-  const bool copy_uvs = mesh.uvs.size() == n, copy_colors = mesh.colors.size() == n;
+  const bool copy_uvs = mesh.uvs.size() == n, copy_uvs1 = mesh.uvs1.size() == n, copy_colors = mesh.colors.size() == n;
   mesh.positions.resize(total);
   mesh.normals.assign(total, glm::vec3(0, 0, 1));
   if (copy_uvs) mesh.uvs.resize(total);
+  if (copy_uvs1) mesh.uvs1.resize(total);
   if (copy_colors) mesh.colors.resize(total);
   std::size_t next = n;
   for (std::size_t v = 0; v < n; ++v) {
@@ -374,6 +375,7 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
         mesh.positions[target] = mesh.positions[v];
         mesh.normals[target] = normals[corner_normal[c]];
         if (copy_uvs) mesh.uvs[target] = mesh.uvs[v];
+        if (copy_uvs1) mesh.uvs1[target] = mesh.uvs1[v];
         if (copy_colors) mesh.colors[target] = mesh.colors[v];
       } else {
         target = mesh.indices[bucketed[i - 1]];  // same run as the previous corner, already re-pointed

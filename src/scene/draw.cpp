@@ -56,6 +56,7 @@ PbrMaterial pbr_material(const Material& material, const SurfaceColor& surface) 
   m.normal_map = material.normal_map.get();
   m.specular_map = material.specular_map.get();
   m.specular_color_map = material.specular_color_map.get();
+  m.uv1_maps = material.uv1_maps;
   m.clearcoat = material.clearcoat;
   m.clearcoat_roughness = material.clearcoat_roughness;
   m.clearcoat_map = material.clearcoat_map.get();

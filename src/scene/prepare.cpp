@@ -59,18 +59,21 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
     copy.positions = mesh.positions;
     copy.indices = mesh.indices;
     copy.uvs = mesh.uvs;
+    copy.uvs1 = mesh.uvs1;
     copy.colors = mesh.colors;
     compute_crease_normals(copy, kCreaseAngle);
   }
   const Mesh& source = creased ? *creased : mesh;
   const std::size_t n = source.positions.size();
-  const bool has_uvs = source.uvs.size() == n, has_colors = source.colors.size() == n;
+  const bool has_uvs = source.uvs.size() == n, has_uvs1 = source.uvs1.size() == n;
+  const bool has_colors = source.colors.size() == n;
   out.vertices.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     MeshVertex& v = out.vertices[i];
     v.position = source.positions[i];
     v.normal = source.normals[i];
     v.uv = has_uvs ? source.uvs[i] : glm::vec2(0.0f);
+    v.uv1 = has_uvs1 ? source.uvs1[i] : glm::vec2(0.0f);
     v.color = has_colors ? source.colors[i] : glm::vec4(1.0f);
   }
 

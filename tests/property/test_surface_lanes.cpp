@@ -52,7 +52,8 @@ Geometry open_sphere() {
     for (int j = 0; j <= n; ++j) {
       const float theta = 2.2f * static_cast<float>(i) / n, phi = 6.2831853f * static_cast<float>(j) / n;
       const glm::vec3 p(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
-      g.vertices.push_back({p, p, {3.0f * j / n, 2.0f * i / n}, {0.5f + 0.5f * p.x, 0.7f, 0.5f - 0.4f * p.z, 1.0f}});
+      g.vertices.push_back({p, p, {3.0f * j / n, 2.0f * i / n}, {0.5f + 0.5f * p.x, 0.7f, 0.5f - 0.4f * p.z, 1.0f},
+                            {0.7f * i / n, 5.0f * j / n}});
     }
   std::mt19937 rng(3);
   std::uniform_real_distribution<float> unit(0.2f, 1.0f);
@@ -287,6 +288,11 @@ TEST(SurfaceLanes, PbrMatchesTheScalarFragment) {
     expect_lanes_match(layered, g, std::string("PBR, textured, clearcoat and sheen, ") + c.name);
     layered.material.clearcoat_normal_map = &linear;
     expect_lanes_match(layered, g, std::string("PBR, clearcoat normal map, ") + c.name);
+    // TEXCOORD_1: some maps on the second uv set, normal maps included.
+    layered.material.uv1_maps = texture_slot::base_color | texture_slot::sheen_color | texture_slot::clearcoat_normal;
+    expect_lanes_match(layered, g, std::string("PBR, second uv set, ") + c.name);
+    layered.material.clearcoat_normal_map = nullptr;
+    expect_lanes_match(layered, g, std::string("PBR, second uv set on lanes, ") + c.name);
   }
 }
 

@@ -11,6 +11,7 @@ struct MeshVertex {
   glm::vec3 normal{0, 0, 1};
   glm::vec2 uv{0};
   glm::vec4 color{1};
+  glm::vec2 uv1{0};  // the second texture coordinate set, read by the physically based shading only
 };
 
 // The matrices a mesh shader needs for one instance, computed once per draw rather than per vertex.

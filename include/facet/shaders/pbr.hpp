@@ -37,6 +37,7 @@ struct PbrShader {
     glm::vec3 normal;  // world space, not normalized until the pixel
     glm::vec4 color;   // linear
     glm::vec2 uv;
+    glm::vec2 uv1;  // the second set, for the maps that ask for it
   };
 
   ObjectTransforms transforms{};
@@ -58,7 +59,8 @@ struct PbrShader {
     const glm::vec4 color(detail::srgb_decode(v.color.r, decode), detail::srgb_decode(v.color.g, decode),
                           detail::srgb_decode(v.color.b, decode), v.color.a);
     return {transforms.clip_from_object * p,
-            {glm::vec3(transforms.world_from_object * p), transforms.normal_from_object * v.normal, color, v.uv}};
+            {glm::vec3(transforms.world_from_object * p), transforms.normal_from_object * v.normal, color, v.uv,
+             v.uv1}};
   }
 
   // What the material is at one pixel.
@@ -66,7 +68,9 @@ struct PbrShader {
     const glm::vec4 c = f.varyings.color;
     PbrInputs<float> in = factor_inputs<float>(material, {c.r, c.g, c.b}, c.a);
     if (material.face_colors) multiply_face_color(material.face_colors[f.primitive], in);
-    if (material.textured()) multiply_textures(material, f.varyings.uv, f.ddx.uv, f.ddy.uv, in);
+    if (material.textured())
+      multiply_textures(material, {{f.varyings.uv, f.varyings.uv1}, {f.ddx.uv, f.ddx.uv1}, {f.ddy.uv, f.ddy.uv1}},
+                        in);
     if (material.opaque) in.alpha = 1.0f;
     return in;
   }
@@ -78,8 +82,11 @@ struct PbrShader {
     if (!transforms.front_side(f.front_facing)) n = -n;
     glm::vec3 n_coat = n;
     if (material.coated() && material.clearcoat_normal_map)
-      n_coat = mapped_normal(n, f, *material.clearcoat_normal_map, material.sampler, material.clearcoat_normal_scale);
-    if (material.normal_map) n = mapped_normal(n, f, *material.normal_map, material.sampler, material.normal_scale);
+      n_coat = mapped_normal(n, f, *material.clearcoat_normal_map, material.sampler, material.clearcoat_normal_scale,
+                             uvs_of(texture_slot::clearcoat_normal));
+    if (material.normal_map)
+      n = mapped_normal(n, f, *material.normal_map, material.sampler, material.normal_scale,
+                        uvs_of(texture_slot::normal));
     PbrInputs<float> in = inputs(f);
     if (screen_occlusion) in.occlusion = in.occlusion * screen_open(f.screen.x, f.screen.y);
     const brdf::Rgb<float> c = display(shade(in, n, n_coat, f.varyings.world));
@@ -111,9 +118,12 @@ struct PbrShader {
     const Color c = f.get(&Varyings::color);
     PbrInputs<Float> in = factor_inputs<Float>(material, {c.r, c.g, c.b}, c.a);
     if (material.face_colors || material.textured()) {
-      const std::size_t u = FragmentLanes<Varyings>::float_index(&Varyings::uv);
-      multiply_per_pixel(material, f.primitive, f.get(&Varyings::uv), {f.ddx[u], f.ddx[u + 1]},
-                         {f.ddy[u], f.ddy[u + 1]}, in);
+      const std::size_t u0 = FragmentLanes<Varyings>::float_index(&Varyings::uv);
+      const std::size_t u1 = FragmentLanes<Varyings>::float_index(&Varyings::uv1);
+      const LaneUvs uvs{{f.get(&Varyings::uv), f.get(&Varyings::uv1)},
+                        {{f.ddx[u0], f.ddx[u0 + 1]}, {f.ddx[u1], f.ddx[u1 + 1]}},
+                        {{f.ddy[u0], f.ddy[u0 + 1]}, {f.ddy[u1], f.ddy[u1 + 1]}}};
+      multiply_per_pixel(material, f.primitive, uvs, in);
     }
     if (material.opaque) in.alpha = splat(1.0f);
     return in;
@@ -207,6 +217,11 @@ struct PbrShader {
   }
 
  private:
+  // The varying holding the uv set a map reads.
+  glm::vec2 Varyings::*uvs_of(std::uint32_t slot) const {
+    return (material.uv1_maps & slot) ? &Varyings::uv1 : &Varyings::uv;
+  }
+
   // What the sheen and the coat need at a pixel besides the lights (zero for a layer the material lacks).
   template <class F>
   struct Layers {

@@ -8,6 +8,7 @@
 #include "facet/shaders/brdf.hpp"
 #include "facet/simd.hpp"
 #include "facet/texture.hpp"
+#include "facet/texture_slots.hpp"
 
 namespace facet {
 
@@ -41,6 +42,7 @@ struct PbrMaterial {
   const Texture* sheen_color_map = nullptr;          // sRGB-encoded, multiplying sheen_color
   const Texture* sheen_roughness_map = nullptr;      // alpha multiplies sheen_roughness
   float normal_scale = 1.0f, clearcoat_normal_scale = 1.0f;
+  std::uint32_t uv1_maps = 0;  // the maps that read the second uv set, as texture_slot bits
   Sampler sampler{};
   bool opaque = false;  // alpha 1 whatever the inputs say (AlphaMode::opaque)
 
@@ -111,41 +113,66 @@ inline void multiply_face_color(glm::vec4 displayed, PbrInputs<float>& in) {
   in.alpha *= displayed.a;
 }
 
-// The material's textures at one pixel, multiplied into its inputs as glTF and its extensions define them.
-inline void multiply_textures(const PbrMaterial& m, glm::vec2 uv, glm::vec2 dx, glm::vec2 dy, PbrInputs<float>& in) {
-  const auto linear_rgb = [&](const Texture& map, brdf::Rgb<float>& into) {
-    const glm::vec4 t = map.sample_linear(uv, dx, dy, m.sampler);
+// The texture coordinates of one pixel in both sets, with their screen-space derivatives.
+struct PixelUvs {
+  glm::vec2 uv[2], dx[2], dy[2];
+};
+
+// The material's textures at one pixel, multiplied into its inputs as glTF and its extensions define them, each
+// read with the uv set the material gives it.
+inline void multiply_textures(const PbrMaterial& m, const PixelUvs& at, PbrInputs<float>& in) {
+  const auto sample = [&](const Texture& map, std::uint32_t slot) {
+    const int set = (m.uv1_maps & slot) ? 1 : 0;
+    return map.sample(at.uv[set], at.dx[set], at.dy[set], m.sampler);
+  };
+  const auto linear_rgb = [&](const Texture& map, std::uint32_t slot, brdf::Rgb<float>& into) {
+    const int set = (m.uv1_maps & slot) ? 1 : 0;
+    const glm::vec4 t = map.sample_linear(at.uv[set], at.dx[set], at.dy[set], m.sampler);
     into = into * brdf::Rgb<float>{t.r, t.g, t.b};
     return t;
   };
-  if (m.base_color_map) in.alpha *= linear_rgb(*m.base_color_map, in.base).a;
+  namespace slot = texture_slot;
+  if (m.base_color_map) in.alpha *= linear_rgb(*m.base_color_map, slot::base_color, in.base).a;
   if (m.metallic_roughness_map) {
-    const glm::vec4 t = m.metallic_roughness_map->sample(uv, dx, dy, m.sampler);
+    const glm::vec4 t = sample(*m.metallic_roughness_map, slot::metallic_roughness);
     in.roughness *= t.g;
     in.metallic *= t.b;
   }
   if (m.occlusion_map)
-    in.occlusion = 1.0f + m.occlusion_strength * (m.occlusion_map->sample(uv, dx, dy, m.sampler).r - 1.0f);
-  if (m.emissive_map) linear_rgb(*m.emissive_map, in.emissive);
-  if (m.specular_map) in.specular *= m.specular_map->sample(uv, dx, dy, m.sampler).a;
-  if (m.specular_color_map) linear_rgb(*m.specular_color_map, in.specular_color);
-  if (m.clearcoat_map) in.clearcoat *= m.clearcoat_map->sample(uv, dx, dy, m.sampler).r;
+    in.occlusion = 1.0f + m.occlusion_strength * (sample(*m.occlusion_map, slot::occlusion).r - 1.0f);
+  if (m.emissive_map) linear_rgb(*m.emissive_map, slot::emissive, in.emissive);
+  if (m.specular_map) in.specular *= sample(*m.specular_map, slot::specular).a;
+  if (m.specular_color_map) linear_rgb(*m.specular_color_map, slot::specular_color, in.specular_color);
+  if (m.clearcoat_map) in.clearcoat *= sample(*m.clearcoat_map, slot::clearcoat).r;
   if (m.clearcoat_roughness_map)
-    in.clearcoat_roughness *= m.clearcoat_roughness_map->sample(uv, dx, dy, m.sampler).g;
-  if (m.sheen_color_map) linear_rgb(*m.sheen_color_map, in.sheen_color);
-  if (m.sheen_roughness_map) in.sheen_roughness *= m.sheen_roughness_map->sample(uv, dx, dy, m.sampler).a;
+    in.clearcoat_roughness *= sample(*m.clearcoat_roughness_map, slot::clearcoat_roughness).g;
+  if (m.sheen_color_map) linear_rgb(*m.sheen_color_map, slot::sheen_color, in.sheen_color);
+  if (m.sheen_roughness_map) in.sheen_roughness *= sample(*m.sheen_roughness_map, slot::sheen_roughness).a;
 }
 
+// PixelUvs for 16 lanes.
+struct LaneUvs {
+  simd::Vec2 uv[2], dx[2], dy[2];
+  PixelUvs lane(int k) const {
+    PixelUvs out;
+    for (int s = 0; s < 2; ++s) {
+      out.uv[s] = {uv[s].x[k], uv[s].y[k]};
+      out.dx[s] = {dx[s].x[k], dx[s].y[k]};
+      out.dy[s] = {dy[s].x[k], dy[s].y[k]};
+    }
+    return out;
+  }
+};
+
 // The same per-pixel steps for 16 lanes, lane by lane with the scalar functions, so both paths agree exactly.
-// `primitive` is read only with face colours; `dx` and `dy` are the uvs' derivatives.
-FACET_LANES_INLINE void multiply_per_pixel(const PbrMaterial& m, const simd::UInt& primitive, const simd::Vec2& uv,
-                                           const simd::Vec2& dx, const simd::Vec2& dy, PbrInputs<simd::Float>& in) {
+// `primitive` is read only with face colours.
+FACET_LANES_INLINE void multiply_per_pixel(const PbrMaterial& m, const simd::UInt& primitive, const LaneUvs& uvs,
+                                           PbrInputs<simd::Float>& in) {
   for (int k = 0; k < simd::kLanes; ++k) {
     PbrInputs<float> one;
     in.each_number(one, [k](simd::Float& lanes, float& v) { v = lanes[k]; });
     if (m.face_colors) multiply_face_color(m.face_colors[primitive[k]], one);
-    if (m.textured())
-      multiply_textures(m, {uv.x[k], uv.y[k]}, {dx.x[k], dx.y[k]}, {dy.x[k], dy.y[k]}, one);
+    if (m.textured()) multiply_textures(m, uvs.lane(k), one);
     in.each_number(one, [k](simd::Float& lanes, float& v) { lanes[k] = v; });
   }
 }
