@@ -1,20 +1,23 @@
 # install.cmake - install rules: the library, its headers, the facet program, a CMake package and facet.pc.
+# Components, which cmake/packaging.cmake maps to Debian packages: runtime (the program; the Python module is
+# python/'s component python) and dev (everything a program built against facet needs).
 include(GNUInstallDirs)
 include(CMakePackageConfigHelpers)
 
-install(TARGETS facet EXPORT facetTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR})
-install(DIRECTORY include/facet DESTINATION ${CMAKE_INSTALL_INCLUDEDIR})
-install(FILES ${CMAKE_CURRENT_BINARY_DIR}/include/facet/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/facet)
-install(TARGETS facet_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR})
+install(TARGETS facet EXPORT facetTargets ARCHIVE DESTINATION ${CMAKE_INSTALL_LIBDIR} COMPONENT dev)
+install(DIRECTORY include/facet DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONENT dev)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/include/facet/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/facet
+        COMPONENT dev)
+install(TARGETS facet_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
 
 set(FACET_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/facet)
-install(EXPORT facetTargets NAMESPACE facet:: DESTINATION ${FACET_CMAKE_DIR})
+install(EXPORT facetTargets NAMESPACE facet:: DESTINATION ${FACET_CMAKE_DIR} COMPONENT dev)
 configure_package_config_file(cmake/facetConfig.cmake.in ${CMAKE_CURRENT_BINARY_DIR}/facetConfig.cmake
                               INSTALL_DESTINATION ${FACET_CMAKE_DIR})
 write_basic_package_version_file(${CMAKE_CURRENT_BINARY_DIR}/facetConfigVersion.cmake
                                  COMPATIBILITY SameMinorVersion)
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/facetConfig.cmake ${CMAKE_CURRENT_BINARY_DIR}/facetConfigVersion.cmake
-        DESTINATION ${FACET_CMAKE_DIR})
+        DESTINATION ${FACET_CMAKE_DIR} COMPONENT dev)
 
 # facet is a static library, so facet.pc lists the libraries it uses in Libs: a plain `pkg-config --libs facet`
 # links. The flags the templated stages need (see CMakeLists.txt) travel in Cflags.
@@ -44,13 +47,4 @@ endforeach()
 string(STRIP "${FACET_PC_LIBS}" FACET_PC_LIBS)
 file(RELATIVE_PATH FACET_PC_PREFIX_FROM_PCFILEDIR /prefix/${CMAKE_INSTALL_LIBDIR}/pkgconfig /prefix)
 configure_file(cmake/facet.pc.in ${CMAKE_CURRENT_BINARY_DIR}/facet.pc @ONLY)
-install(FILES ${CMAKE_CURRENT_BINARY_DIR}/facet.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig)
-
-set(CPACK_PACKAGE_NAME facet)
-set(CPACK_PACKAGE_CONTACT "facet developers")
-# The -dev packages of the libraries libfacet.a links, for programs built against it; Assimp's run-time library alone,
-# which the facet program and the library open when a model needs it.
-set(CPACK_DEBIAN_PACKAGE_DEPENDS
-    "libtinyobjloader-dev, libtinygltf-dev, libassimp${assimp_VERSION_MAJOR}, libglm-dev, libopenexr-dev, libdraco-dev, libmeshoptimizer-dev, libdeflate-dev, libgif-dev")
-set(CPACK_DEBIAN_FILE_NAME DEB-DEFAULT)
-include(CPack)
+install(FILES ${CMAKE_CURRENT_BINARY_DIR}/facet.pc DESTINATION ${CMAKE_INSTALL_LIBDIR}/pkgconfig COMPONENT dev)
