@@ -229,14 +229,32 @@ def layers(out):
     g.write(os.path.join(out, 'layers.gltf'))
 
 
+def glass(out):
+    """KHR_materials_transmission: a clear and a green glass sphere, and a half-transmissive one, in front of a
+    textured cube."""
+    g = Gltf()
+    base = np.zeros((64, 64, 3), np.uint8)
+    base[(np.arange(64)[:, None] // 8 + np.arange(64)[None, :] // 8) % 2 == 0] = (230, 120, 30)
+    base[(np.arange(64)[:, None] // 8 + np.arange(64)[None, :] // 8) % 2 == 1] = (30, 60, 200)
+    g.node(g.geometry(*cube(2.4)), g.material(pbrMetallicRoughness={'baseColorTexture': {'index': g.texture(base)},
+                                                                    'metallicFactor': 0, 'roughnessFactor': 0.8}),
+           translation=(0, 0, -1.8))
+    ball = g.geometry(*sphere(0.5))
+    clear = lambda t: {'KHR_materials_transmission': {'transmissionFactor': t}}
+    for x, color, t in ((-1.2, (1, 1, 1, 1), 1.0), (0, (0.2, 0.9, 0.3, 1), 1.0), (1.2, (0.9, 0.2, 0.2, 1), 0.5)):
+        g.node(ball, g.material(**pbr(color, 0, 0.1, extensions=clear(t))), translation=(x, 0, 0))
+    g.doc['extensionsUsed'] = ['KHR_materials_transmission']
+    g.write(os.path.join(out, 'glass.gltf'))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit('usage: make_models.py OUT_DIR')
     out = sys.argv[1]
     os.makedirs(out, exist_ok=True)
-    for make in (sweep, default_material, emissive, blend, factors, textured, layers):
+    for make in (sweep, default_material, emissive, blend, factors, textured, layers, glass):
         make(out)
-    print(f'{out}: sweep, default_material, emissive, blend, factors, textured, layers (.gltf)')
+    print(f'{out}: sweep, default_material, emissive, blend, factors, textured, layers, glass (.gltf)')
 
 
 if __name__ == '__main__':

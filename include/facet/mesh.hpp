@@ -71,6 +71,10 @@ struct Material {
   glm::vec3 sheen_color{0.0f};
   float sheen_roughness = 0.0f;
   std::shared_ptr<const Texture> sheen_color_map{}, sheen_roughness_map{};
+  // glTF KHR_materials_transmission: how much light passes through (times transmission_map's red), drawn as an
+  // approximation (docs/FORMATS.md) that needs alpha_mode blend; the glTF reader sets it.
+  float transmission = 0.0f;
+  std::shared_ptr<const Texture> transmission_map{};
   // The textures that read the second uv set (Mesh::uvs1), as texture_slot bits; the others read the first.
   std::uint32_t uv1_maps = 0;
   // The file's filtering and wrapping for the texture (glTF samplers); unset: the scene's (SceneOptions::sampler).

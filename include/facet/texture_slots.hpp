@@ -17,5 +17,6 @@ inline constexpr std::uint32_t clearcoat_roughness = 1u << 8;
 inline constexpr std::uint32_t clearcoat_normal = 1u << 9;
 inline constexpr std::uint32_t sheen_color = 1u << 10;
 inline constexpr std::uint32_t sheen_roughness = 1u << 11;
+inline constexpr std::uint32_t transmission = 1u << 12;
 
 }  // namespace facet::texture_slot

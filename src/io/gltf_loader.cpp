@@ -31,14 +31,16 @@ namespace {
 
 // Required extensions facet implements: the reader handles any component type, so quantized attributes
 // (KHR_mesh_quantization) read like floats; texture transforms are applied to TEXCOORD_0 (KHR_texture_transform);
-// unlit materials draw with their colour alone (KHR_materials_unlit); emission is scaled
+// unlit materials draw with their colour alone (KHR_materials_unlit); the material extensions facet shades are
+// read (ior, specular, clearcoat, sheen, and transmission as docs/FORMATS.md approximates it); emission is scaled
 // (KHR_materials_emissive_strength); Draco-compressed primitives are decoded
 // (KHR_draco_mesh_compression), and so are compressed buffer views where meshoptimizer is built in
 // (EXT_meshopt_compression).
 const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization", "KHR_texture_transform",
                                                   "KHR_materials_unlit", "KHR_materials_emissive_strength",
                                                   "KHR_materials_ior", "KHR_materials_specular",
-                                                  "KHR_lights_punctual",
+                                                  "KHR_materials_clearcoat", "KHR_materials_sheen",
+                                                  "KHR_materials_transmission", "KHR_lights_punctual",
                                                   "KHR_draco_mesh_compression",
 #ifndef FACET_NO_MESHOPT
                                                   "EXT_meshopt_compression"

@@ -1,5 +1,5 @@
 // gltf_material.cpp - a glTF file's materials as facet's Material: factors, textures, samplers, texture transforms,
-// and the extensions that refine them (emissive strength, unlit, ior, specular, clearcoat, sheen).
+// and the extensions that refine them (emissive strength, unlit, ior, specular, clearcoat, sheen, transmission).
 #include "io/gltf_material.hpp"
 
 #include <algorithm>
@@ -232,6 +232,11 @@ void read_layer_extensions(const tinygltf::Material& m, const std::string& sourc
     read_uv_set(texcoord_of(*sheen, "sheenColorTexture"), texture_slot::sheen_color, out, source);
     read_uv_set(texcoord_of(*sheen, "sheenRoughnessTexture"), texture_slot::sheen_roughness, out, source);
   }
+  if (const tinygltf::Value* transmission = extension_of(m, "KHR_materials_transmission")) {
+    out.transmission = unit(*transmission, "transmissionFactor", 0.0f);
+    out.transmission_map = texture(texture_index_of(*transmission, "transmissionTexture"), TexelEncoding::linear);
+    read_uv_set(texcoord_of(*transmission, "transmissionTexture"), texture_slot::transmission, out, source);
+  }
 }
 
 }  // namespace
@@ -319,6 +324,8 @@ Material material_of(const tinygltf::Model& model, const tinygltf::Material& m, 
     out.alpha_mode = AlphaMode::mask;
     if (std::isfinite(m.alphaCutoff)) out.alpha_cutoff = static_cast<float>(m.alphaCutoff);
   }
+  // Transmission is drawn by blending what lies behind (pbr.hpp); a masked surface keeps its cut-out instead.
+  if (out.transmission > 0.0f && out.alpha_mode == AlphaMode::opaque) out.alpha_mode = AlphaMode::blend;
   return out;
 }
 

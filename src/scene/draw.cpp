@@ -67,6 +67,11 @@ PbrMaterial pbr_material(const Material& material, const SurfaceColor& surface) 
   m.sheen_roughness = material.sheen_roughness;
   m.sheen_color_map = material.sheen_color_map.get();
   m.sheen_roughness_map = material.sheen_roughness_map.get();
+  // Transmission shows through blending; an opaque or masked surface covers what is behind it whatever it says.
+  if (material.alpha_mode == AlphaMode::blend) {
+    m.transmission = material.transmission;
+    m.transmission_map = material.transmission_map.get();
+  }
   m.normal_scale = material.normal_scale;
   m.sampler = surface.sampler;
   m.opaque = surface.opaque;

@@ -293,6 +293,11 @@ TEST(SurfaceLanes, PbrMatchesTheScalarFragment) {
     expect_lanes_match(layered, g, std::string("PBR, second uv set, ") + c.name);
     layered.material.clearcoat_normal_map = nullptr;
     expect_lanes_match(layered, g, std::string("PBR, second uv set on lanes, ") + c.name);
+    // KHR_materials_transmission, from its factor and then a texture too.
+    layered.material.transmission = 0.9f;
+    expect_lanes_match(layered, g, std::string("PBR, transmission, ") + c.name);
+    layered.material.transmission_map = &linear;
+    expect_lanes_match(layered, g, std::string("PBR, textured transmission, ") + c.name);
   }
 }
 

@@ -1,5 +1,5 @@
-// test_clearcoat_sheen.cpp - KHR_materials_clearcoat and _sheen: the layers' formulas, how they light a surface,
-// and what the glTF reader keeps of them (values the specification does not allow included).
+// test_clearcoat_sheen.cpp - KHR_materials_clearcoat, _sheen and _transmission: the layers' formulas, how they
+// light a surface, and what the glTF reader keeps of them (values the specification does not allow included).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -141,6 +141,28 @@ TEST(PbrLayers, CoatAddsAHighlightAndSheenARim) {
   EXPECT_GT(rim, 2.0f * centre);
 }
 
+// Transmission: a clear dielectric lets through all but its Fresnel reflection, so its coverage (alpha) is the
+// reflectance at the view angle, 0.04 head-on rising towards 1 at grazing views; a metal transmits nothing.
+TEST(PbrLayers, TransmissionCoversByTheFresnelTerm) {
+  PbrShader shader;
+  shader.eye = glm::vec3(0.0f, 0.0f, 1.0f);
+  const auto coverage = [&](float metallic, float transmission, float n_dot_v) {
+    shader.material = PbrMaterial{};
+    shader.material.metallic = metallic;
+    shader.material.roughness = 0.2f;
+    shader.material.transmission = transmission;
+    Fragment<PbrShader::Varyings> f{};
+    f.varyings.normal = direction(n_dot_v);
+    f.varyings.color = glm::vec4(1.0f);
+    return shader.fragment(f).a;
+  };
+  EXPECT_NEAR(coverage(0.0f, 1.0f, 1.0f), 0.04f, 1e-4f);
+  EXPECT_NEAR(coverage(0.0f, 1.0f, 0.1f), 0.04f + 0.96f * std::pow(0.9f, 5.0f), 1e-3f);
+  EXPECT_NEAR(coverage(0.0f, 0.5f, 1.0f), 0.52f, 1e-4f);  // 1 - 0.5 (1 - 0.04)
+  EXPECT_FLOAT_EQ(coverage(0.0f, 0.0f, 1.0f), 1.0f);
+  EXPECT_FLOAT_EQ(coverage(1.0f, 1.0f, 1.0f), 1.0f);
+}
+
 // The square with one material whose extensions are `extensions`; textures from a 2 x 2 PNG beside the file.
 Mesh load_square(const std::string& name, const std::string& extensions) {
   const fs::path dir = test::scratch_dir("clearcoat_sheen");
@@ -172,6 +194,24 @@ TEST(GltfLayers, ReadsClearcoatAndSheen) {
   ASSERT_TRUE(m.sheen_color_map && m.sheen_roughness_map);
   EXPECT_EQ(m.sheen_color_map->encoding(), TexelEncoding::srgb);
   EXPECT_EQ(m.sheen_roughness_map->encoding(), TexelEncoding::linear);
+}
+
+// A transmissive material is blended over what is behind it, unless the file masks it.
+TEST(GltfLayers, TransmissionIsReadAndBlended) {
+  WarningCapture warnings;
+  const Mesh glass = load_square("glass", R"("KHR_materials_transmission":{"transmissionFactor":0.8,)"
+                                          R"("transmissionTexture":{"index":0,"texCoord":1}})");
+  EXPECT_TRUE(warnings.messages().empty()) << warnings.messages()[0];
+  const Material& m = glass.materials.at(0);
+  EXPECT_FLOAT_EQ(m.transmission, 0.8f);
+  ASSERT_TRUE(m.transmission_map);
+  EXPECT_EQ(m.uv1_maps, texture_slot::transmission);
+  EXPECT_EQ(m.alpha_mode, AlphaMode::blend);
+  const fs::path dir = test::scratch_dir("clearcoat_sheen");
+  const std::string masked = R"({"name":"masked","alphaMode":"MASK",)"
+                             R"("extensions":{"KHR_materials_transmission":{"transmissionFactor":1}}})";
+  const Mesh cut = load_model(test::write_file(dir, "masked.gltf", test::square_gltf("", 0, "", masked)));
+  EXPECT_EQ(cut.materials.at(0).alpha_mode, AlphaMode::mask);
 }
 
 // Out of range: clamped with a warning; not a number: the default with a warning; a malformed colour: no sheen.

@@ -89,7 +89,9 @@ struct PbrShader {
                         uvs_of(texture_slot::normal));
     PbrInputs<float> in = inputs(f);
     if (screen_occlusion) in.occlusion = in.occlusion * screen_open(f.screen.x, f.screen.y);
-    const brdf::Rgb<float> c = display(shade(in, n, n_coat, f.varyings.world));
+    brdf::Rgb<float> radiance = shade(in, n, n_coat, f.varyings.world);
+    if (material.transmissive()) see_through(in, n, f.varyings.world, radiance);
+    const brdf::Rgb<float> c = display(radiance);
     return {c.r, c.g, c.b, in.alpha};
   }
 
@@ -108,7 +110,10 @@ struct PbrShader {
       for (int k = 0; k < kLanes; ++k) open[k] = screen_open(f.screen_x[k], f.screen_y[k]);
       in.occlusion = in.occlusion * open;
     }
-    const brdf::Rgb<Float> out = display(shade(in, n, n, f.get(&Varyings::world)));
+    const Vec3 world = f.get(&Varyings::world);
+    brdf::Rgb<Float> radiance = shade(in, n, n, world);
+    if (material.transmissive()) see_through(in, n, world, radiance);
+    const brdf::Rgb<Float> out = display(radiance);
     return {out.r, out.g, out.b, in.alpha};
   }
 
@@ -136,13 +141,7 @@ struct PbrShader {
   FACET_LANES_INLINE brdf::Rgb<F> shade(const PbrInputs<F>& in, const V3& n, const V3& n_coat,
                                         const V3& world) const {
     using brdf::Rgb;
-    // KHR_materials_specular: the dielectric's f0 coloured, kept at most 1 (the colour factor may exceed 1), then
-    // weighted by the strength, which is also its f90.
-    const auto f0 = [&](const F& color) {
-      return brdf::min(color * material.dielectric_f0, brdf::constant<F>(1.0f)) * in.specular;
-    };
-    const brdf::Rgb<F> f0_dielectric{f0(in.specular_color.r), f0(in.specular_color.g), f0(in.specular_color.b)};
-    const brdf::Surface<F> s = brdf::surface(in.base, in.metallic, in.roughness, f0_dielectric, in.specular);
+    const brdf::Surface<F> s = surface_of(in);
     const V3 v = normalize(eye - world);
     const F n_dot_v = brdf::saturate(dot(n, v));
     const Layers<F> layer = layers(in, n_dot_v, n_coat, v);
@@ -217,6 +216,47 @@ struct PbrShader {
   }
 
  private:
+  // What the material reflects at a pixel. KHR_materials_specular: the dielectric's f0 coloured, kept at most 1
+  // (the colour factor may exceed 1), then weighted by the strength, which is also its f90. What a transmissive
+  // material lets through (see_through) is not reflected diffusely.
+  template <class F>
+  FACET_LANES_INLINE brdf::Surface<F> surface_of(const PbrInputs<F>& in) const {
+    const auto f0 = [&](const F& color) {
+      return brdf::min(color * material.dielectric_f0, brdf::constant<F>(1.0f)) * in.specular;
+    };
+    const brdf::Rgb<F> f0_dielectric{f0(in.specular_color.r), f0(in.specular_color.g), f0(in.specular_color.b)};
+    brdf::Surface<F> s = brdf::surface(in.base, in.metallic, in.roughness, f0_dielectric, in.specular);
+    if (material.transmissive()) s.c_diff = s.c_diff * (1.0f - passing(in));
+    return s;
+  }
+
+  // The share of light a transmissive surface lets through untinted: what its transmission lets through times the
+  // base colour's mean (a colour's absorption, which blending cannot tint the background with, is drawn as its
+  // diffuse colour instead).
+  template <class F>
+  FACET_LANES_INLINE static F passing(const PbrInputs<F>& in) {
+    return in.transmission * (1.0f - in.metallic) * ((in.base.r + in.base.g + in.base.b) * (1.0f / 3.0f));
+  }
+
+  // KHR_materials_transmission, approximated for a rasterizer without a second pass: the share of light a
+  // transmissive surface lets through (passing) shows the surfaces behind it by alpha blending (unrefracted and
+  // unblurred; thin-walled, so KHR_materials_volume changes nothing), and the share it reflects at this view angle
+  // (its Fresnel term) covers them, or more where the reflection is brighter than white (a highlight). The
+  // radiance is divided by that coverage, so that blending restores the reflection's strength.
+  template <class F, class V3>
+  FACET_LANES_INLINE void see_through(PbrInputs<F>& in, const V3& n, const V3& world, brdf::Rgb<F>& radiance) const {
+    const brdf::Surface<F> s = surface_of(in);
+    const F weight = brdf::schlick_weight(brdf::saturate(dot(n, normalize(eye - world))));
+    const brdf::Rgb<F> fresnel{s.f0.r + (s.f90 - s.f0.r) * weight, s.f0.g + (s.f90 - s.f0.g) * weight,
+                               s.f0.b + (s.f90 - s.f0.b) * weight};
+    const F through = passing(in);
+    const F highlight = brdf::min(brdf::max3(radiance) * exposure, brdf::constant<F>(1.0f));
+    const F cover =
+        brdf::max(brdf::max(1.0f - through * (1.0f - brdf::max3(fresnel)), highlight), brdf::constant<F>(1e-3f));
+    radiance = radiance * (1.0f / cover);
+    in.alpha = in.alpha * cover;
+  }
+
   // The varying holding the uv set a map reads.
   glm::vec2 Varyings::*uvs_of(std::uint32_t slot) const {
     return (material.uv1_maps & slot) ? &Varyings::uv1 : &Varyings::uv;

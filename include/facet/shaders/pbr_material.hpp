@@ -28,6 +28,7 @@ struct PbrMaterial {
   float clearcoat = 0.0f, clearcoat_roughness = 0.0f;
   glm::vec3 sheen_color{0.0f};
   float sheen_roughness = 0.0f;
+  float transmission = 0.0f;  // KHR_materials_transmission's factor (0: opaque dielectric)
   const glm::vec4* face_colors = nullptr;   // as displayed, indexed by Fragment::primitive; nullptr = none
   const Texture* base_color_map = nullptr;  // sRGB-encoded
   const Texture* metallic_roughness_map = nullptr;
@@ -41,6 +42,7 @@ struct PbrMaterial {
   const Texture* clearcoat_normal_map = nullptr;     // the coat's own normal map; none: the coat is not bumped
   const Texture* sheen_color_map = nullptr;          // sRGB-encoded, multiplying sheen_color
   const Texture* sheen_roughness_map = nullptr;      // alpha multiplies sheen_roughness
+  const Texture* transmission_map = nullptr;         // red multiplies transmission
   float normal_scale = 1.0f, clearcoat_normal_scale = 1.0f;
   std::uint32_t uv1_maps = 0;  // the maps that read the second uv set, as texture_slot bits
   Sampler sampler{};
@@ -49,10 +51,11 @@ struct PbrMaterial {
   bool textured() const {
     return base_color_map || metallic_roughness_map || occlusion_map || emissive_map || normal_map || specular_map ||
            specular_color_map || clearcoat_map || clearcoat_roughness_map || clearcoat_normal_map ||
-           sheen_color_map || sheen_roughness_map;
+           sheen_color_map || sheen_roughness_map || transmission_map;
   }
   bool coated() const { return clearcoat > 0.0f; }
   bool sheened() const { return sheen_color.r > 0.0f || sheen_color.g > 0.0f || sheen_color.b > 0.0f; }
+  bool transmissive() const { return transmission > 0.0f; }
   // Lane shading takes one normal per pixel from the interpolated one; a normal map sends the pixel to fragment().
   bool bumped() const { return normal_map || (coated() && clearcoat_normal_map); }
 };
@@ -68,6 +71,7 @@ struct PbrInputs {
   F clearcoat, clearcoat_roughness;
   brdf::Rgb<F> sheen_color;
   F sheen_roughness;
+  F transmission;
 
   // op(x, y) on each pair of numbers of this and `other` (every F of the struct, in order).
   template <class G, class Op>
@@ -82,6 +86,7 @@ struct PbrInputs {
     op(clearcoat, other.clearcoat), op(clearcoat_roughness, other.clearcoat_roughness);
     rgb(sheen_color, other.sheen_color);
     op(sheen_roughness, other.sheen_roughness);
+    op(transmission, other.transmission);
   }
 };
 
@@ -101,7 +106,8 @@ FACET_LANES_INLINE PbrInputs<F> factor_inputs(const PbrMaterial& m, const brdf::
           c(m.clearcoat),
           c(m.clearcoat_roughness),
           rgb(m.sheen_color),
-          c(m.sheen_roughness)};
+          c(m.sheen_roughness),
+          c(m.transmission)};
 }
 
 // A face colour (as displayed) multiplied into the base colour and alpha.
@@ -148,6 +154,7 @@ inline void multiply_textures(const PbrMaterial& m, const PixelUvs& at, PbrInput
     in.clearcoat_roughness *= sample(*m.clearcoat_roughness_map, slot::clearcoat_roughness).g;
   if (m.sheen_color_map) linear_rgb(*m.sheen_color_map, slot::sheen_color, in.sheen_color);
   if (m.sheen_roughness_map) in.sheen_roughness *= sample(*m.sheen_roughness_map, slot::sheen_roughness).a;
+  if (m.transmission_map) in.transmission *= sample(*m.transmission_map, slot::transmission).r;
 }
 
 // PixelUvs for 16 lanes.
