@@ -77,43 +77,12 @@ done
 [ -z "$absent" ] && ok "facet's Depends name the linked libraries (dpkg-shlibdeps) and Python" ||
   bad "facet's Depends name the linked libraries and Python" "no$absent in$depends"
 
-# What the root gets: the packages, two models, a small program and the script that uses them there.
+# What the root gets: the packages, two models, a small program (examples/render_job) and the script that uses
+# them there.
 cp "$runtime" "$dev" "$scratch/in/"
 cp "$models/glTF2/BoxTextured-glTF-Binary/BoxTextured.glb" "$models/Collada/duck.dae" "$models/Collada/duckCM.tga" \
    "$scratch/in/model/"
-cat >"$scratch/in/render_job.cpp" <<'CPP'
-// render_job.cpp - renders the model named first to the PNG named second through an installed facet.
-#include <cstdio>
-#include <exception>
-
-#include <facet/render_job.hpp>
-#include <facet/renderer.hpp>
-
-int main(int argc, char** argv) {
-  if (argc != 3) return 2;
-  try {
-    facet::RenderJob job;
-    job.model = argv[1];
-    job.width = 64;
-    job.height = 48;
-    job.outputs.color = argv[2];
-    facet::Renderer renderer;
-    facet::render(job, renderer);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "render_job: %s\n", e.what());
-    return 1;
-  }
-  return 0;
-}
-CPP
-cat >"$scratch/in/CMakeLists.txt" <<'CMAKE'
-cmake_minimum_required(VERSION 3.25)
-project(render_job LANGUAGES CXX)
-set(CMAKE_CXX_STANDARD 20)
-find_package(facet 0.1 CONFIG REQUIRED)
-add_executable(render_job render_job.cpp)
-target_link_libraries(render_job PRIVATE facet::facet)
-CMAKE
+cp "$source/examples/render_job/main.cpp" "$source/examples/render_job/CMakeLists.txt" "$scratch/in/"
 cat >"$scratch/in/inside.sh" <<'INSIDE'
 # inside.sh - runs in the fresh root as root: installs the packages with apt and uses them. Each check prints an
 # "ok" or "FAIL" line to out/results.txt, which deb_test.sh counts; it goes on past a failure so that mmdebstrap's
@@ -171,7 +140,7 @@ if cmake -S . -B build -DCMAKE_BUILD_TYPE=Release >out/cmake.log 2>&1 && cmake -
   ok "a program built with find_package(facet) renders"
 else bad "a program built with find_package(facet) renders" "$(tail -5 out/cmake.log)"; fi
 # shellcheck disable=SC2046  # pkg-config's output is meant to split into flags
-if g++ -std=c++20 -O1 -o pc_render_job render_job.cpp $(pkg-config --cflags --libs facet) >out/pc.log 2>&1 &&
+if g++ -std=c++20 -O1 -o pc_render_job main.cpp $(pkg-config --cflags --libs facet) >out/pc.log 2>&1 &&
    ./pc_render_job model/BoxTextured.glb out/job-pc.png >>out/pc.log 2>&1 && [ "$(png_size out/job-pc.png)" = 64x48 ]
 then ok "a program built with pkg-config's flags for facet renders"
 else bad "a program built with pkg-config's flags for facet renders" "$(tail -5 out/pc.log)"; fi

@@ -42,49 +42,15 @@ ${CXX:-c++} -std=c++20 -O1 -o "$scratch/pc-consumer" "$source/examples/consumer/
 check_png "$scratch/pc.png"
 cmp -s "$scratch/cmake.png" "$scratch/pc.png" || { echo "FAIL: the two consumers' images differ"; exit 1; }
 
-# A consumer of the readers and writers: render() pulls in the glTF reader with Draco, the Assimp reader (Assimp is
+# A consumer of the readers and writers (examples/render_job): render() pulls in the glTF reader with Draco, the Assimp reader (Assimp is
 # opened at run time) and the OpenEXR writer. Built both ways, it renders a Draco glTF and a COLLADA file.
-mkdir -p "$scratch/render-job"
-cat >"$scratch/render-job/main.cpp" <<'CPP'
-#include <cstdio>
-#include <exception>
-
-#include <facet/render_job.hpp>
-#include <facet/renderer.hpp>
-
-int main(int argc, char** argv) {
-  if (argc != 4) return 2;
-  try {
-    facet::RenderJob job;
-    job.model = argv[1];
-    job.width = 64;
-    job.height = 48;
-    job.outputs.color = argv[2];
-    job.outputs.depth = argv[3];
-    facet::Renderer renderer;
-    facet::render(job, renderer);
-  } catch (const std::exception& e) {
-    std::fprintf(stderr, "render-job: %s\n", e.what());
-    return 1;
-  }
-  return 0;
-}
-CPP
-cat >"$scratch/render-job/CMakeLists.txt" <<'CMAKE'
-cmake_minimum_required(VERSION 3.25)
-project(render_job LANGUAGES CXX)
-set(CMAKE_CXX_STANDARD 20)
-find_package(facet 0.1 CONFIG REQUIRED)
-add_executable(render-job main.cpp)
-target_link_libraries(render-job PRIVATE facet::facet)
-CMAKE
-cmake -S "$scratch/render-job" -B "$scratch/render-job/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
+cmake -S "$source/examples/render_job" -B "$scratch/render-job/build" -G Ninja -DCMAKE_BUILD_TYPE=Release \
       -DCMAKE_PREFIX_PATH="$prefix" >"$scratch/render-job.log"
 cmake --build "$scratch/render-job/build" >>"$scratch/render-job.log"
 # shellcheck disable=SC2046  # pkg-config's output is meant to split into flags
-${CXX:-c++} -std=c++20 -O1 -o "$scratch/render-job/pc-render-job" "$scratch/render-job/main.cpp" \
+${CXX:-c++} -std=c++20 -O1 -o "$scratch/render-job/pc-render-job" "$source/examples/render_job/main.cpp" \
   $(pkg-config --cflags --libs facet)
-for program in "$scratch/render-job/build/render-job" "$scratch/render-job/pc-render-job"; do
+for program in "$scratch/render-job/build/render_job" "$scratch/render-job/pc-render-job"; do
   for model in glTF2/draco/2CylinderEngine.gltf Collada/duck.dae; do
     rm -f "$scratch/job.png" "$scratch/job.exr"
     "$program" "/usr/share/assimp/models/$model" "$scratch/job.png" "$scratch/job.exr" ||
