@@ -9,6 +9,7 @@
 
 #include "facet/demo_scenes.hpp"
 #include "facet/framebuffer.hpp"
+#include "facet/render_job.hpp"
 #include "facet/renderer.hpp"
 #include "keys.hpp"
 #include "viewer_state.hpp"
@@ -21,6 +22,7 @@ struct Page {
   viewer::Showing showing = viewer::Showing::demo(Demo::cube);
   viewer::Toggles toggles;
   viewer::Orbit orbit;
+  LookSpec look;         // the model's own look: facet's studio, or an environment the user opened
   Renderer renderer{1};  // one thread: the page runs from any static server (docs/WEB.md)
   std::optional<Framebuffer> target;
   double animation = 0.0;                 // seconds of the demo's animation shown, which stops while paused
@@ -72,6 +74,24 @@ EMSCRIPTEN_KEEPALIVE const char* facet_page_open_model(const char* path) {
   return facet::web::show([path] { return facet::viewer::Showing::model(path); });
 }
 
+// Lights the model's own look by an equirectangular Radiance .hdr written into the module's file system (the
+// page's --hdri); "" on success, else its one-line error, the previous environment kept.
+EMSCRIPTEN_KEEPALIVE const char* facet_page_open_environment(const char* path) {
+  facet::web::Page& p = page();
+  facet::LookSpec look = p.look;
+  look.hdri = path;
+  try {
+    facet::environment_for(look);  // read and prefiltered now, so that a bad file is refused here
+    p.look = look;
+    p.text.clear();
+  } catch (const std::bad_alloc&) {
+    p.text = "out of memory";
+  } catch (const std::exception& e) {
+    p.text = e.what();
+  }
+  return p.text.c_str();
+}
+
 // A key as typed ('w', '1', ' '): 1 if it is one of the viewer's keys, else 0.
 EMSCRIPTEN_KEEPALIVE int facet_page_key(int key) {
   if (key <= 0 || key > 127) return 0;
@@ -94,7 +114,8 @@ EMSCRIPTEN_KEEPALIVE const std::uint32_t* facet_page_frame(int width, int height
   if (p.last_time && !p.toggles.paused) p.animation += std::max(0.0, seconds - *p.last_time);
   p.last_time = seconds;
   try {
-    facet::viewer::draw_frame(p.renderer, p.target, width, height, p.showing, p.animation, p.toggles, p.orbit);
+    facet::viewer::draw_frame(p.renderer, p.target, width, height, p.showing, p.animation, p.toggles, p.orbit,
+                              p.look);
   } catch (const std::exception& e) {
     p.text = e.what();
     p.target.reset();

@@ -107,10 +107,34 @@ function openModel(files, label) {
   return true;
 }
 
+// Lights the model's own look by an equirectangular .hdr (the page's --hdri); the file stays in the module's file
+// system while it is in use, as facet reads it again for another up axis.
+let environmentFile = null;
+
+function openEnvironment(file) {
+  const path = `/input/environment-${++openings}.hdr`;
+  Module.FS.mkdirTree('/input');
+  Module.FS.writeFile(path, file.bytes);
+  const error = Module.UTF8ToString(withString(path, Module._facet_page_open_environment));
+  if (error) {
+    Module.FS.unlink(path);
+    showError(error.split(path).join(file.name));
+    return false;
+  }
+  if (environmentFile) Module.FS.unlink(environmentFile);
+  environmentFile = path;
+  showError('');
+  return true;
+}
+
 async function openFiles(fileList) {
   const files = await Promise.all(
     Array.from(fileList, async (f) => ({ name: f.name, bytes: new Uint8Array(await f.arrayBuffer()) })));
-  if (files.length) openModel(files);
+  const isEnvironment = (f) => f.name.toLowerCase().endsWith('.hdr');
+  const environment = files.find(isEnvironment);
+  if (environment && !openEnvironment(environment)) return;
+  const models = files.filter((f) => !isEnvironment(f));
+  if (models.length) openModel(models);
 }
 
 async function openUrl(url) {

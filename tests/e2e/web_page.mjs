@@ -134,6 +134,34 @@ try {
   check((await text(page, 'status')).startsWith('Spider_binary.stl') && (await snapshot(page)).hash === shown.hash,
         'the previous model stays on screen');
 
+  // An equirectangular .hdr dropped on the page lights the model's own look (the page's --hdri): a uniform red
+  // environment turns the grey model red; a file that is no Radiance image is refused in one line, naming it.
+  const header = Buffer.from('#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 16 +X 32\n');
+  const red = Buffer.alloc(32 * 16 * 4);
+  for (let i = 0; i < red.length; i += 4) red.set([128, 0, 0, 129], i);  // RGBE: radiance (1, 0, 0)
+  const redness = () => page.evaluate(() => {  // red over green, summed over the canvas
+    const canvas = document.getElementById('view');
+    const data = canvas.getContext('2d').getImageData(0, 0, canvas.width, canvas.height).data;
+    let red = 0, green = 0;
+    for (let i = 0; i < data.length; i += 4) red += data[i], green += data[i + 1];
+    return red / green;
+  });
+  const before = await redness();
+  await drop(page, 'red.hdr', Buffer.concat([header, red]));
+  await settle(page);
+  const lit = await snapshot(page);
+  const reddish = (await redness()) > 1.1 * before;
+  check(lit.hash !== shown.hash && reddish && !(await visible(page, 'error')) &&
+        (await text(page, 'status')).startsWith('Spider_binary.stl'),
+        'a dropped .hdr lights the model shown', await text(page, 'error'));
+  await drop(page, 'fake.hdr', Buffer.from('not a radiance file'));
+  await page.waitForFunction(() => !document.getElementById('error').hidden, null, { timeout: 10000 }).catch(() => {});
+  const hdrError = await text(page, 'error');
+  check((await visible(page, 'error')) && hdrError.startsWith('fake.hdr') && !hdrError.includes('\n'),
+        'a bad .hdr shows its one-line error', JSON.stringify(hdrError));
+  await settle(page);
+  check((await snapshot(page)).hash === lit.hash, 'the previous environment stays');
+
   const fps = await page.evaluate(() => Number(document.getElementById('fps').dataset.fps));
   check(fps > 0 && /fps/.test(await text(page, 'fps')), '#fps reports the frame rate', `${fps}`);
 
