@@ -27,19 +27,28 @@ namespace facet {
 // the irradiance it gives a surface facing it, a point or spot light's falls off as punctual.hpp says; any number
 // of them, the span pointing at the caller's array. Without an environment the ambient colour lights the diffuse
 // part evenly.
-struct PbrShader {
-  using Vertex = MeshVertex;
-  static constexpr bool may_discard = false;
-  static constexpr bool needs_derivatives = true;  // texture level of detail and the normal map's frame
+//
+// BasicPbrShader<true> (PbrShader) draws any material; BasicPbrShader<false> (UntexturedPbrShader) draws a material
+// without textures the same, with neither uvs nor screen-space derivatives to interpolate.
 
-  struct Varyings {
-    glm::vec3 world;
-    glm::vec3 normal;  // world space, not normalized until the pixel
-    glm::vec4 color;   // linear
-    glm::vec2 uv;
-    glm::vec2 uv1;  // the second set, for the maps that ask for it
-  };
+// What the physically based look interpolates: with both uv sets for a textured material, without them otherwise.
+template <bool kTextured>
+struct PbrVaryings {
+  glm::vec3 world;
+  glm::vec3 normal;  // world space, not normalized until the pixel
+  glm::vec4 color;   // linear
+  glm::vec2 uv;
+  glm::vec2 uv1;  // the second set, for the maps that ask for it
+};
+template <>
+struct PbrVaryings<false> {
+  glm::vec3 world;
+  glm::vec3 normal;
+  glm::vec4 color;
+};
 
+// The look's uniforms, shared by both shaders (UntexturedPbrShader{pbr_shader} copies them).
+struct PbrUniforms {
   ObjectTransforms transforms{};
   PbrMaterial material{};
   std::span<const PunctualLight> lights{};
@@ -52,15 +61,23 @@ struct PbrShader {
   // top row first); multiplies the material's occlusion. nullptr: none.
   const float* screen_occlusion = nullptr;
   int screen_occlusion_width = 0, screen_occlusion_height = 0;
+};
+
+template <bool kTextured>
+struct BasicPbrShader : PbrUniforms {
+  using Vertex = MeshVertex;
+  static constexpr bool may_discard = false;
+  static constexpr bool needs_derivatives = kTextured;  // texture level of detail and the normal map's frame
+  using Varyings = PbrVaryings<kTextured>;
 
   VertexOut<Varyings> vertex(const Vertex& v) const {
     const glm::vec4 p(v.position, 1.0f);
     const float* decode = detail::srgb_decode_curve_table();
     const glm::vec4 color(detail::srgb_decode(v.color.r, decode), detail::srgb_decode(v.color.g, decode),
                           detail::srgb_decode(v.color.b, decode), v.color.a);
-    return {transforms.clip_from_object * p,
-            {glm::vec3(transforms.world_from_object * p), transforms.normal_from_object * v.normal, color, v.uv,
-             v.uv1}};
+    const glm::vec3 world(transforms.world_from_object * p), normal = transforms.normal_from_object * v.normal;
+    if constexpr (kTextured) return {transforms.clip_from_object * p, {world, normal, color, v.uv, v.uv1}};
+    else return {transforms.clip_from_object * p, {world, normal, color}};
   }
 
   // What the material is at one pixel.
@@ -68,9 +85,11 @@ struct PbrShader {
     const glm::vec4 c = f.varyings.color;
     PbrInputs<float> in = factor_inputs<float>(material, {c.r, c.g, c.b}, c.a);
     if (material.face_colors) multiply_face_color(material.face_colors[f.primitive], in);
-    if (material.textured())
-      multiply_textures(material, {{f.varyings.uv, f.varyings.uv1}, {f.ddx.uv, f.ddx.uv1}, {f.ddy.uv, f.ddy.uv1}},
-                        in);
+    if constexpr (kTextured) {
+      if (material.textured())
+        multiply_textures(material, {{f.varyings.uv, f.varyings.uv1}, {f.ddx.uv, f.ddx.uv1}, {f.ddy.uv, f.ddy.uv1}},
+                          in);
+    }
     if (material.opaque) in.alpha = 1.0f;
     return in;
   }
@@ -81,12 +100,14 @@ struct PbrShader {
     glm::vec3 n = glm::normalize(f.varyings.normal);
     if (!transforms.front_side(f.front_facing)) n = -n;
     glm::vec3 n_coat = n;
-    if (material.coated() && material.clearcoat_normal_map)
-      n_coat = mapped_normal(n, f, *material.clearcoat_normal_map, material.sampler, material.clearcoat_normal_scale,
-                             uvs_of(texture_slot::clearcoat_normal));
-    if (material.normal_map)
-      n = mapped_normal(n, f, *material.normal_map, material.sampler, material.normal_scale,
-                        uvs_of(texture_slot::normal));
+    if constexpr (kTextured) {
+      if (material.coated() && material.clearcoat_normal_map)
+        n_coat = mapped_normal(n, f, *material.clearcoat_normal_map, material.sampler,
+                               material.clearcoat_normal_scale, uvs_of(texture_slot::clearcoat_normal, material.uv1_maps));
+      if (material.normal_map)
+        n = mapped_normal(n, f, *material.normal_map, material.sampler, material.normal_scale,
+                          uvs_of(texture_slot::normal, material.uv1_maps));
+    }
     PbrInputs<float> in = inputs(f);
     if (screen_occlusion) in.occlusion = in.occlusion * screen_open(f.screen.x, f.screen.y);
     brdf::Rgb<float> radiance = shade(in, n, n_coat, f.varyings.world);
@@ -122,13 +143,17 @@ struct PbrShader {
     using namespace simd;
     const Color c = f.get(&Varyings::color);
     PbrInputs<Float> in = factor_inputs<Float>(material, {c.r, c.g, c.b}, c.a);
-    if (material.face_colors || material.textured()) {
-      const std::size_t u0 = FragmentLanes<Varyings>::float_index(&Varyings::uv);
-      const std::size_t u1 = FragmentLanes<Varyings>::float_index(&Varyings::uv1);
-      const LaneUvs uvs{{f.get(&Varyings::uv), f.get(&Varyings::uv1)},
-                        {{f.ddx[u0], f.ddx[u0 + 1]}, {f.ddx[u1], f.ddx[u1 + 1]}},
-                        {{f.ddy[u0], f.ddy[u0 + 1]}, {f.ddy[u1], f.ddy[u1 + 1]}}};
-      multiply_per_pixel(material, f.primitive, uvs, in);
+    if constexpr (kTextured) {
+      if (material.face_colors || material.textured()) {
+        const std::size_t u0 = FragmentLanes<Varyings>::float_index(&Varyings::uv);
+        const std::size_t u1 = FragmentLanes<Varyings>::float_index(&Varyings::uv1);
+        const LaneUvs uvs{{f.get(&Varyings::uv), f.get(&Varyings::uv1)},
+                          {{f.ddx[u0], f.ddx[u0 + 1]}, {f.ddx[u1], f.ddx[u1 + 1]}},
+                          {{f.ddy[u0], f.ddy[u0 + 1]}, {f.ddy[u1], f.ddy[u1 + 1]}}};
+        multiply_per_pixel(material, f.primitive, uvs, in);
+      }
+    } else if (material.face_colors) {
+      multiply_per_pixel(material, f.primitive, LaneUvs{}, in);  // no textures: the uvs go unread
     }
     if (material.opaque) in.alpha = splat(1.0f);
     return in;
@@ -257,9 +282,9 @@ struct PbrShader {
     in.alpha = in.alpha * cover;
   }
 
-  // The varying holding the uv set a map reads.
-  glm::vec2 Varyings::*uvs_of(std::uint32_t slot) const {
-    return (material.uv1_maps & slot) ? &Varyings::uv1 : &Varyings::uv;
+  // The varying holding the uv set a map reads (a textured shader's).
+  static glm::vec2 PbrVaryings<true>::*uvs_of(std::uint32_t slot, std::uint32_t uv1_maps) {
+    return (uv1_maps & slot) ? &PbrVaryings<true>::uv1 : &PbrVaryings<true>::uv;
   }
 
   // What the sheen and the coat need at a pixel besides the lights (zero for a layer the material lacks).
@@ -351,12 +376,10 @@ struct PbrShader {
     const simd::Vec2 ab = environment->split_sum(n_dot_v, roughness);
     a = ab.x, b = ab.y;
   }
-
 };
 
-// PbrShader for a material without textures: the same picture without the screen-space derivatives.
-struct UntexturedPbrShader : PbrShader {
-  static constexpr bool needs_derivatives = false;
-};
+using PbrShader = BasicPbrShader<true>;
+// PbrShader for a material without textures: the same picture with less to interpolate.
+using UntexturedPbrShader = BasicPbrShader<false>;
 
 }  // namespace facet
