@@ -86,25 +86,18 @@ FACET_LANES_INLINE simd::Color fragment_each_lane(const S& shader, const Fragmen
 //     simd::Color fragment_lanes(const FragmentLanes<Varyings>&) const;
 // computing, lane for lane, what fragment() computes. The pipeline then shades 16 fragments per call instead of
 // one; fragment() stays the definition (and the path for shaders without a lane version). Lane shading is used
-// only for shaders that cannot discard. Declare it FACET_LANES_INLINE, and its helpers too, for speed: a function
-// left out of line is compiled for the baseline ISA only. It still computes the right values, since lane types
-// pass between functions through memory in every ISA (simd.hpp).
-template <class S>
-concept LaneShader =
-    Shader<S> && !S::may_discard && requires(const S& shader, const FragmentLanes<typename S::Varyings>& fragment) {
-  { shader.fragment_lanes(fragment) } -> std::same_as<simd::Color>;
-};
-
+// only for shaders that cannot discard, so a discarding shader with fragment_lanes does not compile (ShaderTraits).
+// Declare it FACET_LANES_INLINE, and its helpers too, for speed: a function left out of line is compiled for the
+// baseline ISA only. It still computes the right values, since lane types pass between functions through memory in
+// every ISA (simd.hpp).
+//
 // A LaneShader may also declare
 //     static constexpr bool lanes_read_primitive = false;
 // when its fragment_lanes reads neither primitive nor front_facing: the pipeline then leaves them unset. Each of a
 // strip's triangles would otherwise blend both into their lanes, which on sphere:224 costs 4.5% of a frame's
 // instructions (AVX2 clone) for values the benchmark shader never looks at.
 template <class S>
-constexpr bool lanes_read_primitive() {
-  if constexpr (requires { S::lanes_read_primitive; }) return S::lanes_read_primitive;
-  else return true;
-}
+concept LaneShader = Shader<S> && ShaderTraits<S>::fragment_lanes;
 
 // A LaneShader may also have
 //     void prefetch_lanes(const FragmentLanes<Varyings>&) const;
@@ -112,10 +105,7 @@ constexpr bool lanes_read_primitive() {
 // that the memory the shader will read (texture lines, mostly: see Texture::prefetch_lanes) is on its way by then.
 // It must not change anything the shader computes; it only hides memory latency.
 template <class S>
-concept PrefetchingLaneShader = LaneShader<S> &&
-    requires(const S& shader, const FragmentLanes<typename S::Varyings>& fragment) {
-  { shader.prefetch_lanes(fragment) } -> std::same_as<void>;
-};
+concept PrefetchingLaneShader = LaneShader<S> && ShaderTraits<S>::prefetch_lanes;
 
 }  // namespace facet
 

@@ -67,9 +67,7 @@ struct alignas(simd::kLaneAlign) VertexOutLanes {
 // per call and the rest of a draw one at a time; vertex() stays the definition. Declare it FACET_LANES_INLINE,
 // like fragment_lanes, so that it is compiled inside each CPU-level clone of the vertex stage.
 template <class S>
-concept LaneVertexShader = Shader<S> && requires(const S& shader, const VertexLanes<typename S::Vertex>& vertices) {
-  { shader.vertex_lanes(vertices) } -> std::same_as<VertexOutLanes<typename S::Varyings>>;
-};
+concept LaneVertexShader = Shader<S> && ShaderTraits<S>::vertex_lanes;
 
 }  // namespace facet
 

@@ -41,7 +41,7 @@ struct PrefetchingBenchShader : bench::BenchShader {
 static_assert(PrefetchingLaneShader<PrefetchingBenchShader>);
 
 // The benchmark shader opts out of per-lane primitive and front_facing: its lanes match without them, below.
-static_assert(!lanes_read_primitive<bench::BenchShader>());
+static_assert(!ShaderTraits<bench::BenchShader>::lanes_read_primitive);
 
 TEST(DeferredShading, BenchShaderLanesMatchItsScalarFragment) {
   std::vector<bench::BenchVertex> vertices;

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <bit>
 #include <random>
+#include <type_traits>
 
 #include "facet/detail/raster_deferred.hpp"
 #include "facet/draw.hpp"
@@ -20,10 +21,11 @@ namespace {
 #pragma GCC diagnostic ignored "-Wpsabi"
 
 // A shader whose colour depends on everything a fragment carries: varyings, their derivatives (when kDerivatives),
-// window depth, pixel position, primitive index and facing. With kLanes it also has fragment_lanes, the same
-// function on 16 lanes, so deferred shading takes its lane path.
-template <bool kLanes, bool kDerivatives>
-struct ProbeShader {
+// window depth, pixel position, primitive index and facing. ProbeShader<true, ...> also has fragment_lanes, the same
+// function on 16 lanes, so deferred shading takes its lane path. (It is a derived struct rather than a member with
+// `requires kLanes`: a shader that declares fragment_lanes must be able to use it, ShaderTraits says.)
+template <bool kDerivatives>
+struct ScalarProbeShader {
   using Vertex = ColorShader::Vertex;
   struct Varyings {
     glm::vec3 color;
@@ -44,8 +46,12 @@ struct ProbeShader {
                     0.001f * f.screen.x - 0.001f * f.screen.y;
     return {r, g, b, 1.0f};
   }
+};
 
-  simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const requires kLanes {
+template <bool kDerivatives>
+struct LaneProbeShader : ScalarProbeShader<kDerivatives> {
+  using typename ScalarProbeShader<kDerivatives>::Varyings;
+  simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
     using namespace simd;
     const Vec3 color = f.get(&Varyings::color);
     Float r = color.x, g = color.y;
@@ -59,6 +65,9 @@ struct ProbeShader {
     return {r, g, b, splat(1.0f)};
   }
 };
+
+template <bool kLanes, bool kDerivatives>
+using ProbeShader = std::conditional_t<kLanes, LaneProbeShader<kDerivatives>, ScalarProbeShader<kDerivatives>>;
 
 // The shading pass interpolates the triangles of a strip at the lanes strip_triangle_starts picks: each triangle in
 // the strip must have one, and no lane may be picked without a triangle. Strips of 1 to 5 triangles in random
@@ -107,7 +116,7 @@ static_assert(LaneShader<ProbeShader<true, false>> && LaneShader<ProbeShader<tru
 static_assert(!LaneShader<ProbeShader<false, false>>);
 // A lane shader that says nothing about lanes_read_primitive gets primitive and front_facing per lane, as this one
 // needs (test_deferred_bench_shader.cpp checks the benchmark shader, which opts out).
-static_assert(lanes_read_primitive<ProbeShader<true, false>>());
+static_assert(ShaderTraits<ProbeShader<true, false>>::lanes_read_primitive);
 
 struct Draw {
   ClipMesh mesh;

@@ -149,7 +149,7 @@ void draw(Framebuffer& target, const S& shader, std::span<const typename S::Vert
           fragment.primitive = tri;
           fragment.front_facing = front;
           glm::vec4 color;
-          if constexpr (S::may_discard) {
+          if constexpr (ShaderTraits<S>::may_discard) {
             const auto result = shader.fragment(fragment);
             if (!result) continue;
             color = *result;

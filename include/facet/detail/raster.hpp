@@ -88,11 +88,11 @@ template <Shader S, bool kMulti>
                                                       unsigned (&bits)[4]) {
   using Varyings = typename S::Varyings;
   constexpr std::size_t kFloats = float_count_v<Varyings>;
-  constexpr bool kDerivatives = needs_derivatives<S>();
+  constexpr bool kDerivatives = ShaderTraits<S>::needs_derivatives;
   constexpr int kMaxN = kMulti ? kMaxSamples : 1;
   const int n = kMulti ? work.samples : 1;
   const RenderState& state = *ctx.state;
-  const bool early_depth = !S::may_discard && state.depth_test;
+  const bool early_depth = !ShaderTraits<S>::may_discard && state.depth_test;
 
   float z[4][kMaxN];
   std::size_t index[4];
@@ -157,7 +157,7 @@ template <Shader S, bool kMulti>
     fragment.screen = glm::vec3(static_cast<float>(px + (k & 1)) + 0.5f, static_cast<float>(py + (k >> 1)) + 0.5f,
                                 kMulti ? centre_z[k] : z[k][0]);
     glm::vec4 color;
-    if constexpr (S::may_discard) {
+    if constexpr (ShaderTraits<S>::may_discard) {
       const auto result = ctx.shader->fragment(fragment);
       if (!result) continue;
       color = *result;
@@ -288,7 +288,7 @@ template <Shader S>
         const std::uint64_t mask = raster_block_coverage(tri, bx, by, i0, i1, j0, j1);
         if (mask) shade_block_quads(ctx, tri, work, bx, by, mask);
         // A discarding shader may leave covered pixels unwritten: its blocks never count as full.
-        return BlockCoverage{mask != 0, mask == ~std::uint64_t{0} && !S::may_discard};
+        return BlockCoverage{mask != 0, mask == ~std::uint64_t{0} && !ShaderTraits<S>::may_discard};
       });
 }
 

@@ -147,7 +147,7 @@ template <LaneShader S>
       return p.at_origin + p.ddx * dx + p.ddy * dy;
     };
     if (!depth) put(fragment.depth, clamp(at(tri.depth) + offset, 0.0f, 1.0f));
-    if constexpr (lanes_read_primitive<S>()) {
+    if constexpr (ShaderTraits<S>::lanes_read_primitive) {
       put(fragment.primitive, UInt{} | tri.primitive);
       put(fragment.front_facing, Mask{} | (tri.front_facing ? -1 : 0));
     }
@@ -160,7 +160,7 @@ template <LaneShader S>
     for (std::size_t f = 0; f < kFloats; ++f) {
       const Float value = b0 * v0[f] + b1 * v1[f] + b2 * v2[f];
       put(fragment.varyings[f], value);
-      if constexpr (needs_derivatives<S>()) {
+      if constexpr (ShaderTraits<S>::needs_derivatives) {
         // Coarse derivatives: within each 2x2 quad, right minus left and bottom minus top of the top-left pixel.
         const Float origin = quad_broadcast(value, kQuadTopLeft);
         put(fragment.ddx[f], quad_broadcast(value, kQuadTopRight) - origin);
@@ -293,7 +293,7 @@ template <Shader S>
   RenderState resolved = state;
   resolved.depth_test = false;
   const ShadeContext<S> shade{ctx.shader, &resolved};
-  [[maybe_unused]] std::conditional_t<PrefetchingLaneShader<S>, PreparedStrip<S>[kPrefetchDistance], char> ahead;
+  [[maybe_unused]] std::conditional_t<ShaderTraits<S>::prefetch_lanes, PreparedStrip<S>[kPrefetchDistance], char> ahead;
   [[maybe_unused]] unsigned prepared = 0;
   for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
     for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
@@ -305,9 +305,9 @@ template <Shader S>
         const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
         const unsigned fill = work.clear.color ? strip_inside(work, px, py) & ~covered : 0u;
         // A lane shader's strip stores the clear colour with its shaded pixels; otherwise it is stored first.
-        if (fill && !(LaneShader<S> && covered)) fill_strip(work, px, py, fill);
+        if (fill && !(ShaderTraits<S>::fragment_lanes && covered)) fill_strip(work, px, py, fill);
         if (!covered) continue;
-        if constexpr (PrefetchingLaneShader<S>) {
+        if constexpr (ShaderTraits<S>::prefetch_lanes) {
           // Shade the strip prepared kPrefetchDistance strips ago, then prepare this one in its slot.
           PreparedStrip<S>& slot = ahead[prepared % kPrefetchDistance];
           if (prepared >= kPrefetchDistance)
@@ -316,7 +316,7 @@ template <Shader S>
           slot.px = px, slot.py = py, slot.covered = covered, slot.fill = fill;
           ctx.shader->prefetch_lanes(slot.fragment);
           ++prepared;
-        } else if constexpr (LaneShader<S>) {
+        } else if constexpr (ShaderTraits<S>::fragment_lanes) {
           FragmentLanes<typename S::Varyings> fragment;
           prepare_strip_lanes(shade, work, px, py, refs, depth, fragment);
           finish_strip_lanes(shade, work, px, py, covered, fill, fragment);
@@ -330,7 +330,7 @@ template <Shader S>
           }
         }
       }
-  if constexpr (PrefetchingLaneShader<S>)
+  if constexpr (ShaderTraits<S>::prefetch_lanes)
     for (unsigned n = prepared > kPrefetchDistance ? prepared - kPrefetchDistance : 0; n < prepared; ++n) {
       const PreparedStrip<S>& slot = ahead[n % kPrefetchDistance];
       finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);

@@ -71,7 +71,7 @@ template <Shader S>
       if (!writes_depth) continue;
       for (int s = 0; s < n; ++s) {
         // A discarding shader may leave covered samples unwritten: its blocks never count as full.
-        const bool full = mask[s] == ~std::uint64_t{0} && !S::may_discard;
+        const bool full = mask[s] == ~std::uint64_t{0} && !ShaderTraits<S>::may_discard;
         if (!(full || (!reject_hidden && mask[s]))) continue;
         float& bound = work.depth_bounds[work.bounds_stride * static_cast<std::size_t>(s) + block];
         const float farthest = std::min(range(s).farthest + kDepthBoundMargin, 1.0f);
@@ -132,7 +132,7 @@ template <Shader S>
           covered[s] = pending[s] = ~strip_lanes_equal(refs[s], kNoTriangle) & 0xffffu;
           waiting |= covered[s];
         }
-        if constexpr (LaneShader<S>) {
+        if constexpr (ShaderTraits<S>::fragment_lanes) {
           // Each (pixel, triangle) pair of the strip is shaded once, whichever samples it covers: a round shades,
           // in every lane, the triangle of the first sample still waiting there, and gives the colour to each
           // sample holding that triangle in that lane. Inside a triangle that is one round; where edges cross the

@@ -14,7 +14,7 @@ namespace facet::detail {
 // Deferred shading needs a shader without discard and colour writes without blending (see raster_deferred.hpp).
 template <Shader S>
 bool shades_deferred(const RenderState& state) {
-  return !S::may_discard && state.defer_shading && state.color_write && state.blend == BlendMode::none;
+  return !ShaderTraits<S>::may_discard && state.defer_shading && state.color_write && state.blend == BlendMode::none;
 }
 
 // The whole per-tile loop, with coverage, interpolation and the shader inlined into it, is compiled three times:

@@ -64,7 +64,7 @@ struct VertexSource {
     for (std::size_t first = begin; first < end; first += kProjectBlock) {
       const std::size_t count = std::min(kProjectBlock, end - first);
       std::size_t k = 0;
-      if constexpr (LaneVertexShader<S>) {
+      if constexpr (ShaderTraits<S>::vertex_lanes) {
         for (; k + simd::kLanes <= count; k += simd::kLanes) {
           const VertexOutLanes<Varyings> shaded = self.shader->vertex_lanes({self.vertices + first + k});
           simd::store(block.x + k, shaded.clip_x), simd::store(block.y + k, shaded.clip_y);
