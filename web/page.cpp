@@ -35,14 +35,12 @@ Page& page() {
   return p;
 }
 
-// Replaces what is shown, keeping the toggles; a failure leaves the previous scene and returns its message.
-template <class Make>
-const char* show(Make make) {
+// Runs `change` on the page; "" when it succeeds, else its one-line message (the page left as it was).
+template <class Change>
+const char* attempt(Change change) {
   Page& p = page();
   try {
-    p.showing = make();
-    p.orbit = viewer::Orbit{};
-    p.animation = 0.0;
+    change(p);
     p.text.clear();
   } catch (const std::bad_alloc&) {
     p.text = "out of memory";
@@ -50,6 +48,16 @@ const char* show(Make make) {
     p.text = e.what();
   }
   return p.text.c_str();
+}
+
+// Replaces what is shown, keeping the toggles; a failure leaves the previous scene and returns its message.
+template <class Make>
+const char* show(Make make) {
+  return attempt([&](Page& p) {
+    p.showing = make();
+    p.orbit = viewer::Orbit{};
+    p.animation = 0.0;
+  });
 }
 
 }  // namespace
@@ -77,19 +85,12 @@ EMSCRIPTEN_KEEPALIVE const char* facet_page_open_model(const char* path) {
 // Lights the model's own look by an equirectangular Radiance .hdr written into the module's file system (the
 // page's --hdri); "" on success, else its one-line error, the previous environment kept.
 EMSCRIPTEN_KEEPALIVE const char* facet_page_open_environment(const char* path) {
-  facet::web::Page& p = page();
-  facet::LookSpec look = p.look;
-  look.hdri = path;
-  try {
+  return facet::web::attempt([path](facet::web::Page& p) {
+    facet::LookSpec look = p.look;
+    look.hdri = path;
     facet::environment_for(look);  // read and prefiltered now, so that a bad file is refused here
     p.look = look;
-    p.text.clear();
-  } catch (const std::bad_alloc&) {
-    p.text = "out of memory";
-  } catch (const std::exception& e) {
-    p.text = e.what();
-  }
-  return p.text.c_str();
+  });
 }
 
 // A key as typed ('w', '1', ' '): 1 if it is one of the viewer's keys, else 0.
