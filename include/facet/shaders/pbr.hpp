@@ -343,37 +343,20 @@ struct BasicPbrShader : PbrUniforms {
 
   // E(n), the prefiltered radiance along r and the split-sum table, or, without an environment, the ambient colour
   // as a uniform irradiance of pi * ambient and no reflection.
-  void environment_terms(glm::vec3 n, glm::vec3 r, float n_dot_v, float roughness, brdf::Rgb<float>& irradiance,
-                         brdf::Rgb<float>& radiance, float& a, float& b) const {
+  template <class F, class V3>
+  FACET_LANES_INLINE void environment_terms(const V3& n, const V3& r, const F& n_dot_v, const F& roughness,
+                                            brdf::Rgb<F>& irradiance, brdf::Rgb<F>& radiance, F& a, F& b) const {
     if (!environment) {
       const glm::vec3 e = ambient * brdf::kPi;
-      irradiance = {e.r, e.g, e.b};
-      radiance = {0.0f, 0.0f, 0.0f};
-      a = b = 0.0f;
+      irradiance = {brdf::constant<F>(e.r), brdf::constant<F>(e.g), brdf::constant<F>(e.b)};
+      radiance = brdf::black<F>();
+      a = b = brdf::constant<F>(0.0f);
       return;
     }
-    const std::array<float, 3> e = environment->irradiance(n.x, n.y, n.z);
-    const glm::vec3 l = environment->radiance(r, roughness);
-    const glm::vec2 ab = environment->split_sum(n_dot_v, roughness);
+    const std::array<F, 3> e = environment->irradiance(n.x, n.y, n.z);
     irradiance = {e[0], e[1], e[2]};
-    radiance = {l.r, l.g, l.b};
-    a = ab.x, b = ab.y;
-  }
-  FACET_LANES_INLINE void environment_terms(const simd::Vec3& n, const simd::Vec3& r, const simd::Float& n_dot_v,
-                                            const simd::Float& roughness, brdf::Rgb<simd::Float>& irradiance,
-                                            brdf::Rgb<simd::Float>& radiance, simd::Float& a, simd::Float& b) const {
-    if (!environment) {
-      const glm::vec3 e = ambient * brdf::kPi;
-      irradiance = {simd::splat(e.r), simd::splat(e.g), simd::splat(e.b)};
-      radiance = {simd::splat(0.0f), simd::splat(0.0f), simd::splat(0.0f)};
-      a = b = simd::splat(0.0f);
-      return;
-    }
-    const std::array<simd::Float, 3> e = environment->irradiance(n.x, n.y, n.z);
-    irradiance = {e[0], e[1], e[2]};
-    const simd::Vec3 l = environment->radiance(r, roughness);
-    radiance = {l.x, l.y, l.z};
-    const simd::Vec2 ab = environment->split_sum(n_dot_v, roughness);
+    radiance = radiance_along(r, roughness);
+    const auto ab = environment->split_sum(n_dot_v, roughness);
     a = ab.x, b = ab.y;
   }
 };
