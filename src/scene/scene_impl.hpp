@@ -10,6 +10,7 @@
 #include "facet/scene.hpp"
 #include "facet/shaders/shadow_map.hpp"
 #include "scene/draw.hpp"
+#include "scene/occlusion_kernel.hpp"
 #include "scene/prepared_mesh.hpp"
 
 namespace facet {
@@ -51,7 +52,8 @@ struct Scene::Impl {
   struct AmbientOcclusion {
     std::unique_ptr<Framebuffer> target;
     int width = 0, height = 0;
-    std::vector<float> z, raw, open;
+    detail::occlusion::Grid z, raw;
+    std::vector<float> open;
   } occlusion;
 
   // The radius of a sphere around every instance's bounding sphere. Defined in shadows.cpp.

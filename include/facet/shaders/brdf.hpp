@@ -47,9 +47,6 @@ template <class F>
 FACET_LANES_INLINE F min(const F& a, const F& b) {
   return select(b < a, b, a);
 }
-// a or b, for conditions per pixel (bool) or per lane (simd::Mask).
-inline bool either(bool a, bool b) { return a || b; }
-FACET_LANES_INLINE simd::Mask either(const simd::Mask& a, const simd::Mask& b) { return a | b; }
 template <class F>
 FACET_LANES_INLINE F abs(const F& v) {
   return select(v < 0.0f, -v, v);
