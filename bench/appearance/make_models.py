@@ -247,14 +247,38 @@ def glass(out):
     g.write(os.path.join(out, 'glass.gltf'))
 
 
+def tangents(out):
+    """A normal map of ridges on two cubes with TANGENT: on the left the tangents follow u, as the uvs' own frame
+    would; on the right they are turned a quarter, so a renderer that ignored them would tilt the ridges the other
+    way."""
+    g = Gltf()
+    u = np.linspace(0, 1, 64, endpoint=False)[None, :] + 1 / 128
+    v = np.linspace(0, 1, 64, endpoint=False)[:, None] + 1 / 128
+    n = np.stack(np.broadcast_arrays(0.6 * np.sin(8 * np.pi * u), 0.3 * np.sin(4 * np.pi * v), np.ones_like(u)),
+                 axis=-1)
+    n /= np.linalg.norm(n, axis=-1, keepdims=True)
+    bumps = np.round((n * 0.5 + 0.5) * 255).astype(np.uint8)
+    material = g.material(**pbr((0.8, 0.8, 0.8, 1), 0, 0.35, normalTexture={'index': g.texture(bumps)}))
+    positions, normals, uvs, tris = cube(1.2)
+    # Each face's u axis: the direction in which its uvs' u grows (cube() lays u along the face's second vector).
+    along_u = np.array([positions[i + 1] - positions[i] for i in range(0, 24, 4) for _ in range(4)])
+    along_u /= np.linalg.norm(along_u, axis=1, keepdims=True)
+    for x, t in ((-0.9, along_u), (0.9, np.cross(normals, along_u))):
+        geometry = g.geometry(positions, normals, uvs, tris)
+        tangent = np.hstack([t, np.ones((24, 1))]).astype(np.float32)
+        geometry['attributes'] = dict(geometry['attributes'], TANGENT=g.accessor(tangent, ARRAY_BUFFER))
+        g.node(geometry, material, translation=(x, 0, 0), rotation=tilted())
+    g.write(os.path.join(out, 'tangents.gltf'))
+
+
 def main():
     if len(sys.argv) != 2:
         sys.exit('usage: make_models.py OUT_DIR')
     out = sys.argv[1]
     os.makedirs(out, exist_ok=True)
-    for make in (sweep, default_material, emissive, blend, factors, textured, layers, glass):
+    for make in (sweep, default_material, emissive, blend, factors, textured, layers, glass, tangents):
         make(out)
-    print(f'{out}: sweep, default_material, emissive, blend, factors, textured, layers, glass (.gltf)')
+    print(f'{out}: sweep, default_material, emissive, blend, factors, textured, layers, glass, tangents (.gltf)')
 
 
 if __name__ == '__main__':

@@ -27,7 +27,7 @@ fi
 
 if [ $# -eq 0 ]; then
   assimp=/usr/share/assimp/models/glTF2
-  set -- "$out"/models/{sweep,default_material,emissive,blend,factors,textured,layers,glass}.gltf \
+  set -- "$out"/models/{sweep,default_material,emissive,blend,factors,textured,layers,glass,tangents}.gltf \
     $assimp/2CylinderEngine-glTF-Binary/2CylinderEngine.glb \
     $assimp/BoxTextured-glTF-Binary/BoxTextured.glb \
     $assimp/ClearCoat-glTF/ClearCoatTest.gltf \

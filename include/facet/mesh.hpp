@@ -113,6 +113,10 @@ struct Mesh {
   std::vector<glm::vec3> normals;
   std::vector<glm::vec2> uvs;
   std::vector<glm::vec2> uvs1;  // a second set (glTF TEXCOORD_1), read by the textures Material::uv1_maps names
+  // Tangents for normal maps (glTF TANGENT): xyz the unit direction of increasing u, w +1 or -1 the sign of the
+  // bitangent cross(normal, tangent). Kept only beside normals; a zero tangent means "none here" (the frame is then
+  // the pixel's cotangent frame, as for meshes without tangents).
+  std::vector<glm::vec4> tangents;
   std::vector<glm::vec4> colors;
   std::vector<std::uint32_t> indices;        // 3 per triangle, counter-clockwise seen from the front
   std::vector<glm::vec4> face_colors;        // empty or one per triangle

@@ -269,13 +269,14 @@ class SceneReader {
     mesh_ = Mesh{};
     local_materials_.assign(materials_.size(), -1);
     all_normals_ = true;
-    any_uvs_ = any_uvs1_ = any_colors_ = false;
+    any_uvs_ = any_uvs1_ = any_tangents_ = any_colors_ = false;
     std::uint32_t face = 0;
     for (const tinygltf::Primitive& p : model_.meshes[static_cast<std::size_t>(index)].primitives) primitive(p, face);
     if (mesh_.indices.empty()) return kNoTriangles;
     if (!all_normals_) mesh_.normals.clear();
     if (!any_uvs_) mesh_.uvs.clear();
     if (!any_uvs1_) mesh_.uvs1.clear();
+    if (!any_tangents_ || !all_normals_) mesh_.tangents.clear();  // glTF ignores tangents where normals are missing
     if (!any_colors_) mesh_.colors.clear();
     if (std::all_of(mesh_.face_materials.begin(), mesh_.face_materials.end(), [](int m) { return m < 0; }))
       mesh_.face_materials.clear();
@@ -323,6 +324,7 @@ class SceneReader {
     if (attribute("NORMAL") >= 0) out.normals = reader_.floats(attribute("NORMAL"), 3, "NORMAL");
     if (attribute("TEXCOORD_0") >= 0) out.uvs = reader_.floats(attribute("TEXCOORD_0"), 2, "TEXCOORD_0");
     if (attribute("TEXCOORD_1") >= 0) out.uvs1 = reader_.floats(attribute("TEXCOORD_1"), 2, "TEXCOORD_1");
+    if (attribute("TANGENT") >= 0) out.tangents = reader_.floats(attribute("TANGENT"), 4, "TANGENT");
     if (const int colors = attribute("COLOR_0"); colors >= 0) {
       const int type = reader_.model.accessors.at(static_cast<std::size_t>(colors)).type;
       out.color_components = type == TINYGLTF_TYPE_VEC3 ? 3 : 4;
@@ -357,6 +359,7 @@ class SceneReader {
     check_count(data.normals, 3, "NORMAL");
     check_count(data.uvs, 2, "TEXCOORD_0");
     check_count(data.uvs1, 2, "TEXCOORD_1");
+    check_count(data.tangents, 4, "TANGENT");
     check_count(data.colors, static_cast<std::size_t>(data.color_components), "COLOR_0");
 
     std::vector<std::uint32_t>& corners = data.corners;
@@ -375,6 +378,7 @@ class SceneReader {
     for (std::size_t i = 0; i < count; ++i)
       mesh_.positions.emplace_back(positions[3 * i], positions[3 * i + 1], positions[3 * i + 2]);
     append_normals(data.normals, count);
+    append_tangents(data.tangents, count);
     const int material = p.material >= 0 && static_cast<std::size_t>(p.material) < model_.materials.size()
                              ? p.material
                              : static_cast<int>(model_.materials.size());  // the default material
@@ -414,6 +418,23 @@ class SceneReader {
       const glm::vec3 v(n[3 * i], n[3 * i + 1], n[3 * i + 2]);
       const float length = glm::length(v);
       mesh_.normals.push_back(std::isfinite(length) && length > 0.0f ? v / length : glm::vec3(0, 0, 1));
+    }
+  }
+
+  // Unit xyz and a w of +1 or -1; a zero tangent where it has no direction, so that pixel's frame comes from its
+  // derivatives instead. (A texture transform's rotation is not applied to them.)
+  void append_tangents(const std::vector<float>& t, std::size_t count) {
+    if (t.empty()) {
+      mesh_.tangents.resize(mesh_.positions.size(), glm::vec4(0.0f));
+      return;
+    }
+    any_tangents_ = true;
+    for (std::size_t i = 0; i < count; ++i) {
+      const glm::vec3 v(t[4 * i], t[4 * i + 1], t[4 * i + 2]);
+      const float length = glm::length(v);
+      mesh_.tangents.push_back(std::isfinite(length) && length > 0.0f
+                                   ? glm::vec4(v / length, t[4 * i + 3] < 0.0f ? -1.0f : 1.0f)
+                                   : glm::vec4(0.0f));
     }
   }
 
@@ -457,7 +478,8 @@ class SceneReader {
   // The mesh being read.
   Mesh mesh_;
   std::vector<std::int32_t> local_materials_;  // per file material: its index in mesh_.materials, or -1
-  bool all_normals_ = true, any_uvs_ = false, any_uvs1_ = false, any_colors_ = false, warned_points_ = false;
+  bool all_normals_ = true, any_uvs_ = false, any_uvs1_ = false, any_tangents_ = false, any_colors_ = false;
+  bool warned_points_ = false;
   std::set<int> warned_lights_;
 };
 

@@ -20,6 +20,7 @@ struct PrimitiveArrays {
   std::vector<float> normals;    // 3 per vertex
   std::vector<float> uvs;        // 2 per vertex (TEXCOORD_0)
   std::vector<float> uvs1;       // 2 per vertex (TEXCOORD_1)
+  std::vector<float> tangents;   // 4 per vertex (TANGENT)
   std::vector<float> colors;     // color_components per vertex (COLOR_0)
   int color_components = 4;
   bool indexed = false;

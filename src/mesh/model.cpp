@@ -41,7 +41,8 @@ bool is_identity(const glm::mat4& m) { return m == glm::mat4(1.0f); }
 
 Mesh flatten(Model model, const std::string& source) {
   std::size_t vertices = 0, triangles = 0;
-  bool all_normals = true, any_uvs = false, any_uvs1 = false, any_colors = false, any_face_colors = false;
+  bool all_normals = true, any_uvs = false, any_uvs1 = false, any_tangents = false, any_colors = false;
+  bool any_face_colors = false;
   bool any_ids = false;
   for (const ModelInstance& instance : model.instances) {
     if (instance.mesh >= model.meshes.size())
@@ -55,6 +56,7 @@ Mesh flatten(Model model, const std::string& source) {
     all_normals = all_normals && !mesh.normals.empty();
     any_uvs = any_uvs || !mesh.uvs.empty();
     any_uvs1 = any_uvs1 || !mesh.uvs1.empty();
+    any_tangents = any_tangents || !mesh.tangents.empty();
     any_colors = any_colors || !mesh.colors.empty();
     any_face_colors = any_face_colors || !mesh.face_colors.empty();
     any_ids = any_ids || instance.id != 0;
@@ -74,6 +76,9 @@ Mesh flatten(Model model, const std::string& source) {
   if (all_normals) out.normals.reserve(vertices);
   if (any_uvs) out.uvs.reserve(vertices);
   if (any_uvs1) out.uvs1.reserve(vertices);
+  // Tangents only beside normals (glTF ignores them on a mesh without normals).
+  any_tangents = any_tangents && all_normals;
+  if (any_tangents) out.tangents.reserve(vertices);
   if (any_colors) out.colors.reserve(vertices);
   out.indices.reserve(3 * triangles);
   out.face_ids.reserve(triangles);
@@ -94,6 +99,8 @@ Mesh flatten(Model model, const std::string& source) {
     }
     const glm::mat4& world = instance.world_from_object;
     const glm::mat3 normal_from_object = glm::transpose(glm::inverse(glm::mat3(world)));
+    // A mirroring placement turns the bitangent cross(n, t) around relative to the mirrored texture axes.
+    const float handedness = glm::determinant(glm::mat3(world)) < 0.0f ? -1.0f : 1.0f;
     const auto base = static_cast<std::uint32_t>(out.positions.size());
     for (const glm::vec3& p : mesh.positions) out.positions.push_back(glm::vec3(world * glm::vec4(p, 1.0f)));
     if (all_normals)
@@ -109,6 +116,15 @@ Mesh flatten(Model model, const std::string& source) {
     if (any_uvs1) {
       if (mesh.uvs1.empty()) out.uvs1.resize(out.positions.size(), glm::vec2(0.0f));
       else out.uvs1.insert(out.uvs1.end(), mesh.uvs1.begin(), mesh.uvs1.end());
+    }
+    if (any_tangents) {
+      if (mesh.tangents.empty()) out.tangents.resize(out.positions.size(), glm::vec4(0.0f));
+      for (const glm::vec4& t : mesh.tangents) {
+        const glm::vec3 v = glm::mat3(world) * glm::vec3(t);
+        const float length = glm::length(v);
+        out.tangents.push_back(std::isfinite(length) && length > 0.0f ? glm::vec4(v / length, t.w * handedness)
+                                                                      : glm::vec4(0.0f));
+      }
     }
     if (any_colors) {
       if (mesh.colors.empty()) out.colors.resize(out.positions.size(), glm::vec4(1.0f));

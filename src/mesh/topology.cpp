@@ -357,6 +357,7 @@ void compute_crease_normals(Mesh& mesh, float crease_angle_radians) {
   const bool copy_uvs = mesh.uvs.size() == n, copy_uvs1 = mesh.uvs1.size() == n, copy_colors = mesh.colors.size() == n;
   mesh.positions.resize(total);
   mesh.normals.assign(total, glm::vec3(0, 0, 1));
+  mesh.tangents.clear();  // made for the normals replaced here
   if (copy_uvs) mesh.uvs.resize(total);
   if (copy_uvs1) mesh.uvs1.resize(total);
   if (copy_colors) mesh.colors.resize(total);

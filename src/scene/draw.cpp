@@ -102,12 +102,15 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
         shader.screen_occlusion_width = frame.occlusion_width;
         shader.screen_occlusion_height = frame.occlusion_height;
       }
+      // An alpha-masked material takes the pixel's cotangent frame for its normal map, tangents or not.
       if (masked) {
         Masked<PbrShader> cut{shader};
         cut.alpha_cutoff = material.alpha_cutoff;
         draw(cut);
       } else if (!shader.material.textured()) {
         draw(UntexturedPbrShader{shader});
+      } else if (prepared.tangents && shader.material.bumped()) {
+        draw(TangentPbrShader{shader});
       } else {
         draw(shader);
       }

@@ -67,6 +67,8 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   const std::size_t n = source.positions.size();
   const bool has_uvs = source.uvs.size() == n, has_uvs1 = source.uvs1.size() == n;
   const bool has_colors = source.colors.size() == n;
+  // Crease normals replace the file's (it had none), so its tangents are dropped with them.
+  out.tangents = !creased && source.tangents.size() == n;
   out.vertices.resize(n);
   for (std::size_t i = 0; i < n; ++i) {
     MeshVertex& v = out.vertices[i];
@@ -75,6 +77,7 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
     v.uv = has_uvs ? source.uvs[i] : glm::vec2(0.0f);
     v.uv1 = has_uvs1 ? source.uvs1[i] : glm::vec2(0.0f);
     v.color = has_colors ? source.colors[i] : glm::vec4(1.0f);
+    if (out.tangents) v.tangent = source.tangents[i];
   }
 
   // Group triangles by material, keeping index order within each group (and the groups in order of first use).

@@ -37,6 +37,7 @@ struct PreparedMesh {
   // Where each of the mesh's vertices went when the groups' vertices were laid out apart (empty: nowhere else).
   std::vector<std::uint32_t> first_copy;
   std::vector<const Texture*> textures;  // per material; nullptr = none or failed to load
+  bool tangents = false;                 // the vertices carry the file's tangents
   glm::vec3 center{0.0f};                // bounding sphere, object space
   float radius = 0.0f;
 };

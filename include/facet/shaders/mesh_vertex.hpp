@@ -12,6 +12,9 @@ struct MeshVertex {
   glm::vec2 uv{0};
   glm::vec4 color{1};
   glm::vec2 uv1{0};  // the second texture coordinate set, read by the physically based shading only
+  // The normal map's tangent (Mesh::tangents: xyz, w the bitangent's sign), zero where the mesh has none; read by
+  // the physically based shading of normal-mapped meshes with tangents only.
+  glm::vec4 tangent{0};
 };
 
 // The matrices a mesh shader needs for one instance, computed once per draw rather than per vertex.

@@ -1,4 +1,4 @@
-// normal_mapping.hpp - a tangent-space normal map applied without tangents, by the cotangent frame of the pixel.
+// normal_mapping.hpp - a tangent-space normal map applied by the mesh's tangents or the pixel's cotangent frame.
 #pragma once
 
 #include <algorithm>
@@ -29,6 +29,26 @@ glm::vec3 mapped_normal(glm::vec3 n, const Fragment<V>& f, const Texture& map, c
   const glm::vec3 texel = glm::vec3(map.sample(f.varyings.*uvs, f.ddx.*uvs, f.ddy.*uvs, sampler));
   const glm::vec3 m = texel * 2.0f - 1.0f;
   const glm::vec3 mapped = t * (inverse * m.x * scale) + b * (inverse * m.y * scale) + n * m.z;
+  const float length = glm::length(mapped);
+  return length > 0.0f && std::isfinite(length) ? mapped / length : n;
+}
+
+// The frame of the mesh's tangent (glTF 2.0, "Meshes": bitangent = cross(normal, tangent.xyz) * tangent.w), made
+// orthogonal to n by Gram-Schmidt. n is the unit normal of the side shown, `side` -1 on a back face: there the
+// whole frame turns over, as three.js turns it. Where the tangent is zero or along n (no tangent for this vertex),
+// the cotangent frame above.
+template <class V>
+glm::vec3 tangent_mapped_normal(glm::vec3 n, glm::vec4 tangent, float side, const Fragment<V>& f, const Texture& map,
+                                const Sampler& sampler, float scale, glm::vec2 V::*uvs = &V::uv) {
+  glm::vec3 t = side * glm::vec3(tangent);
+  t -= n * glm::dot(n, t);
+  const float t_length = glm::length(t);
+  if (!(t_length > 1e-6f) || !std::isfinite(t_length)) return mapped_normal(n, f, map, sampler, scale, uvs);
+  t /= t_length;
+  const glm::vec3 b = glm::cross(n, t) * (side * (tangent.w < 0.0f ? -1.0f : 1.0f));
+  const glm::vec3 texel = glm::vec3(map.sample(f.varyings.*uvs, f.ddx.*uvs, f.ddy.*uvs, sampler));
+  const glm::vec3 m = texel * 2.0f - 1.0f;
+  const glm::vec3 mapped = t * (m.x * scale) + b * (m.y * scale) + n * m.z;
   const float length = glm::length(mapped);
   return length > 0.0f && std::isfinite(length) ? mapped / length : n;
 }

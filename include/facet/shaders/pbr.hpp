@@ -29,10 +29,12 @@ namespace facet {
 // part evenly.
 //
 // BasicPbrShader<true> (PbrShader) draws any material; BasicPbrShader<false> (UntexturedPbrShader) draws a material
-// without textures the same, with neither uvs nor screen-space derivatives to interpolate.
+// without textures the same, with neither uvs nor screen-space derivatives to interpolate; BasicPbrShader<true,
+// true> (TangentPbrShader) draws a normal-mapped material of a mesh with tangents, its frame from them.
 
-// What the physically based look interpolates: with both uv sets for a textured material, without them otherwise.
-template <bool kTextured>
+// What the physically based look interpolates: with both uv sets for a textured material, without them otherwise,
+// with the tangent too for a mesh that has them.
+template <bool kTextured, bool kTangents = false>
 struct PbrVaryings {
   glm::vec3 world;
   glm::vec3 normal;  // world space, not normalized until the pixel
@@ -45,6 +47,15 @@ struct PbrVaryings<false> {
   glm::vec3 world;
   glm::vec3 normal;
   glm::vec4 color;
+};
+template <>
+struct PbrVaryings<true, true> {
+  glm::vec3 world;
+  glm::vec3 normal;
+  glm::vec4 color;
+  glm::vec2 uv;
+  glm::vec2 uv1;
+  glm::vec4 tangent;  // world space xyz, not normalized until the pixel; w the bitangent's sign (MeshVertex)
 };
 
 // The look's uniforms, shared by both shaders (UntexturedPbrShader{pbr_shader} copies them).
@@ -63,12 +74,13 @@ struct PbrUniforms {
   int screen_occlusion_width = 0, screen_occlusion_height = 0;
 };
 
-template <bool kTextured>
+template <bool kTextured, bool kTangents = false>
 struct BasicPbrShader : PbrUniforms {
+  static_assert(kTextured || !kTangents, "tangents serve normal maps, which are textures");
   using Vertex = MeshVertex;
   static constexpr bool may_discard = false;
   static constexpr bool needs_derivatives = kTextured;  // texture level of detail and the normal map's frame
-  using Varyings = PbrVaryings<kTextured>;
+  using Varyings = PbrVaryings<kTextured, kTangents>;
 
   VertexOut<Varyings> vertex(const Vertex& v) const {
     const glm::vec4 p(v.position, 1.0f);
@@ -76,8 +88,17 @@ struct BasicPbrShader : PbrUniforms {
     const glm::vec4 color(detail::srgb_decode(v.color.r, decode), detail::srgb_decode(v.color.g, decode),
                           detail::srgb_decode(v.color.b, decode), v.color.a);
     const glm::vec3 world(transforms.world_from_object * p), normal = transforms.normal_from_object * v.normal;
-    if constexpr (kTextured) return {transforms.clip_from_object * p, {world, normal, color, v.uv, v.uv1}};
-    else return {transforms.clip_from_object * p, {world, normal, color}};
+    if constexpr (kTangents) {
+      // A tangent is a direction along the surface: it moves as positions do. A mirroring transform turns the
+      // bitangent cross(normal, tangent) around, as in model.cpp's flattening.
+      const glm::vec3 tangent = glm::mat3(transforms.world_from_object) * glm::vec3(v.tangent);
+      const float sign = transforms.mirrored ? -v.tangent.w : v.tangent.w;
+      return {transforms.clip_from_object * p, {world, normal, color, v.uv, v.uv1, glm::vec4(tangent, sign)}};
+    } else if constexpr (kTextured) {
+      return {transforms.clip_from_object * p, {world, normal, color, v.uv, v.uv1}};
+    } else {
+      return {transforms.clip_from_object * p, {world, normal, color}};
+    }
   }
 
   // What the material is at one pixel.
@@ -98,15 +119,20 @@ struct BasicPbrShader : PbrUniforms {
   // coat has the interpolated normal unless it has its own normal map (KHR_materials_clearcoat).
   glm::vec4 fragment(const Fragment<Varyings>& f) const {
     glm::vec3 n = glm::normalize(f.varyings.normal);
-    if (!transforms.front_side(f.front_facing)) n = -n;
+    const bool front = transforms.front_side(f.front_facing);
+    if (!front) n = -n;
     glm::vec3 n_coat = n;
     if constexpr (kTextured) {
+      // The frame of the file's tangents, or the pixel's cotangent frame.
+      const auto map = [&](const Texture& texture, float scale, std::uint32_t slot) {
+        if constexpr (kTangents)
+          return tangent_mapped_normal(n, f.varyings.tangent, front ? 1.0f : -1.0f, f, texture, material.sampler,
+                                       scale, uvs_of(slot, material.uv1_maps));
+        else return mapped_normal(n, f, texture, material.sampler, scale, uvs_of(slot, material.uv1_maps));
+      };
       if (material.coated() && material.clearcoat_normal_map)
-        n_coat = mapped_normal(n, f, *material.clearcoat_normal_map, material.sampler,
-                               material.clearcoat_normal_scale, uvs_of(texture_slot::clearcoat_normal, material.uv1_maps));
-      if (material.normal_map)
-        n = mapped_normal(n, f, *material.normal_map, material.sampler, material.normal_scale,
-                          uvs_of(texture_slot::normal, material.uv1_maps));
+        n_coat = map(*material.clearcoat_normal_map, material.clearcoat_normal_scale, texture_slot::clearcoat_normal);
+      if (material.normal_map) n = map(*material.normal_map, material.normal_scale, texture_slot::normal);
     }
     PbrInputs<float> in = inputs(f);
     if (screen_occlusion) in.occlusion = in.occlusion * screen_open(f.screen.x, f.screen.y);
@@ -118,24 +144,28 @@ struct BasicPbrShader : PbrUniforms {
 
   // fragment() for 16 pixels, the same operations in the same order: the shading is one template for both
   // (shade()), and texture lookups are taken lane by lane with the scalar functions. A normal-mapped material is
-  // shaded by fragment() lane by lane.
+  // shaded by fragment() lane by lane, and so is everything TangentPbrShader draws.
   FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
-    using namespace simd;
-    if (material.bumped()) return fragment_each_lane(*this, f);
-    Vec3 n = normalize(f.get(&Varyings::normal));
-    const Mask back = transforms.mirrored ? f.front_facing : ~f.front_facing;
-    n = Vec3{select(back, -n.x, n.x), select(back, -n.y, n.y), select(back, -n.z, n.z)};
-    PbrInputs<Float> in = inputs_lanes(f);
-    if (screen_occlusion) {
-      Float open;
-      for (int k = 0; k < kLanes; ++k) open[k] = screen_open(f.screen_x[k], f.screen_y[k]);
-      in.occlusion = in.occlusion * open;
+    if constexpr (kTangents) {
+      return fragment_each_lane(*this, f);
+    } else {
+      using namespace simd;
+      if (material.bumped()) return fragment_each_lane(*this, f);
+      Vec3 n = normalize(f.get(&Varyings::normal));
+      const Mask back = transforms.mirrored ? f.front_facing : ~f.front_facing;
+      n = Vec3{select(back, -n.x, n.x), select(back, -n.y, n.y), select(back, -n.z, n.z)};
+      PbrInputs<Float> in = inputs_lanes(f);
+      if (screen_occlusion) {
+        Float open;
+        for (int k = 0; k < kLanes; ++k) open[k] = screen_open(f.screen_x[k], f.screen_y[k]);
+        in.occlusion = in.occlusion * open;
+      }
+      const Vec3 world = f.get(&Varyings::world);
+      brdf::Rgb<Float> radiance = shade(in, n, n, world);
+      if (material.transmissive()) see_through(in, n, world, radiance);
+      const brdf::Rgb<Float> out = display(radiance);
+      return {out.r, out.g, out.b, in.alpha};
     }
-    const Vec3 world = f.get(&Varyings::world);
-    brdf::Rgb<Float> radiance = shade(in, n, n, world);
-    if (material.transmissive()) see_through(in, n, world, radiance);
-    const brdf::Rgb<Float> out = display(radiance);
-    return {out.r, out.g, out.b, in.alpha};
   }
 
   // inputs() for 16 pixels: the same operations in the same order, face colours and textures lane by lane.
@@ -283,8 +313,8 @@ struct BasicPbrShader : PbrUniforms {
   }
 
   // The varying holding the uv set a map reads (a textured shader's).
-  static glm::vec2 PbrVaryings<true>::*uvs_of(std::uint32_t slot, std::uint32_t uv1_maps) {
-    return (uv1_maps & slot) ? &PbrVaryings<true>::uv1 : &PbrVaryings<true>::uv;
+  static glm::vec2 Varyings::*uvs_of(std::uint32_t slot, std::uint32_t uv1_maps) {
+    return (uv1_maps & slot) ? &Varyings::uv1 : &Varyings::uv;
   }
 
   // What the sheen and the coat need at a pixel besides the lights (zero for a layer the material lacks).
@@ -364,5 +394,7 @@ struct BasicPbrShader : PbrUniforms {
 using PbrShader = BasicPbrShader<true>;
 // PbrShader for a material without textures: the same picture with less to interpolate.
 using UntexturedPbrShader = BasicPbrShader<false>;
+// PbrShader for a normal-mapped material of a mesh with tangents (glTF TANGENT), per pixel.
+using TangentPbrShader = BasicPbrShader<true, true>;
 
 }  // namespace facet

@@ -30,5 +30,6 @@ FACET_EXTERN_SHADER(facet::Masked<facet::SurfaceShader>);
 FACET_EXTERN_SHADER(facet::Masked<facet::UnlitShader>);
 FACET_EXTERN_SHADER(facet::PbrShader);
 FACET_EXTERN_SHADER(facet::UntexturedPbrShader);
+FACET_EXTERN_SHADER(facet::TangentPbrShader);
 FACET_EXTERN_SHADER(facet::Masked<facet::PbrShader>);
 FACET_EXTERN_SHADER(facet::EnvironmentBackgroundShader);
