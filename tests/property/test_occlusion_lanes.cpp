@@ -40,55 +40,52 @@ struct Frame {
   }
 };
 
-TEST(OcclusionLanes, EveryStageEqualsTheScalarReference) {
-  const Frame frame;
+// The frame's grids and the sampling over them, the lane stages run as a frame runs them: depth, then openness,
+// then the blur, each stage's rows after the previous stage's.
+struct Occlusion {
+  Frame frame;
   Grid z, raw;
-  z.resize(Frame::kWidth, Frame::kHeight);
-  raw.resize(Frame::kWidth, Frame::kHeight);
-  const Spiral spiral;
-  const Sampling sampling(z, frame.clip_from_view, 0.8f, spiral);
-  for (int y = 0; y < Frame::kHeight; ++y) {
-    const float* depth = frame.depth.data() + static_cast<std::size_t>(y) * Frame::kWidth;
-    depth_row(sampling.unproject, depth, Frame::kWidth, z.row(y));
-    for (int x = 0; x < Frame::kWidth; ++x) ASSERT_EQ(z.row(y)[x], sampling.unproject.z(depth[x])) << x << "," << y;
+  Spiral spiral;
+  Sampling sampling{sized(z), frame.clip_from_view, 0.8f, spiral};
+  std::vector<float> open = std::vector<float>(static_cast<std::size_t>(Frame::kWidth) * Frame::kHeight);
+
+  static const Grid& sized(Grid& grid) {
+    grid.resize(Frame::kWidth, Frame::kHeight);
+    return grid;
   }
+  const float* depth(int y) const { return frame.depth.data() + static_cast<std::size_t>(y) * Frame::kWidth; }
+  float* open_row(int y) { return open.data() + static_cast<std::size_t>(y) * Frame::kWidth; }
+  void run() {
+    raw.resize(Frame::kWidth, Frame::kHeight);
+    for (int y = 0; y < Frame::kHeight; ++y) depth_row(sampling.unproject, depth(y), Frame::kWidth, z.row(y));
+    for (int y = 0; y < Frame::kHeight; ++y) openness_row(sampling, y, raw);
+    for (int y = 0; y < Frame::kHeight; ++y) blurred_row(sampling, raw, y, open_row(y));
+  }
+};
+
+TEST(OcclusionLanes, EveryStageEqualsTheScalarReference) {
+  Occlusion o;
+  o.run();
   int drawn = 0, occluded = 0;
-  for (int y = 0; y < Frame::kHeight; ++y) {
-    openness_row(sampling, y, raw);
+  for (int y = 0; y < Frame::kHeight; ++y)
     for (int x = 0; x < Frame::kWidth; ++x) {
-      const float reference = sampling.openness<float>(x, y);
-      ASSERT_EQ(raw.row(y)[x], reference) << x << "," << y;
-      drawn += z.row(y)[x] != 0.0f;
+      ASSERT_EQ(o.z.row(y)[x], o.sampling.unproject.z(o.depth(y)[x])) << x << "," << y;
+      const float reference = o.sampling.openness<float>(x, y);
+      ASSERT_EQ(o.raw.row(y)[x], reference) << x << "," << y;
+      ASSERT_EQ(o.open_row(y)[x], o.sampling.blurred<float>(o.raw, x, y)) << x << "," << y;
+      drawn += o.z.row(y)[x] != 0.0f;
       occluded += reference < 0.9f;
     }
-  }
   // The frame exercises both outcomes: most of the floor is open, the floor at the wall's foot is not.
   EXPECT_GT(drawn, Frame::kWidth * Frame::kHeight / 2);
   EXPECT_GT(occluded, 50);
-  std::vector<float> open(static_cast<std::size_t>(Frame::kWidth));
-  for (int y = 0; y < Frame::kHeight; ++y) {
-    blurred_row(sampling, raw, y, open.data());
-    for (int x = 0; x < Frame::kWidth; ++x)
-      ASSERT_EQ(open[static_cast<std::size_t>(x)], sampling.blurred<float>(raw, x, y)) << x << "," << y;
-  }
 }
 
 TEST(OcclusionLanes, TheFloorIsOccludedAtTheWallsFootAndOpenElsewhere) {
-  const Frame frame;
-  Grid z, raw;
-  z.resize(Frame::kWidth, Frame::kHeight);
-  raw.resize(Frame::kWidth, Frame::kHeight);
-  const Spiral spiral;
-  const Sampling sampling(z, frame.clip_from_view, 0.8f, spiral);
-  for (int y = 0; y < Frame::kHeight; ++y)
-    depth_row(sampling.unproject, frame.depth.data() + static_cast<std::size_t>(y) * Frame::kWidth, Frame::kWidth,
-              z.row(y));
-  for (int y = 0; y < Frame::kHeight; ++y) openness_row(sampling, y, raw);
-  std::vector<float> open(static_cast<std::size_t>(Frame::kWidth) * Frame::kHeight);
-  for (int y = 0; y < Frame::kHeight; ++y)
-    blurred_row(sampling, raw, y, open.data() + static_cast<std::size_t>(y) * Frame::kWidth);
-  const auto at = [&](int x, int y) { return open[static_cast<std::size_t>(y) * Frame::kWidth + x]; };
-  const int foot = frame.foot();
+  Occlusion o;
+  o.run();
+  const auto at = [&](int x, int y) { return o.open_row(y)[x]; };
+  const int foot = o.frame.foot();
   ASSERT_GT(foot, Frame::kHeight / 2);
   ASSERT_LT(foot + 3, Frame::kHeight);
   EXPECT_EQ(at(10, 5), 1.0f);                  // the sky
