@@ -1,27 +1,10 @@
-// camera.hpp - an orbit camera, a VTK-style camera (position / focal point / view up) and sphere framing.
+// camera.hpp - a VTK-style camera (position / focal point / view up), sphere framing and turning about the focus.
 #pragma once
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec3.hpp>
 
 namespace facet {
-
-// A camera on a sphere around `target`. At azimuth = elevation = 0 the eye is on +Z of the target (the OpenGL
-// default view down -Z). Azimuth turns the eye about world +Y towards +X (right-handed), elevation lifts it
-// towards +Y: eye = target + distance * (cos(el) sin(az), sin(el), cos(el) cos(az)).
-// `up` is the view-up hint handed to look_at; where it is parallel to the view direction (the poles when
-// up = +Y) view() uses the orbit's own up instead of throwing. eye() and view() throw std::invalid_argument
-// when distance is not positive or anything is non-finite.
-struct OrbitCamera {
-  glm::vec3 target{0.0f};
-  float distance = 3.0f;
-  float azimuth = 0.0f;    // radians, around +Y
-  float elevation = 0.0f;  // radians
-  glm::vec3 up{0.0f, 1.0f, 0.0f};
-
-  glm::vec3 eye() const;
-  glm::mat4 view() const;  // eye space from world space
-};
 
 // The camera of VTK / f3d: where it is, what it looks at, which way is up, and its vertical field of view and
 // clipping distances (the VTK defaults).

@@ -1,4 +1,4 @@
-// camera.cpp - orbit camera, VTK-style camera helpers, sphere framing and azimuth/elevation rotations.
+// camera.cpp - VTK-style camera helpers, sphere framing and azimuth/elevation rotations.
 #include "facet/camera.hpp"
 
 #include <algorithm>
@@ -43,29 +43,6 @@ glm::dvec3 right_axis(glm::dvec3 dir, glm::dvec3 up, const char* fn) {
 }
 
 }  // namespace
-
-glm::vec3 OrbitCamera::eye() const {
-  const char* fn = "OrbitCamera";
-  require(finite(target), fn, "target must be finite");
-  require(std::isfinite(azimuth) && std::isfinite(elevation), fn, "azimuth and elevation must be finite");
-  require(std::isfinite(distance) && distance > 0.0f, fn, "distance must be positive and finite");
-  const double az = azimuth, el = elevation;
-  const glm::dvec3 offset(std::cos(el) * std::sin(az), std::sin(el), std::cos(el) * std::cos(az));
-  return glm::vec3(glm::dvec3(target) + double(distance) * offset);
-}
-
-glm::mat4 OrbitCamera::view() const {
-  const glm::vec3 e = eye();
-  require(finite(up) && glm::length(up) > 0.0f, "OrbitCamera", "up must be finite and non-zero");
-  const glm::dvec3 dir = glm::normalize(glm::dvec3(target) - glm::dvec3(e));
-  const glm::dvec3 up_dir = glm::normalize(glm::dvec3(up));
-  if (glm::length(glm::cross(dir, up_dir)) >= kParallel) return look_at(e, target, up);
-  // At a pole of `up` any hint is parallel; the derivative of the eye along elevation is the orbit's own up, and
-  // is continuous with what look_at gives just off the pole.
-  const double az = azimuth, el = elevation;
-  const glm::vec3 tangent(glm::dvec3(-std::sin(el) * std::sin(az), std::cos(el), -std::sin(el) * std::cos(az)));
-  return look_at(e, target, tangent);
-}
 
 glm::mat4 view_from_world(const Camera& camera) { return look_at(camera.position, camera.focal_point, camera.view_up); }
 
