@@ -136,7 +136,7 @@ int run(const BenchArgs& o, int width, int height, int threads, const BenchGeome
       frame0_stats = renderer.last_stats();
       if (keep_frame0) {
         frame0_rgba = target.rgba8();
-        const std::span<const float> depth = std::as_const(target).depth();
+        const std::span<const float> depth = target.depth();
         frame0_depth.assign(depth.begin(), depth.end());
       }
     }

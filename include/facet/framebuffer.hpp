@@ -80,29 +80,29 @@ class Framebuffer {
   int tiles_y() const { return tiles_y_; }
 
   // Rows are top to bottom; x grows to the right. Valid after Renderer::finish(): with several samples, the
-  // average of each pixel's samples (the resolve, which each tile does as it is drawn). Writable access means the
-  // caller may store anything: the next clear then rewrites every tile (and, with several samples, the next draw
-  // over a tile resolves over it).
-  std::span<std::uint32_t> color() {
-    contents_exposed_ = true;
-    return samples_ > 1 ? std::span<std::uint32_t>(resolved_) : std::span<std::uint32_t>(color_);
-  }
+  // average of each pixel's samples (the resolve, which each tile does as it is drawn).
   std::span<const std::uint32_t> color() const {
     return samples_ > 1 ? std::span<const std::uint32_t>(resolved_) : std::span<const std::uint32_t>(color_);
+  }
+  // color() for writing: the caller may store anything, so the next clear rewrites every tile (and, with several
+  // samples, the next draw over a tile resolves over it).
+  std::span<std::uint32_t> mutable_color() {
+    contents_exposed_ = true;
+    return samples_ > 1 ? std::span<std::uint32_t>(resolved_) : std::span<std::uint32_t>(color_);
   }
   // The colour of one sample of every pixel, not averaged: buffers whose values must not blend (surface ids) read
   // sample 0, the same sample depth() holds.
   std::span<const std::uint32_t> sample_color(int sample) const {
     return std::span<const std::uint32_t>(color_).subspan(sample_offset(sample), pixel_count());
   }
-  // Depth of sample 0 of every pixel (the only one with a single sample). Writable access also voids the
-  // hierarchical depth bounds (they become "unknown").
-  std::span<float> depth() {
+  // Depth of sample 0 of every pixel (the only one with a single sample).
+  std::span<const float> depth() const { return std::span<const float>(depth_).first(pixel_count()); }
+  // depth() for writing: also voids the hierarchical depth bounds (they become "unknown") and the kept clear.
+  std::span<float> mutable_depth() {
     contents_exposed_ = true;
     std::fill(block_max_depth_.begin(), block_max_depth_.end(), kUnknownDepthBound);
     return std::span<float>(depth_).first(pixel_count());
   }
-  std::span<const float> depth() const { return std::span<const float>(depth_).first(pixel_count()); }
   std::uint32_t pixel(int x, int y) const { return color()[static_cast<std::size_t>(y) * width_ + x]; }
   float depth_at(int x, int y) const { return depth_[static_cast<std::size_t>(y) * width_ + x]; }
 
@@ -115,7 +115,7 @@ class Framebuffer {
 
   // A clear is recorded and applied to each tile just before the tile is first drawn (while it is in cache), or
   // at Renderer::finish() for tiles nothing touched. A tile that received the same colour and depth clear and
-  // has not been written since (no draw touched it, no writable color() or depth() access) still holds it, and
+  // has not been written since (no draw touched it, no mutable_color() or mutable_depth() access) still holds it, and
   // is skipped: a model that covers part of the frame leaves the rest of the next frame's clear nothing to write.
   void request_clear(glm::vec4 color, float depth, bool clear_color = true, bool clear_depth = true);
   // Applies the pending clear to one tile if it has not been applied yet. Only the tile's owner thread calls it.

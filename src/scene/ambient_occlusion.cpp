@@ -78,7 +78,7 @@ void Scene::Impl::ambient_occlusion(Renderer& renderer, const SceneOptions& opti
     ao.raw.resize(w, h);
   }
   ao.open.resize(static_cast<std::size_t>(w) * static_cast<std::size_t>(h));
-  const std::span<const float> depth = std::as_const(*ao.target).depth();
+  const std::span<const float> depth = ao.target->depth();
   static const occlusion::Spiral spiral;
   const occlusion::Sampling sampling(ao.z, view.clip_from_view, radius, spiral);
   const auto rows = [&](auto&& row) {

@@ -138,7 +138,7 @@ void Scene::Impl::shadow_lights(Renderer& renderer, const SceneOptions& options,
       renderer.clear(*shadows.target, glm::vec4(0.0f), 1.0f);
       draw_depth(renderer, *shadows.target, options, view.clip_from_world, DepthPass::casters);
       renderer.finish(*shadows.target);
-      shadows.maps.emplace_back(view.clip_from_world, size, std::as_const(*shadows.target).depth(), 1.5f * view.texel);
+      shadows.maps.emplace_back(view.clip_from_world, size, shadows.target->depth(), 1.5f * view.texel);
     }
     shadows.key = std::move(key);
   }

@@ -18,9 +18,9 @@ namespace facet::reference {
 
 // Fills the target with a colour and a depth, pixel by pixel: the reference's Renderer::clear plus finish.
 inline void clear(Framebuffer& target, glm::vec4 color, float depth = 1.0f) {
-  const std::span<std::uint32_t> pixels = target.color();
+  const std::span<std::uint32_t> pixels = target.mutable_color();
   std::fill(pixels.begin(), pixels.end(), pack_rgba8(color));
-  const std::span<float> depths = target.depth();
+  const std::span<float> depths = target.mutable_depth();
   std::fill(depths.begin(), depths.end(), depth);
 }
 
@@ -35,8 +35,8 @@ void draw(Framebuffer& target, const S& shader, std::span<const typename S::Vert
   using Varyings = typename S::Varyings;
   constexpr std::size_t kFloats = float_count_v<Varyings>;
   const int width = target.width(), height = target.height();
-  const std::span<std::uint32_t> color_buffer = target.color();
-  const std::span<float> depth_buffer = target.depth();
+  const std::span<std::uint32_t> color_buffer = target.mutable_color();
+  const std::span<float> depth_buffer = target.mutable_depth();
   const std::size_t count = indices.size() / 3;
 
   std::vector<VertexOut<Varyings>> shaded;

@@ -97,10 +97,10 @@ TEST(Clear, RepeatedClearsMatchAFreshTarget) {
     EXPECT_TRUE(same(std::as_const(fb), fresh_second)) << (deferred ? "deferred" : "immediate");
 
     // A write through color(), then one through depth(), into tiles no draw touches, each before an empty frame.
-    fb.color()[5] = 0x12345678u;
+    fb.mutable_color()[5] = 0x12345678u;
     frame(fb, renderer, nullptr, nullptr);
     EXPECT_TRUE(same(std::as_const(fb), fresh_empty)) << (deferred ? "deferred" : "immediate");
-    fb.depth()[static_cast<std::size_t>(150) * width + 40] = 0.125f;
+    fb.mutable_depth()[static_cast<std::size_t>(150) * width + 40] = 0.125f;
     frame(fb, renderer, nullptr, nullptr);
     EXPECT_TRUE(same(std::as_const(fb), fresh_empty)) << (deferred ? "deferred" : "immediate");
 

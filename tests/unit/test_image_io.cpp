@@ -92,7 +92,7 @@ TEST(ImageIoPng, FramebufferTopRowFirstAndOverwrite) {
   Framebuffer fb(4, 3);
   for (int y = 0; y < 3; ++y)
     for (int x = 0; x < 4; ++x)
-      fb.color()[static_cast<std::size_t>(y) * 4 + x] = pack_rgba8(glm::vec4(x / 3.0f, y / 2.0f, 0.5f, 1.0f));
+      fb.mutable_color()[static_cast<std::size_t>(y) * 4 + x] = pack_rgba8(glm::vec4(x / 3.0f, y / 2.0f, 0.5f, 1.0f));
   write_png(path, 1, 1, std::vector<std::uint8_t>{1, 2, 3, 4});  // an older file, replaced below
   write_png(path, fb);
   int w = 0, h = 0;

@@ -391,11 +391,11 @@ TEST(SceneDepth, LinearDepthInvertsPerspectiveAndOrthographic) {
                                     glm::frustum(-0.05f, 0.12f, -0.03f, 0.06f, 0.1f, 50.0f),
                                     glm::ortho(-2.0f, 2.0f, -1.5f, 1.5f, 0.5f, 20.0f)};
   for (const glm::mat4& p : projections) {
-    std::fill(fb.depth().begin(), fb.depth().end(), 1.0f);
+    std::fill(fb.mutable_depth().begin(), fb.mutable_depth().end(), 1.0f);
     const float distances[3] = {0.7f, 7.0f, 17.0f};
     for (int k = 0; k < 3; ++k) {
       const glm::vec4 clip = p * glm::vec4(0.0f, 0.0f, -distances[k], 1.0f);
-      fb.depth()[static_cast<std::size_t>(k) * 4 + 1] = clip.z / clip.w * 0.5f + 0.5f;
+      fb.mutable_depth()[static_cast<std::size_t>(k) * 4 + 1] = clip.z / clip.w * 0.5f + 0.5f;
     }
     const std::vector<float> linear = linear_depth(fb, p);
     for (int k = 0; k < 3; ++k)
