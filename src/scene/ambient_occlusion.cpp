@@ -71,8 +71,6 @@ void Scene::Impl::ambient_occlusion(Renderer& renderer, const SceneOptions& opti
   draw_depth(renderer, *ao.target, options, view.clip_from_view * view.view_from_world, DepthPass::visible);
   renderer.finish(*ao.target);
 
-  ao.width = w;
-  ao.height = h;
   if (ao.z.width != w || ao.z.height != h) {
     ao.z.resize(w, h);
     ao.raw.resize(w, h);

@@ -151,8 +151,8 @@ std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& v
     impl_->ambient_occlusion(renderer, options, view, target.width(), target.height(),
                              kOcclusionRadius * impl_->bounding_radius());
     frame.occlusion = impl_->occlusion.open.data();
-    frame.occlusion_width = impl_->occlusion.width;
-    frame.occlusion_height = impl_->occlusion.height;
+    frame.occlusion_width = impl_->occlusion.z.width;
+    frame.occlusion_height = impl_->occlusion.z.height;
   }
   if (options.environment_background && options.environment && options.shading == Shading::automatic)
     detail::draw_environment_background(renderer, target, frame);

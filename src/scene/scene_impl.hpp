@@ -51,8 +51,7 @@ struct Scene::Impl {
   // occluded) per pixel.
   struct AmbientOcclusion {
     std::unique_ptr<Framebuffer> target;
-    int width = 0, height = 0;
-    detail::occlusion::Grid z, raw;
+    detail::occlusion::Grid z, raw;  // their width and height are the occlusion's
     std::vector<float> open;
   } occlusion;
 

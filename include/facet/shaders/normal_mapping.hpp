@@ -11,6 +11,18 @@
 
 namespace facet {
 
+// The map's texel at the pixel, read in the frame (t, b, n): t and b weighted by `frame_scale` times the map's
+// scale, then normalised; n where that has no length. Both frames below end here.
+template <class V>
+glm::vec3 apply_normal_map(glm::vec3 t, glm::vec3 b, glm::vec3 n, float frame_scale, const Fragment<V>& f,
+                           const Texture& map, const Sampler& sampler, float scale, glm::vec2 V::*uvs) {
+  const glm::vec3 texel = glm::vec3(map.sample(f.varyings.*uvs, f.ddx.*uvs, f.ddy.*uvs, sampler));
+  const glm::vec3 m = texel * 2.0f - 1.0f;
+  const glm::vec3 mapped = t * (frame_scale * m.x * scale) + b * (frame_scale * m.y * scale) + n * m.z;
+  const float length = glm::length(mapped);
+  return length > 0.0f && std::isfinite(length) ? mapped / length : n;
+}
+
 // The frame comes from the screen-space derivatives of the world position and the uvs (a cotangent frame, as in
 // Schueler's "Normal Mapping without Precomputed Tangents"), so meshes need no tangents. `V` has members `world`
 // and the map's uvs (`uv` unless `uvs` names another); n is the unit interpolated normal. Returns n where the uvs
@@ -25,12 +37,7 @@ glm::vec3 mapped_normal(glm::vec3 n, const Fragment<V>& f, const Texture& map, c
   const glm::vec3 t = dp2perp * duv1.x + dp1perp * duv2.x, b = dp2perp * duv1.y + dp1perp * duv2.y;
   const float extent = std::max(glm::dot(t, t), glm::dot(b, b));
   if (!(extent > 0.0f) || !std::isfinite(extent)) return n;  // uvs constant over the pixel: no frame
-  const float inverse = 1.0f / std::sqrt(extent);
-  const glm::vec3 texel = glm::vec3(map.sample(f.varyings.*uvs, f.ddx.*uvs, f.ddy.*uvs, sampler));
-  const glm::vec3 m = texel * 2.0f - 1.0f;
-  const glm::vec3 mapped = t * (inverse * m.x * scale) + b * (inverse * m.y * scale) + n * m.z;
-  const float length = glm::length(mapped);
-  return length > 0.0f && std::isfinite(length) ? mapped / length : n;
+  return apply_normal_map(t, b, n, 1.0f / std::sqrt(extent), f, map, sampler, scale, uvs);
 }
 
 // The frame of the mesh's tangent (glTF 2.0, "Meshes": bitangent = cross(normal, tangent.xyz) * tangent.w), made
@@ -46,11 +53,7 @@ glm::vec3 tangent_mapped_normal(glm::vec3 n, glm::vec4 tangent, float side, cons
   if (!(t_length > 1e-6f) || !std::isfinite(t_length)) return mapped_normal(n, f, map, sampler, scale, uvs);
   t /= t_length;
   const glm::vec3 b = glm::cross(n, t) * (side * (tangent.w < 0.0f ? -1.0f : 1.0f));
-  const glm::vec3 texel = glm::vec3(map.sample(f.varyings.*uvs, f.ddx.*uvs, f.ddy.*uvs, sampler));
-  const glm::vec3 m = texel * 2.0f - 1.0f;
-  const glm::vec3 mapped = t * (m.x * scale) + b * (m.y * scale) + n * m.z;
-  const float length = glm::length(mapped);
-  return length > 0.0f && std::isfinite(length) ? mapped / length : n;
+  return apply_normal_map(t, b, n, 1.0f, f, map, sampler, scale, uvs);  // 1 * x is x: the same rounding as without
 }
 
 }  // namespace facet
