@@ -7,6 +7,7 @@ set(FACET_CORE_SOURCES
   src/clip/clip.cpp
   src/core/buffers.cpp
   src/core/framebuffer.cpp
+  src/core/raster_visibility.cpp
   src/core/renderer.cpp
   src/core/text.cpp
   src/core/thread_pool.cpp

@@ -11,6 +11,7 @@
 #include <xmmintrin.h>
 #endif
 
+#include "facet/detail/dispatch.hpp"
 #include "facet/detail/raster.hpp"
 #include "facet/detail/raster_visibility.hpp"
 #include "facet/fragment_lanes.hpp"
@@ -176,13 +177,26 @@ template <LaneShader S>
   fragment.active = strip_refs != kNoTriangle;
 }
 
+// One fragment_lanes call: the strip's 16 colours, packed, into `colors`. Not inlined: a shader's lane code is most
+// of its pipeline's code, and this way it is compiled once per CPU level, not once per path that shades strips
+// (single-sampled, with prefetching, multisampled). One call per 16 pixels costs nothing measurable. It takes and
+// gives memory, not lane values, whose registers differ between the CPU levels' clones.
+template <LaneShader S>
+FACET_DISPATCH_LEVELS __attribute__((noinline)) void shade_lanes(const S& shader,
+                                                                const FragmentLanes<typename S::Varyings>& fragment,
+                                                                std::uint32_t* colors) {
+  simd::store(colors, simd::pack_rgba8(shader.fragment_lanes(fragment)));
+}
+
 // The prepared strip's 16 colours; lanes without a triangle take the clear colour (stored only where a fill asks).
 template <LaneShader S>
 [[gnu::always_inline]] inline void shade_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work,
                                                      const FragmentLanes<typename S::Varyings>& fragment,
                                                      std::uint32_t* colors) {
-  const simd::UInt shaded = simd::pack_rgba8(ctx.shader->fragment_lanes(fragment));
-  simd::store(colors, simd::blend(fragment.active, shaded, simd::UInt{} + work.clear.color_value));
+  alignas(64) std::uint32_t shaded[simd::kLanes];
+  shade_lanes(*ctx.shader, fragment, shaded);
+  simd::store(colors,
+              simd::blend(fragment.active, simd::load<simd::UInt>(shaded), simd::UInt{} + work.clear.color_value));
 }
 
 template <LaneShader S>
@@ -282,11 +296,7 @@ template <Shader S>
 
   begin_tile_scratch(work, state.depth_test);
 
-  with_depth_func(
-      state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
-        if (state.depth_test) raster_tile_visibility<kFunc, true>(state, work);
-        else raster_tile_visibility<kFunc, false>(state, work);
-      });
+  raster_tile_visibility(state, work);
 
   // With the depth test and depth writes on, the tile's depth holds each pixel's visible triangle's depth.
   const bool depth_resolved = state.depth_test && state.depth_write;

@@ -91,24 +91,13 @@ template <Shader S>
 [[gnu::always_inline]] inline void raster_tile_deferred_multisample(const ShadeContext<S>& ctx, const TileWork& work) {
   const RenderState& state = *ctx.state;
   const int n = work.samples;
-  const SamplePattern& pattern = sample_pattern(n);
   TileWork planes[kMaxSamples];
   for (int s = 0; s < n; ++s) {
     planes[s] = sample_work(work, s);
     begin_tile_scratch(planes[s], state.depth_test);
   }
 
-  with_depth_func(
-      state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
-        for_each_tile_triangle(
-            work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
-              for (int s = 0; s < n; ++s) {
-                const TriangleSetup view = at_sample(tri, pattern, s);
-                if (state.depth_test) raster_triangle_visibility<kFunc, true>(view, state, planes[s], ref);
-                else raster_triangle_visibility<kFunc, false>(view, state, planes[s], ref);
-              }
-            });
-      });
+  raster_tile_visibility_multisample(state, work, planes);
 
   RenderState resolved = state;
   resolved.depth_test = false;
@@ -165,7 +154,9 @@ template <Shader S>
             simd::store(own, own_refs);
             FragmentLanes<typename S::Varyings> fragment;
             prepare_strip_lanes(shade, planes[0], px, py, own, nullptr, fragment);
-            const simd::UInt shaded = simd::pack_rgba8(ctx.shader->fragment_lanes(fragment));
+            alignas(64) std::uint32_t own_colors[simd::kLanes];
+            shade_lanes(*ctx.shader, fragment, own_colors);
+            const simd::UInt shaded = simd::load<simd::UInt>(own_colors);
             waiting = 0;
             for (int s = 0; s < n; ++s) {
               if (!pending[s]) continue;

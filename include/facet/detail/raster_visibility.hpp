@@ -1,63 +1,17 @@
-// raster_visibility.hpp - deferred shading's visibility pass: coverage and depth of a tile's triangles, 16 pixels a
-// step.
+// raster_visibility.hpp - deferred shading's visibility pass: coverage and depth of a tile's triangles.
 #pragma once
 
 #include <cstddef>
 #include <cstdint>
 
 #include "facet/detail/raster.hpp"
-#include "facet/simd.hpp"
+#include "facet/render_state.hpp"
 
 namespace facet::detail {
 
 inline std::size_t scratch_index(int block_x, int block_y) {
   return static_cast<std::size_t>(block_y * (kTileSize / kScratchBlock) + block_x) * kScratchBlock * kScratchBlock;
 }
-
-// Calls body.template operator()<F>() with the state's depth function as a constant, so the per-pixel depth test
-// of the visibility pass has no switch inside its loop.
-template <class Body>
-[[gnu::always_inline]] inline void with_depth_func(DepthFunc func, Body&& body) {
-  switch (func) {
-    case DepthFunc::never: return body.template operator()<DepthFunc::never>();
-    case DepthFunc::less: return body.template operator()<DepthFunc::less>();
-    case DepthFunc::equal: return body.template operator()<DepthFunc::equal>();
-    case DepthFunc::lequal: return body.template operator()<DepthFunc::lequal>();
-    case DepthFunc::greater: return body.template operator()<DepthFunc::greater>();
-    case DepthFunc::notequal: return body.template operator()<DepthFunc::notequal>();
-    case DepthFunc::gequal: return body.template operator()<DepthFunc::gequal>();
-    case DepthFunc::always: return body.template operator()<DepthFunc::always>();
-  }
-}
-
-template <DepthFunc kFunc>
-[[gnu::always_inline]] inline unsigned depth_test_passes(float z, float stored) {
-  if constexpr (kFunc == DepthFunc::less) return z < stored;
-  else if constexpr (kFunc == DepthFunc::equal) return z == stored;
-  else if constexpr (kFunc == DepthFunc::lequal) return z <= stored;
-  else if constexpr (kFunc == DepthFunc::greater) return z > stored;
-  else if constexpr (kFunc == DepthFunc::notequal) return z != stored;
-  else if constexpr (kFunc == DepthFunc::gequal) return z >= stored;
-  else if constexpr (kFunc == DepthFunc::always) return 1;
-  return 0;
-}
-
-// depth_test_passes for 16 lanes: -1 where the test passes, 0 where it fails.
-template <DepthFunc kFunc>
-[[gnu::always_inline]] inline simd::Mask depth_test_passes(simd::Float z, simd::Float stored) {
-  if constexpr (kFunc == DepthFunc::less) return z < stored;
-  else if constexpr (kFunc == DepthFunc::equal) return z == stored;
-  else if constexpr (kFunc == DepthFunc::lequal) return z <= stored;
-  else if constexpr (kFunc == DepthFunc::greater) return z > stored;
-  else if constexpr (kFunc == DepthFunc::notequal) return z != stored;
-  else if constexpr (kFunc == DepthFunc::gequal) return z >= stored;
-  else if constexpr (kFunc == DepthFunc::always) return simd::splat(-1);
-  return simd::Mask{};
-}
-
-// An edge value the strip loop treats as "inside everywhere": far above any offset within a block (|a|, |b| < 2^22,
-// so offsets stay within 2^26) and far below overflow.
-inline constexpr std::int32_t kEdgeInside = 1 << 30;
 
 // Triangles whose pixel bounds span at most this many pixels each way have all their edge values, over every block
 // they touch, within 32 bits: their snapped vertices lie within 2 pixels of the bounds (snap_to_subpixel clamps to
@@ -66,166 +20,13 @@ inline constexpr std::int32_t kEdgeInside = 1 << 30;
 // for span 1024.
 inline constexpr int kSmallTriangleSpan = 1024;
 
-// Visibility of one triangle in one tile. Per 8x8 block: hierarchical depth rejects hidden blocks, and then each 8x2
-// strip of the block's rectangle runs one branch-free loop over its 16 pixels that does the three edge tests, the
-// depth test and the stores together. Edge values come in 32 bits straight from the triangle's corner for all but
-// huge triangles (kSmallTriangleSpan); a huge one's are classified per block in 64 bits first (exact: outside,
-// inside, or crossing), and an edge that has the whole block inside becomes the constant kEdgeInside.
-// It is written as plain loops, not with the lane types: the loop vectoriser runs after inlining, inside each
-// dispatch clone, and emits that clone's mask instructions, where GCC 12 lowers some lane-type idioms (broadcasts,
-// -1/0 masks) element by element. The coverage is exactly raster_block_coverage's (see Edge for the 32-bit budget).
-template <DepthFunc kFunc, bool kDepthTest>
-[[gnu::always_inline]] inline void raster_triangle_visibility(const TriangleSetup& tri, const RenderState& state,
-                                                              const TileWork& work, std::uint32_t ref) {
-  const bool depth_write = kDepthTest && state.depth_write;
-  const float offset = state.depth_offset;
-  const float origin_x = tri.origin_x, origin_y = tri.origin_y;
-  const Plane plane = tri.depth;
+// Visibility pass of one tile: coverage and depth of all its triangles, in draw order, keeping per pixel in the
+// tile's scratch the triangle that passed last. It touches no varyings, so it is compiled once per CPU level in the
+// library (src/core/raster_visibility.cpp) rather than once per shader.
+void raster_tile_visibility(const RenderState& state, const TileWork& work);
 
-  // The strips of rows [j0, j1] of the block at (bx, by) within `rect`, with edge values base + step_x * i +
-  // step_y * j at its pixel (i, j). Returns whether any pixel passed.
-  const auto strips = [&](int bx, int by, int j0, int j1, std::uint64_t rect, const std::int32_t* base,
-                          const std::int32_t* step_x, const std::int32_t* step_y) __attribute__((always_inline)) {
-    const std::int32_t a0 = step_x[0], b0 = step_y[0], a1 = step_x[1], b1 = step_y[1], a2 = step_x[2], b2 = step_y[2];
-    const std::size_t block = scratch_index((bx - work.x0) / kScratchBlock, (by - work.y0) / kScratchBlock);
-    unsigned any = 0;
-#if defined(__clang__)
-    simd::Mask passed{};
-#endif
-    for (int strip = j0 / 2; strip <= j1 / 2; ++strip) {
-      const unsigned bits = static_cast<unsigned>(rect >> (strip * simd::kLanes)) & 0xffffu;
-      float* depth = work.scratch->depth + block + static_cast<std::size_t>(strip) * simd::kLanes;
-      std::uint32_t* triangle = work.scratch->triangle + block + static_cast<std::size_t>(strip) * simd::kLanes;
-      const int py = by + 2 * strip;
-      // Only locals inside the loops: the triangle's fields, read there, might alias the stores through depth[]
-      // and triangle[] as far as GCC knows, and that keeps it from vectorising.
-      const std::int32_t e0 = base[0] + 2 * strip * b0, e1 = base[1] + 2 * strip * b1, e2 = base[2] + 2 * strip * b2;
-#if defined(__clang__)
-      // Clang keeps the per-lane loops below scalar, and turns the lane types into vector code: the same tests and
-      // arithmetic, in the same order, on 16 lanes at once.
-      {
-        using namespace simd;
-        const Int signs = (e0 + a0 * kLaneX + b0 * kLaneY) | (e1 + a1 * kLaneX + b1 * kLaneY) |
-                          (e2 + a2 * kLaneX + b2 * kLaneY);
-        Mask pass = (((Int{} + static_cast<std::int32_t>(bits)) >> kLaneIndex) & 1) != 0;
-        pass &= signs >= 0;
-        Float z{};
-        const Float stored = load<Float>(depth);
-        if constexpr (kDepthTest) {
-          const Float dx = to_float(kLaneX + bx) + 0.5f - origin_x;
-          const Float dy = to_float(kLaneY + py) + 0.5f - origin_y;
-          z = plane.at_origin + plane.ddx * dx + plane.ddy * dy + offset;
-          z = select(z < 0.0f, splat(0.0f), select(1.0f < z, splat(1.0f), z));  // as the scalar clamp
-          pass &= depth_test_passes<kFunc>(z, stored);
-        }
-        if (depth_write) {
-          passed |= pass;
-          store(depth, simd::blend(pass, z, stored));
-        }
-        store(triangle, simd::blend(pass, UInt{} + ref, load<UInt>(triangle)));
-      }
-#else
-      // Branch-free, so that the loops vectorise: bitwise &, selects, and stores of the old value where nothing
-      // passes.
-      const auto lane_pass = [&](int k, float& z) __attribute__((always_inline)) {
-        // Inside all three edges when no value has its sign bit set. Bit arithmetic rather than compares: GCC
-        // turns a chain of boolean &s into branches, which the vectoriser cannot take.
-        const int i = k & 7, j = k >> 3;
-        const std::int32_t signs = (e0 + a0 * i + b0 * j) | (e1 + a1 * i + b1 * j) | (e2 + a2 * i + b2 * j);
-        unsigned pass = (bits >> k) & (~static_cast<std::uint32_t>(signs) >> 31);
-        if constexpr (kDepthTest) {
-          const float dx = static_cast<float>(bx + (k & 7)) + 0.5f - origin_x;
-          const float dy = static_cast<float>(py + (k >> 3)) + 0.5f - origin_y;
-          z = evaluate(plane, dx, dy) + offset;
-          z = z < 0.0f ? 0.0f : (1.0f < z ? 1.0f : z);  // std::clamp(z, 0, 1), NaN kept, as shade_quad
-          pass &= depth_test_passes<kFunc>(z, depth[k]);
-        }
-        return pass;
-      };
-      if (depth_write) {
-        for (int k = 0; k < simd::kLanes; ++k) {
-          float z = 0.0f;
-          const unsigned pass = lane_pass(k, z);
-          any |= pass;
-          depth[k] = pass ? z : depth[k];
-          triangle[k] = pass ? ref : triangle[k];
-        }
-      } else {
-        for (int k = 0; k < simd::kLanes; ++k) {
-          float z = 0.0f;
-          triangle[k] = lane_pass(k, z) ? ref : triangle[k];
-        }
-      }
-#endif
-    }
-#if defined(__clang__)
-    for (int k = 0; k < simd::kLanes; ++k) any |= static_cast<unsigned>(passed[k]) & 1u;
-#endif
-    return any;
-  };
-
-  if (tri.max_x - tri.min_x <= kSmallTriangleSpan && tri.max_y - tri.min_y <= kSmallTriangleSpan) {
-    std::int32_t at_min[3], step_x[3], step_y[3];
-    for (int e = 0; e < 3; ++e) {
-      const Edge& edge = tri.edge[e];
-      at_min[e] =
-          static_cast<std::int32_t>(std::int64_t{edge.a} * tri.min_x + std::int64_t{edge.b} * tri.min_y + edge.q);
-      step_x[e] = edge.a;
-      step_y[e] = edge.b;
-    }
-    raster_blocks(
-        tri, work, kDepthTest,
-        state, [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
-          std::int32_t base[3];
-          for (int e = 0; e < 3; ++e) base[e] = at_min[e] + step_x[e] * (bx - tri.min_x) + step_y[e] * (by - tri.min_y);
-          const std::uint64_t rect = block_rect_mask(i0, i1, j0, j1);
-          // Whether every pixel of the block is inside: only then can the block's depth bound tighten.
-          bool full = rect == ~std::uint64_t{0};
-          if (full)
-            for (int e = 0; e < 3; ++e)
-              full &=
-                  base[e] + std::min(0, step_x[e] * (kBlockSize - 1)) + std::min(0, step_y[e] * (kBlockSize - 1)) >= 0;
-          return BlockCoverage{strips(bx, by, j0, j1, rect, base, step_x, step_y) != 0, full};
-        });
-    return;
-  }
-
-  raster_blocks(
-      tri, work, kDepthTest, state, [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
-        // Each edge on the block's rectangle [i0, i1] x [j0, j1]: its extremes are at corners (exact in 64 bits). An
-        // edge the whole rectangle is inside of becomes the constant kEdgeInside (steps 0), with selects rather than
-        // branches: which edges those are is a coin toss per block.
-        std::int32_t base[3], step_x[3], step_y[3];
-        bool outside = false, all_inside = true;
-        for (int e = 0; e < 3; ++e) {
-          const Edge& edge = tri.edge[e];
-          const std::int64_t at_block = std::int64_t{edge.a} * bx + std::int64_t{edge.b} * by + edge.q;
-          const std::int64_t at_corner = at_block + std::int64_t{edge.a} * i0 + std::int64_t{edge.b} * j0;
-          const std::int64_t step_a = std::int64_t{edge.a} * (i1 - i0), step_b = std::int64_t{edge.b} * (j1 - j0);
-          const std::int64_t lowest = at_corner + std::min<std::int64_t>(0, step_a) + std::min<std::int64_t>(0, step_b);
-          const std::int64_t highest =
-              at_corner + std::max<std::int64_t>(0, step_a) + std::max<std::int64_t>(0, step_b);
-          outside |= highest < 0;
-          all_inside &= lowest >= 0;
-          const bool inside = lowest >= 0;
-          base[e] = inside ? kEdgeInside : static_cast<std::int32_t>(at_block);
-          step_x[e] = inside ? 0 : edge.a;
-          step_y[e] = inside ? 0 : edge.b;
-        }
-        if (outside) return BlockCoverage{false, false};
-        const std::uint64_t rect = block_rect_mask(i0, i1, j0, j1);
-        const bool any = strips(bx, by, j0, j1, rect, base, step_x, step_y) != 0;
-        return BlockCoverage{any, all_inside && rect == ~std::uint64_t{0}};
-      });
-}
-
-// Visibility pass of one tile: coverage and depth of all its triangles, in draw order, keeping per pixel the
-// triangle that passed last.
-template <DepthFunc kFunc, bool kDepthTest>
-[[gnu::always_inline]] inline void raster_tile_visibility(const RenderState& state, const TileWork& work) {
-  for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
-    raster_triangle_visibility<kFunc, kDepthTest>(tri, state, work, ref);
-  });
-}
+// The same for a multisampled tile: planes[s] (sample_work) is sample s's plane, which sees each triangle through
+// at_sample; triangles in draw order, each tested against every sample plane.
+void raster_tile_visibility_multisample(const RenderState& state, const TileWork& work, const TileWork* planes);
 
 }  // namespace facet::detail
