@@ -1,15 +1,12 @@
 #!/usr/bin/env bash
 # perf.sh - reproduces docs/PERFORMANCE.md: facet against llvmpipe per scene, thread scaling, memory, micro-benchmarks.
-# Usage: scripts/perf.sh [ROUNDS]   (default 3). Needs the reference renderer kit (glref, compare.sh) in
-# ../shared/peers, beside the checkout.
+# Usage: scripts/perf.sh [ROUNDS]   (default 3). The OpenGL reference, glref, is built from bench/glref/.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 rounds=${1:-3}
-peers=../shared/peers
-[ -x "$peers/compare.sh" ] || { echo "perf.sh: $peers/compare.sh not found" >&2; exit 1; }
 scripts/deps.sh f3d  # f3d (VTK, on Mesa under Xvfb) for the whole-process table
 cmake --preset release >/dev/null
-cmake --build --preset release -j "$(nproc)" --target facet_cli facet_microbench
+cmake --build --preset release -j "$(nproc)"
 
 scenes=("--sphere 224" "--sphere 707" "--sphere 1414" "--quads 64 --order b2f" "--quads 64 --order f2b"
         "--mesh /usr/share/assimp/models/OBJ/WusonOBJ.obj")
@@ -17,13 +14,13 @@ scenes=("--sphere 224" "--sphere 707" "--sphere 1414" "--quads 64 --order b2f" "
 echo "## facet against llvmpipe, 2 threads each ($(date -u +%F), $(nproc) CPUs)"
 for s in "${scenes[@]}"; do
   # shellcheck disable=SC2086  # the scene flags are meant to split
-  ROUNDS=$rounds "$peers/compare.sh" ./build/tools/facet build/peers $s --threads 2
+  ROUNDS=$rounds bench/compare_gl.sh build/tools/facet build/bench/glref build/compare_gl $s --threads 2
 done
 
 echo "## 4x multisampling against llvmpipe's, 2 threads each"
 for s in "--sphere 224" "--sphere 707" "--quads 64 --order f2b" "--mesh /usr/share/assimp/models/OBJ/WusonOBJ.obj"; do
   # shellcheck disable=SC2086
-  ROUNDS=$rounds "$peers/compare.sh" ./build/tools/facet build/peers $s --threads 2 --samples 4
+  ROUNDS=$rounds bench/compare_gl.sh build/tools/facet build/bench/glref build/compare_gl $s --threads 2 --samples 4
 done
 echo "## cost of 4 samples against 1, sphere:224 (median ms of 30 frames, alternated)"
 for ((r = 1; r <= rounds; r++)); do
@@ -68,4 +65,4 @@ echo "## the browser page in headless Chromium, 800x600"
 bash bench/web_fps.sh "$rounds" 5
 
 echo "## whole processes: facet render against glref (load, draw, write the PNG), every round"
-bash bench/whole_process.sh build/tools/facet build/peers/glref "$rounds"
+bash bench/whole_process.sh build/tools/facet build/bench/glref "$rounds"
