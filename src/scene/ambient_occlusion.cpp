@@ -27,8 +27,11 @@ FACET_LANES_INLINE void store_within(float* out, int x, int width, const simd::F
 FACET_DISPATCH_LEVELS
 void depth_row(const Unprojection& unproject, const float* depth, int width, float* z) {
   int x = 0;
-  for (; x + simd::kLanes <= width; x += simd::kLanes)
-    simd::store(z + x, unproject.z(simd::load<simd::Float>(depth + x)));
+  for (; x + simd::kLanes <= width; x += simd::kLanes) {
+    const simd::Float d = simd::load<simd::Float>(depth + x);
+    // Background strips (window depth 1 throughout) are 0, as Unprojection::z gives them, without its division.
+    simd::store(z + x, simd::lane_bits(d < 1.0f) == 0 ? simd::splat(0.0f) : unproject.z(d));
+  }
   for (; x < width; ++x) z[x] = unproject.z(depth[x]);
 }
 
