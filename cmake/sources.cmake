@@ -66,6 +66,7 @@ set(FACET_JOB_SOURCES
   src/io/ply_loader.cpp
   src/io/references.cpp
   src/io/stl_loader.cpp
+  src/scene/names.cpp
   src/scene/view_spec.cpp)
 
 # The job's parts that need the host: libraries opened or linked at run time (Assimp, OpenEXR, FFmpeg, giflib,

@@ -6,7 +6,11 @@
 #include <cstdio>
 #include <functional>
 #include <optional>
+#include <span>
+#include <string_view>
 #include <utility>
+
+#include "facet/names.hpp"
 
 namespace facet::cli {
 namespace {
@@ -34,18 +38,19 @@ std::vector<std::string> split(const std::string& text, const std::string& separ
   }
 }
 
+// An option taking one of the library's names (facet/names.hpp); `parse` may accept more spellings than the names.
 template <class E>
-CLI::Option* add_enum_option(CLI::App& app, const std::string& name,
-                             const std::vector<std::pair<std::string, E>>& names, std::function<void(E)> assign,
-                             const std::string& description) {
+CLI::Option* add_enum_option(CLI::App& app, const std::string& name, std::span<const Named<E>> names,
+                             std::function<void(E)> assign, const std::string& description,
+                             std::function<std::optional<E>(std::string_view)> parse = {}) {
   std::string choices;
-  for (const auto& [text, value] : names) choices += (choices.empty() ? "" : "|") + text;
+  for (const Named<E>& n : names) choices += (choices.empty() ? "" : "|") + std::string(n.name);
+  if (!parse) parse = [names](std::string_view text) { return parse_name(names, text); };
   return app
       .add_option_function<std::string>(
           name,
-          [names, assign, name, choices](const std::string& text) {
-            for (const auto& [candidate, value] : names)
-              if (candidate == text) return assign(value);
+          [parse, assign, name, choices](const std::string& text) {
+            if (const std::optional<E> value = parse(text)) return assign(*value);
             throw CLI::ValidationError(name, "\"" + text + "\" is not one of " + choices);
           },
           description + " (" + choices + ")")
@@ -147,10 +152,8 @@ void add_camera_options(CLI::App& app, CameraArgs& args) {
   app.add_option("--far", args.far, "Far clipping distance (default: hug the model)")
       ->check(number_in(-1e30, 1e30))
       ->type_name("F");
-  std::vector<std::pair<std::string, Projection>> projections;
-  for (const ProjectionName& n : projection_names()) projections.emplace_back(n.name, n.projection);
   add_enum_option<Projection>(
-      app, "--projection", projections, [&args](Projection k) { args.projection = k; }, "Projection");
+      app, "--projection", projection_names(), [&args](Projection k) { args.projection = k; }, "Projection");
   add_floats_option(app, "--frustum", args.frustum, 4, "Frustum near-plane window L,R,B,T (glFrustum)");
   add_floats_option(app, "--ortho", args.ortho, 4, "Orthographic window L,R,B,T (default: fit the model)");
   app.add_option("--oblique-angle", args.oblique_angle, "Oblique receding direction, degrees from +X (45)")
@@ -190,9 +193,7 @@ void add_lighting_options(CLI::App& app, LookArgs& args) {
       ->check(number_in(0.0, 1.0))
       ->type_name("R");
   add_enum_option<ToneMapping>(
-      app, "--tone-mapping",
-      {{"neutral", ToneMapping::neutral}, {"aces", ToneMapping::aces}, {"none", ToneMapping::none}},
-      [&args](ToneMapping t) { args.tone_mapping = t; },
+      app, "--tone-mapping", tone_mapping_names(), [&args](ToneMapping t) { args.tone_mapping = t; },
       "How the model's own look maps light to colour (default: neutral, Khronos PBR Neutral)");
   app.add_flag("--no-model-lights", args.no_model_lights,
                "Leave out the lights the model's file places (glTF KHR_lights_punctual) from its own look");
@@ -207,20 +208,12 @@ void add_lighting_options(CLI::App& app, LookArgs& args) {
 
 void add_look_options(CLI::App& app, LookArgs& args) {
   add_enum_option<Shading>(
-      app, "--shading",
-      {{"unlit", Shading::unlit},
-       {"flat", Shading::flat},
-       {"gouraud", Shading::gouraud},
-       {"phong", Shading::phong},
-       {"blinn-phong", Shading::blinn_phong},
-       {"normals", Shading::normals},
-       {"depth", Shading::depth}},
-      [&args](Shading s) { args.shading = s; }, "Shading (default: the model's own look)");
+      app, "--shading", shading_names(), [&args](Shading s) { args.shading = s; },
+      "Shading (default: automatic, the model's own look)", parse_shading);
   app.add_flag("--wireframe", args.wireframe, "Draw only the edges");
   app.add_flag("--edges", args.edges, "Draw the edges over the surfaces");
   add_enum_option<CullMode>(
-      app, "--culling", {{"back", CullMode::back}, {"front", CullMode::front}, {"none", CullMode::none}},
-      [&args](CullMode c) { args.culling = c; },
+      app, "--culling", cull_mode_names(), [&args](CullMode c) { args.culling = c; },
       "Face culling (default: none, but glTF's single-sided materials cull back faces)");
   app.add_flag("--no-depth-test", args.no_depth_test, "Draw in submission order without the depth test");
   app.add_flag("--painter", args.painter, "Painter's algorithm: sort triangles back to front, no depth test");

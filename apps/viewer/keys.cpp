@@ -1,6 +1,10 @@
 // keys.cpp - the viewer's key bindings, as the source documents' demos name their switches.
 #include "keys.hpp"
 
+#include <cstddef>
+
+#include "facet/names.hpp"
+
 namespace facet::viewer {
 
 const char* const kHelpText =
@@ -8,8 +12,8 @@ const char* const kHelpText =
     "c  culling: back, front, none\n"
     "z  depth test on/off    p  painter's algorithm\n"
     "s  shuffle the triangle order\n"
-    "1-7  unlit, flat, Gouraud, Phong, Blinn-Phong, normals, depth\n"
-    "0  the model's own shading\n"
+    "1-7  unlit, flat, gouraud, phong, blinn-phong, normals, depth\n"
+    "0  automatic: the model's own shading\n"
     "o  orthographic/perspective\n"
     "a  anti-aliasing (4x multisampling)\n"
     "r  reset the camera     space  pause\n"
@@ -18,8 +22,6 @@ const char* const kHelpText =
     "drop a model file on the window to open it";
 
 KeyAction apply_key(char key, Toggles& t, Orbit& orbit) {
-  static constexpr Shading kShadings[] = {Shading::unlit,       Shading::flat,    Shading::gouraud, Shading::phong,
-                                          Shading::blinn_phong, Shading::normals, Shading::depth};
   switch (key) {
     case 'w': t.wireframe = !t.wireframe; break;
     case 'e': t.edges = !t.edges; break;
@@ -40,8 +42,9 @@ KeyAction apply_key(char key, Toggles& t, Orbit& orbit) {
     case 'q':
     case '\x1b': return KeyAction::quit;
     default:
+      // Keys 1-7 take the library's shadings in its order, after "automatic" (key 0).
       if (key >= '1' && key <= '7') {
-        t.shading = kShadings[key - '1'];
+        t.shading = shading_names()[static_cast<std::size_t>(key - '0')].value;
         break;
       }
       return KeyAction::unknown;
@@ -50,13 +53,10 @@ KeyAction apply_key(char key, Toggles& t, Orbit& orbit) {
 }
 
 std::string describe(const Toggles& t) {
-  static constexpr const char* kNames[] = {"own shading", "unlit",       "flat",    "Gouraud",
-                                           "Phong",       "Blinn-Phong", "normals", "depth"};
-  std::string s = kNames[t.shading ? static_cast<int>(*t.shading) : 0];
+  std::string s = std::string("shading ") + name_of(shading_names(), t.shading.value_or(Shading::automatic));
   if (t.wireframe) s += ", wireframe";
   if (t.edges) s += ", edges";
-  if (t.cull)
-    s += *t.cull == CullMode::back ? ", cull back" : *t.cull == CullMode::front ? ", cull front" : ", no culling";
+  if (t.cull) s += std::string(", culling ") + name_of(cull_mode_names(), *t.cull);
   if (!t.depth_test) s += ", no depth test";
   if (t.painter) s += ", painter";
   if (t.shuffles) s += ", shuffled";

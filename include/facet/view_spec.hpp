@@ -33,16 +33,6 @@ enum class UpAxis { pos_x, neg_x, pos_y, neg_y, pos_z, neg_z };
 // "+Y", "-z", "Z" (a bare letter is positive), ...; nullopt for anything else.
 std::optional<UpAxis> parse_up_axis(std::string_view text);
 
-// Each projection with its name as `facet render --projection` and Python's facet.render spell it: "perspective",
-// "orthographic", "frustum", "oblique", "isometric", "dimetric", "trimetric", "front", "top", "side".
-struct ProjectionName {
-  const char* name;
-  Projection projection;
-};
-std::span<const ProjectionName> projection_names();
-// The projection named `name`; nullopt for anything else.
-std::optional<Projection> parse_projection(std::string_view name);
-
 // The rotation taking the model's up axis to +Y.
 glm::mat3 upright_from_model(UpAxis up);
 

@@ -14,6 +14,7 @@
 #include "facet/error.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/model_io.hpp"
+#include "facet/names.hpp"
 #include "facet/render_job.hpp"
 #include "facet/renderer.hpp"
 #include "facet/view_spec.hpp"
@@ -24,25 +25,17 @@ namespace facet::python {
 namespace {
 
 Shading shading_named(const std::string& name) {
-  static const std::pair<const char*, Shading> names[] = {
-      {"automatic", Shading::automatic}, {"unlit", Shading::unlit}, {"flat", Shading::flat},
-      {"gouraud", Shading::gouraud},     {"phong", Shading::phong}, {"blinn_phong", Shading::blinn_phong},
-      {"normals", Shading::normals},     {"depth", Shading::depth}};
-  for (const auto& [n, s] : names)
-    if (name == n) return s;
-  value_error("shading: unknown shading '" + name + "'");
+  if (const std::optional<Shading> shading = parse_shading(name)) return *shading;
+  value_error("shading: unknown shading '" + name + "' (" + listed(shading_names()) + ")");
 }
 
 // The buffers a list of names asks for; raises ValueError for an unknown name.
 BufferRequest request_of(const std::vector<std::string>& names) {
   BufferRequest r{.color = false};
   for (const std::string& n : names) {
-    if (n == "color") r.color = true;
-    else if (n == "depth") r.depth = true;
-    else if (n == "normal") r.normal = true;
-    else if (n == "ids") r.ids = true;
-    else if (n == "mask") r.mask = true;
-    else value_error("buffers: unknown buffer '" + n + "' (color, depth, normal, ids, mask)");
+    const std::optional<bool BufferRequest::*> field = parse_name(buffer_names(), n);
+    if (!field) value_error("buffers: unknown buffer '" + n + "' (" + listed(buffer_names()) + ")");
+    r.**field = true;
   }
   return r;
 }
@@ -210,7 +203,7 @@ py::dict render_file(const std::string& model, int width, int height, int thread
   job.camera.elevation_degrees = elevation;
   job.camera.file_camera = camera_index;
   const std::optional<Projection> kind = parse_projection(projection);
-  if (!kind) value_error("projection: unknown projection '" + projection + "'");
+  if (!kind) value_error("projection: unknown projection '" + projection + "' (" + listed(projection_names()) + ")");
   job.camera.projection = *kind;
   const std::optional<UpAxis> axis = parse_up_axis(up);
   if (!axis) value_error("up: expected +X, -X, +Y, -Y, +Z or -Z, got '" + up + "'");

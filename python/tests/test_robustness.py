@@ -41,10 +41,22 @@ TRIANGLE = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float)
     (lambda: facet.render("/usr/share/assimp/models/OBJ/box.obj", width=0), "width"),
     (lambda: facet.render("/usr/share/assimp/models/OBJ/box.obj", buffers=["colour"]), "colour"),
     (lambda: facet.render("/usr/share/assimp/models/OBJ/box.obj", projection="fisheye"), "fisheye"),
+    # Unknown names are reported with the names the library knows, as the CLI spells them.
+    (lambda: facet.render("/usr/share/assimp/models/OBJ/box.obj", shading="toon"), "toon.*blinn-phong"),
+    (lambda: facet.render("/usr/share/assimp/models/OBJ/box.obj", buffers=["rgb"]), "rgb.*color, depth"),
 ])
 def test_bad_arrays_and_arguments_raise_value_error(make, message):
     with pytest.raises(ValueError, match=message):
         make()
+
+
+def test_shading_names_are_the_clis_and_the_old_spelling_still_works():
+    box = "/usr/share/assimp/models/OBJ/box.obj"
+    new = facet.render(box, width=32, height=24, shading="blinn-phong", buffers=["color"])["color"]
+    old = facet.render(box, width=32, height=24, shading="blinn_phong", buffers=["color"])["color"]
+    own = facet.render(box, width=32, height=24, buffers=["color"])["color"]
+    assert np.array_equal(new, old)
+    assert not np.array_equal(new, own)
 
 
 def test_a_scene_without_camera_cannot_render():

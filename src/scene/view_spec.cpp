@@ -92,26 +92,6 @@ Camera place_camera(const CameraSpec& spec, const Framing& framing, float aspect
 
 }  // namespace
 
-std::span<const ProjectionName> projection_names() {
-  static constexpr ProjectionName kNames[] = {{"perspective", Projection::perspective},
-                                              {"orthographic", Projection::orthographic},
-                                              {"frustum", Projection::frustum},
-                                              {"oblique", Projection::oblique},
-                                              {"isometric", Projection::isometric},
-                                              {"dimetric", Projection::dimetric},
-                                              {"trimetric", Projection::trimetric},
-                                              {"front", Projection::front},
-                                              {"top", Projection::top},
-                                              {"side", Projection::side}};
-  return kNames;
-}
-
-std::optional<Projection> parse_projection(std::string_view name) {
-  for (const ProjectionName& n : projection_names())
-    if (name == n.name) return n.projection;
-  return std::nullopt;
-}
-
 std::optional<UpAxis> parse_up_axis(std::string_view text) {
   while (!text.empty() && (text.front() == ' ' || text.front() == '\t')) text.remove_prefix(1);
   while (!text.empty() && (text.back() == ' ' || text.back() == '\t')) text.remove_suffix(1);
