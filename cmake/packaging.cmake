@@ -79,7 +79,7 @@ include(CPack)
 # The test (scripts/deb_test.sh): builds both packages, installs them with apt into a fresh bookworm root made by
 # mmdebstrap and renders with them there. It needs root and Debian's mirror, and skips itself without root; its
 # label lets `ctest -L package` run it alone and `ctest -LE package` leave it out.
-if(FACET_BUILD_TESTS AND NOT FACET_SANITIZE AND NOT FACET_SANITIZE_THREAD)
+if(FACET_BUILD_TESTS AND NOT FACET_SANITIZE AND NOT FACET_SANITIZE_THREAD AND NOT FACET_PROPERTY_TESTS_ONLY)
   add_test(NAME package.deb
            COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/deb_test.sh ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR}
                    ${CMAKE_BINARY_DIR}/test-output/package/deb)

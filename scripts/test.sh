@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# test.sh - installs what is missing, builds facet warning-free, and runs every test (ctest), then the same under
-# ASan+UBSan, then the threading and determinism tests under ThreadSanitizer.
+# test.sh - installs what is missing, builds facet warning-free, and runs every test (ctest), then the pipeline's
+# property tests built by Clang, then the tests under ASan+UBSan, then the threading and determinism tests under
+# ThreadSanitizer.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 # Each stage says what it took, so a slow run shows where its time went (docs/DEVELOPING.md lists the usual costs).
@@ -25,6 +26,13 @@ cmake --build --preset release -j "$jobs"
 stage "release build"
 ctest --preset release -j "$jobs"
 stage "release tests"
+
+# The pipeline's property tests built by Clang and run: its lane code's Clang forms against the same oracles.
+cmake --preset clang >/dev/null
+cmake --build --preset clang -j "$jobs"
+stage "Clang build"
+ctest --preset clang -j "$jobs"
+stage "Clang property tests"
 
 if [ "${FACET_SKIP_SANITIZE:-0}" != 1 ]; then
   cmake --preset asan >/dev/null
