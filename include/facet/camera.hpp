@@ -1,4 +1,5 @@
-// camera.hpp - a VTK-style camera (position / focal point / view up), sphere framing and turning about the focus.
+// camera.hpp - a VTK-style camera (position / focal point / view up), the view it gives, sphere framing and turning
+// about the focus.
 #pragma once
 
 #include <glm/mat4x4.hpp>
@@ -14,6 +15,20 @@ struct Camera {
   glm::vec3 view_up{0.0f, 1.0f, 0.0f};
   float view_angle_degrees = 30.0f;  // vertical field of view
   float near = 0.01f, far = 1000.01f;
+};
+
+// What a frame is drawn through: the matrices a Camera (or a projection of view_spec.hpp) gives, and the clipping
+// distances the depth shading and the depth output read.
+struct View {
+  glm::mat4 view_from_world{1.0f};
+  glm::mat4 clip_from_view{1.0f};
+  float near = 0.1f, far = 100.0f;
+};
+
+// The bounding sphere a model is framed by: the box centre, and the distance from it to the farthest position.
+struct Framing {
+  glm::vec3 center{0.0f};
+  float radius = 0.0f;
 };
 
 // look_at(position, focal_point, view_up); throws like look_at.

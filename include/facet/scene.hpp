@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "facet/camera.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/light.hpp"
 #include "facet/mesh.hpp"
@@ -85,12 +86,6 @@ LightBlock make_light_block(const SceneOptions& options);
 struct Instance {
   std::shared_ptr<const Mesh> mesh;
   glm::mat4 world_from_object{1.0f};
-};
-
-struct View {
-  glm::mat4 view_from_world{1.0f};
-  glm::mat4 clip_from_view{1.0f};
-  float near = 0.1f, far = 100.0f;  // for the depth shading and the depth output
 };
 
 // Which surface each pixel shows (Scene::render_ids), top row first; kNoSurface in both where nothing is drawn.

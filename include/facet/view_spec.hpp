@@ -9,7 +9,8 @@
 
 #include <glm/glm.hpp>
 
-#include "facet/scene.hpp"
+#include "facet/camera.hpp"
+#include "facet/mesh.hpp"
 
 namespace facet {
 
@@ -53,12 +54,6 @@ struct CameraSpec {
   float oblique_scale = 0.5f;                          // 1 cavalier, 0.5 cabinet
   UpAxis up = UpAxis::pos_y;
   std::optional<int> file_camera;  // view through the model file's camera N instead (file_camera_view)
-};
-
-// The bounding sphere a model is framed by: the box centre, and the distance from it to the farthest position.
-struct Framing {
-  glm::vec3 center{0.0f};
-  float radius = 0.0f;
 };
 
 // Framing of a mesh's positions. Throws InputError(source, ...) when its coordinates are too large to frame.
