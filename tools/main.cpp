@@ -87,6 +87,12 @@ int main(int argc, char** argv) {
   // freed memory kept for reuse (up to 512 MiB free at the top of the heap; only blocks over 256 MiB are mapped).
   mallopt(M_MMAP_THRESHOLD, 256 << 20);
   mallopt(M_TRIM_THRESHOLD, 512 << 20);
+  // The library's messages name a setting by the flag that sets it.
+  facet::spell_settings([](std::string_view name) {
+    std::string flag = "--" + std::string(name);
+    std::replace(flag.begin(), flag.end(), '_', '-');
+    return flag;
+  });
   CLI::App app{"facet: a CPU 3D rendering pipeline", "facet"};
   app.set_version_flag("--version", std::string("facet ") + facet::kVersion);
   facet::cli::RenderArgs render_args;

@@ -3,6 +3,7 @@
 
 #include <stdexcept>
 #include <string>
+#include <string_view>
 
 namespace facet {
 
@@ -17,5 +18,12 @@ class InputError : public std::runtime_error {
  private:
   std::string source_, problem_;
 };
+
+// How messages name a setting (a LoadOptions field, by its C++ name such as "max_triangles"): as
+// "LoadOptions::max_triangles" unless a face has set its own spelling, once at start-up before any thread reports
+// (the CLI its flag, "--max-triangles"; Python its keyword). So every face's users read the name they can pass.
+using SettingSpelling = std::string (*)(std::string_view name);
+void spell_settings(SettingSpelling spelling);
+std::string setting(std::string_view name);
 
 }  // namespace facet

@@ -236,6 +236,8 @@ PYBIND11_MODULE(_facet, m) {
   namespace py = pybind11;
   using namespace facet::python;
   m.doc() = "facet's compiled core: meshes, scenes and renderers; use the facet package, not this module.";
+  // The library's messages name a setting by the keyword argument that sets it (facet.render, Mesh.from_file).
+  facet::spell_settings([](std::string_view name) { return "keyword " + std::string(name); });
 
   static py::exception<facet::InputError> load_error(
       m, "LoadError", py::make_tuple(py::handle(PyExc_OSError), py::handle(PyExc_ValueError)));

@@ -518,7 +518,7 @@ std::string expand_path(const std::string& joined, void* user) {
                        (found.note.empty() ? printable(found.problem)
                                            : "outside the model's folder, and no '" +
                                                  printable(std::filesystem::path(name).filename().string()) +
-                                                 "' beside it (--allow-external-files reads it)");
+                                                 "' beside it (" + setting("allow_external_files") + " reads it)");
     return {};
   }
   if (!found.note.empty() && access.noted.insert(found.note).second)
@@ -594,9 +594,8 @@ bool load_image(tinygltf::Image* image, const int index, std::string*, std::stri
     image->pixel_type = TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE;
     image->image = std::move(decoded.rgba);
   } catch (const InputError& e) {
-    warn(access.source, std::string(e.what()) +
-                            " (--max-texture-size sets the size limit); drawing its material "
-                            "untextured");
+    warn(access.source, std::string(e.what()) + " (" + setting("max_texture_size") +
+                            " sets the size limit); drawing its material untextured");
     image->width = kWarnedImage;
   }
   return true;

@@ -142,7 +142,7 @@ Model read_model(const fs::path& path, std::string& format_name, const LoadOptio
   for (const ModelInstance& instance : model.instances) triangles += model.meshes[instance.mesh].indices.size() / 3;
   if (triangles > options.max_triangles)
     throw InputError(path.string(), "places " + std::to_string(triangles) + " triangles, more than the limit of " +
-                                        std::to_string(options.max_triangles) + " (--max-triangles)");
+                                        std::to_string(options.max_triangles) + " (" + setting("max_triangles") + ")");
   return model;
 }
 

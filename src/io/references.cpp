@@ -51,7 +51,7 @@ Reference resolve_reference(const ReferencePolicy& policy, std::string_view name
       }
       candidate = folder / asked.filename();
       out.note = "lies outside the model's folder; reading " + quoted(asked.filename()) +
-                 " beside the model instead (--allow-external-files reads it)";
+                 " beside the model instead (" + setting("allow_external_files") + " reads it)";
     } else {
       candidate = folder / relative;
     }
@@ -74,7 +74,8 @@ Reference resolve_reference(const ReferencePolicy& policy, std::string_view name
     const fs::path root = fs::canonical(folder, root_error);
     if (real_error || root_error || !lies_within(real, root)) {
       out.problem =
-          "leads outside the model's folder (" + candidate.string() + "); not read (--allow-external-files reads it)";
+          "leads outside the model's folder (" + candidate.string() + "); not read (" + setting("allow_external_files") +
+          " reads it)";
       return out;
     }
   }
@@ -104,7 +105,7 @@ std::optional<std::string> usable_texture(const ReferencePolicy& policy, const L
   // An unreadable header is reported when the image is decoded, as for any texture.
   if (known && (width > options.max_texture_size || height > options.max_texture_size)) {
     warn(source, what + " is " + std::to_string(width) + "x" + std::to_string(height) + " texels, over the limit of " +
-                     std::to_string(options.max_texture_size) + " a side (--max-texture-size); drawn untextured");
+                     std::to_string(options.max_texture_size) + " a side (" + setting("max_texture_size") + "); drawn untextured");
     return std::nullopt;
   }
   return found.path->string();

@@ -182,7 +182,13 @@ TEST_F(HostileFiles, TriangleAndTextureLimits) {
   write_file(dir_ / "quad.obj", "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nf 1 2 3 4\n");
   EXPECT_EQ(problem(dir_ / "quad.obj", LoadOptions{.max_triangles = 2}), "");
   EXPECT_EQ(problem(dir_ / "quad.obj", LoadOptions{.max_triangles = 1}),
-            "places 2 triangles, more than the limit of 1 (--max-triangles)");
+            "places 2 triangles, more than the limit of 1 (LoadOptions::max_triangles)");
+  // A face names the setting its own way (the CLI by its flag, Python by its keyword).
+  spell_settings([](std::string_view name) { return "<" + std::string(name) + ">"; });
+  EXPECT_EQ(problem(dir_ / "quad.obj", LoadOptions{.max_triangles = 1}),
+            "places 2 triangles, more than the limit of 1 (<max_triangles>)");
+  spell_settings(nullptr);
+  EXPECT_EQ(setting("max_triangles"), "LoadOptions::max_triangles");
 
   // A 64x64 texture under a limit of 32 a side: the material is drawn untextured, with a warning.
   write_png(dir_ / "big.png", 64, 64, std::vector<std::uint8_t>(64 * 64 * 4, 200));
@@ -194,7 +200,8 @@ TEST_F(HostileFiles, TriangleAndTextureLimits) {
   WarningCapture warnings;
   EXPECT_EQ(load_model(dir_ / "big.obj", LoadOptions{.max_texture_size = 32}).materials.at(0).diffuse_texture, "");
   ASSERT_EQ(warnings.messages().size(), 1u);
-  EXPECT_NE(warnings.messages()[0].find("is 64x64 texels, over the limit of 32 a side"), std::string::npos)
+  EXPECT_NE(warnings.messages()[0].find("is 64x64 texels, over the limit of 32 a side (LoadOptions::max_texture_size)"),
+            std::string::npos)
       << warnings.messages()[0];
 }
 
