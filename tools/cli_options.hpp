@@ -4,6 +4,7 @@
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -12,6 +13,7 @@
 #include <glm/glm.hpp>
 
 #include "facet/model_io.hpp"
+#include "facet/named.hpp"
 #include "facet/render_job.hpp"
 #include "facet/texture.hpp"
 #include "facet/view_spec.hpp"
@@ -53,6 +55,14 @@ CLI::Validator parse_check(Parse parse, const std::string& description) {
         return {};
       },
       description);
+}
+
+// A CLI11 check: one of the library's names (facet/named.hpp).
+template <class T>
+CLI::IsMember one_of(std::span<const Named<T>> names) {
+  std::vector<std::string> accepted;
+  for (const Named<T>& n : names) accepted.emplace_back(n.name);
+  return CLI::IsMember(accepted);
 }
 
 // A CLI11 check: a plain decimal number in lo..hi (no nan/inf, no trailing text), whole when `integer`.

@@ -18,7 +18,7 @@ CLI::App* add_demo_command(CLI::App& app, DemoArgs& args) {
   demo->add_option("scene", args.name,
                    "cube | torus (spinning), two-cubes (two cubes seen at an angle), pentagon (a turning triangle fan)")
       ->required()
-      ->check(CLI::IsMember({"cube", "torus", "two-cubes", "pentagon"}))
+      ->check(one_of(demo_names()))
       ->type_name("SCENE");
   add_output_options(*demo, args.output, "800,800");
   demo->add_option("--time", args.time, "Moment of the animation in seconds (1)")

@@ -24,7 +24,7 @@ CLI::App* add_view_command(CLI::App& app, ViewArgs& args) {
   view->footer(keys);
   view->add_option("model", args.model, "Model file (any format facet render reads)")->type_name("MODEL");
   view->add_option("--demo", args.demo, "cube | torus | two-cubes | pentagon, instead of a model")
-      ->check(CLI::IsMember({"cube", "torus", "two-cubes", "pentagon"}))
+      ->check(one_of(demo_names()))
       ->type_name("NAME");
   view->add_option("--resolution", args.resolution, "Window size W,H (1280,720)")->type_name("W,H");
   view->add_option("--threads", args.threads, "Render threads; 0 = one per hardware thread (0)")

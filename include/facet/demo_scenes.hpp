@@ -3,12 +3,14 @@
 
 #include <memory>
 #include <optional>
+#include <span>
 #include <string_view>
 #include <vector>
 
 #include <glm/glm.hpp>
 
 #include "facet/mesh.hpp"
+#include "facet/named.hpp"
 #include "facet/scene.hpp"
 
 namespace facet {
@@ -20,7 +22,9 @@ enum class Demo {
   pentagon,   // the CIS367 notes' pentagon triangle fan, turning face on
 };
 
-// "cube", "torus", "two-cubes" or "pentagon"; nullopt for anything else.
+// "cube", "torus", "two-cubes", "pentagon": the names `facet demo`, `facet view --demo` and the page take.
+std::span<const Named<Demo>> demo_names();
+// The demo named `name`; nullopt for anything else.
 std::optional<Demo> parse_demo(std::string_view name);
 const char* demo_name(Demo demo);
 

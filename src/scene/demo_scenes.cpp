@@ -93,21 +93,15 @@ DemoFrame turning_pentagon_frame(const std::shared_ptr<const Mesh>& mesh, double
 
 }  // namespace
 
-std::optional<Demo> parse_demo(std::string_view name) {
-  for (const Demo d : {Demo::cube, Demo::torus, Demo::two_cubes, Demo::pentagon})
-    if (name == demo_name(d)) return d;
-  return std::nullopt;
+std::span<const Named<Demo>> demo_names() {
+  static constexpr Named<Demo> kNames[] = {
+      {"cube", Demo::cube}, {"torus", Demo::torus}, {"two-cubes", Demo::two_cubes}, {"pentagon", Demo::pentagon}};
+  return kNames;
 }
 
-const char* demo_name(Demo demo) {
-  switch (demo) {
-    case Demo::cube: return "cube";
-    case Demo::torus: return "torus";
-    case Demo::two_cubes: return "two-cubes";
-    case Demo::pentagon: return "pentagon";
-  }
-  return "";
-}
+std::optional<Demo> parse_demo(std::string_view name) { return parse_name(demo_names(), name); }
+
+const char* demo_name(Demo demo) { return name_of(demo_names(), demo); }
 
 DemoModel make_demo(Demo demo) {
   DemoModel model;

@@ -4,6 +4,7 @@
 #include <set>
 #include <string>
 
+#include "facet/demo_scenes.hpp"
 #include "facet/names.hpp"
 
 namespace facet {
@@ -29,6 +30,7 @@ TEST(Names, EveryChoiceHasOneName) {
   expect_one_name_each(tone_mapping_names());
   expect_one_name_each(projection_names());
   expect_one_name_each(buffer_names());
+  expect_one_name_each(demo_names());
   EXPECT_EQ(shading_names().size(), 8u);
   EXPECT_EQ(projection_names().size(), 10u);
 }
