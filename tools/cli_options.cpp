@@ -282,11 +282,13 @@ CameraSpec camera_spec(const CameraArgs& args) {
 void add_input_options(CLI::App& app, InputArgs& args) {
   app.add_flag("--allow-external-files", args.allow_external_files,
                "Read the files a model names (materials, textures, buffers) outside its folder too");
-  app.add_option("--max-triangles", args.max_triangles, "Refuse models placing more triangles (100000000)")
-      ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{1} << 40))
+  app.add_option("--max-triangles", args.max_triangles,
+                 "Refuse models placing more triangles (" + std::to_string(kDefaultMaxTriangles) + ")")
+      ->check(CLI::Range(std::uint64_t{1}, kMostMaxTriangles))
       ->type_name("N");
   app.add_option("--max-texture-size", args.max_texture_size,
-                 "Draw untextured a material whose texture is wider or taller than N texels (16384)")
+                 "Draw untextured a material whose texture is wider or taller than N texels (" +
+                     std::to_string(kMaxTextureSize) + ")")
       ->check(number_in(1, kMaxTextureSize, true))
       ->type_name("N");
 }

@@ -14,6 +14,8 @@ namespace facet {
 inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 // The default of LoadOptions::max_triangles.
 inline constexpr std::uint64_t kDefaultMaxTriangles = 100'000'000;
+// The largest triangle limit a face accepts (2^40): beyond any file, and far below overflow in the loaders' counts.
+inline constexpr std::uint64_t kMostMaxTriangles = std::uint64_t{1} << 40;
 
 // What reading a model may do. Model files are untrusted input (a thumbnailer renders what users upload): these
 // bound what one can make facet read and allocate.

@@ -115,6 +115,11 @@ struct RenderTimings {
 // The background `facet render` uses when none is given: a mid blue-grey that white and dark models stand out from.
 inline constexpr glm::vec3 kDefaultBackground{0.42f, 0.45f, 0.5f};
 
+// The direction towards the headlight, in camera space (x right, y up, z towards the viewer): from above left, as
+// in illustrations, so that it lights whatever side the camera looks at and gives the three faces of a box seen in
+// a 3/4 view three distinct tones.
+inline constexpr glm::vec3 kHeadlightFromCamera{-0.3f, 0.5f, 0.8f};
+
 // SceneOptions for a look. `view_from_world` places the default headlight in the world; `default_shading` applies
 // when the look names none; `background` picks a wireframe colour that stays visible. The physically based look
 // (Shading::automatic) is lit by the look's environment, the lights the model's file places (`model_lights`,

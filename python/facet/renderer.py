@@ -32,7 +32,7 @@ BUFFERS = ("color", "depth", "normal", "ids", "mask")
 # relative to the camera's turns its +z axis towards that direction.
 _HEADLIGHT = DirectionalLight()
 _HEADLIGHT_POSE = np.eye(4)
-_HEADLIGHT_POSE[:3, 2] = np.array([-0.3, 0.5, 0.8])
+_HEADLIGHT_POSE[:3, 2] = np.array(_facet.HEADLIGHT_FROM_CAMERA)
 
 
 class OffscreenRenderer:

@@ -133,10 +133,10 @@ MeshCore load_mesh_file(const std::string& path, const LoadOptions& options) {
 }
 
 LoadOptions load_options_of(bool allow_external_files, py::handle max_triangles, py::handle max_texture_size) {
-  constexpr long long kMostTriangles = 1LL << 40;
+  constexpr auto kMost = static_cast<long long>(kMostMaxTriangles);
   return LoadOptions{
       .allow_external_files = allow_external_files,
-      .max_triangles = static_cast<std::uint64_t>(integer_in(max_triangles, "max_triangles", 1, kMostTriangles)),
+      .max_triangles = static_cast<std::uint64_t>(integer_in(max_triangles, "max_triangles", 1, kMost)),
       .max_texture_size = static_cast<int>(integer_in(max_texture_size, "max_texture_size", 1, kMaxTextureSize))};
 }
 

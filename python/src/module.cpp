@@ -296,4 +296,6 @@ PYBIND11_MODULE(_facet, m) {
   // The load limits' defaults, for the Python keywords.
   m.attr("DEFAULT_MAX_TRIANGLES") = facet::kDefaultMaxTriangles;
   m.attr("MAX_TEXTURE_SIZE") = facet::kMaxTextureSize;
+  m.attr("HEADLIGHT_FROM_CAMERA") = py::make_tuple(facet::kHeadlightFromCamera.x, facet::kHeadlightFromCamera.y,
+                                                   facet::kHeadlightFromCamera.z);
 }

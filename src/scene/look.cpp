@@ -27,9 +27,7 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
     if (*look.light_direction == glm::vec3(0.0f)) throw std::invalid_argument("light direction: must not be zero");
     light = *look.light_direction;
   } else {
-    // A headlight fixed to the camera, from above left as in illustrations, lights whatever side the camera looks
-    // at and gives the three faces of a box seen in a 3/4 view three distinct tones.
-    light = glm::transpose(glm::mat3(view_from_world)) * glm::vec3(-0.3f, 0.5f, 0.8f);
+    light = glm::transpose(glm::mat3(view_from_world)) * kHeadlightFromCamera;  // fixed to the camera
   }
   if (options.shading == Shading::automatic) {
     if (!(look.exposure > 0.0f) || !std::isfinite(look.exposure))
