@@ -8,7 +8,7 @@
 #include "facet/framebuffer.hpp"
 #include "facet/model_io.hpp"
 #include "facet/render_job.hpp"
-#include "io/png.hpp"
+#include "job/io/png.hpp"
 
 // The one stb_image_write implementation in facet's tree: only this comparison uses it.
 #define STB_IMAGE_WRITE_IMPLEMENTATION

@@ -6,12 +6,12 @@
 #include <vector>
 
 #include "bench/bench_shader.hpp"
-#include "clip/clip.hpp"
+#include "core/clip/clip.hpp"
 #include "facet/detail/dispatch.hpp"
 #include "facet/draw.hpp"
 #include "facet/renderer.hpp"
-#include "setup/project.hpp"
-#include "setup/setup.hpp"
+#include "core/setup/project.hpp"
+#include "core/setup/setup.hpp"
 #include "support/scenes.hpp"
 #include "support/test_shaders.hpp"
 

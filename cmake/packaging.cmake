@@ -31,7 +31,7 @@ set(CPACK_DEBIAN_PACKAGE_CONTROL_STRICT_PERMISSION ON)
 set(CPACK_STRIP_FILES ON)
 
 # facet: the shared libraries the program and the module link come from dpkg-shlibdeps. Libraries that facet opens
-# with dlopen only when a feature needs them (src/core/shared_library.hpp), by the soname of the version it was
+# with dlopen only when a feature needs them (src/job/shared_library.hpp), by the soname of the version it was
 # built against, are invisible to it: Assimp, which reads every model format facet has no reader of its own for, is
 # recommended; FFmpeg (video output) and SDL2 (`facet view`'s window) are suggested, being large and desktop-bound.
 set(CPACK_DEBIAN_RUNTIME_PACKAGE_NAME facet)

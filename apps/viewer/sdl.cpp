@@ -1,7 +1,7 @@
 // sdl.cpp - opens libSDL2 and looks up the viewer's functions once.
 #include "viewer/sdl.hpp"
 
-#include "core/shared_library.hpp"
+#include "job/shared_library.hpp"
 
 namespace facet::viewer {
 

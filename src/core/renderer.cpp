@@ -9,7 +9,7 @@
 
 #include "core/thread_pool.hpp"
 #include "facet/detail/multisample.hpp"
-#include "setup/setup.hpp"
+#include "core/setup/setup.hpp"
 
 namespace facet {
 namespace {

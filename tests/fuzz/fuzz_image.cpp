@@ -4,7 +4,7 @@
 #include <span>
 
 #include "fuzz_input.hpp"
-#include "texture/decode.hpp"
+#include "scene/texture/decode.hpp"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   return facet::fuzz::run(

@@ -7,7 +7,7 @@
 #include <string_view>
 
 #include "fuzz_input.hpp"
-#include "io/loaders.hpp"
+#include "job/io/loaders.hpp"
 
 namespace {
 

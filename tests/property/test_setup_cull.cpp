@@ -11,7 +11,7 @@
 
 #include "facet/detail/multisample.hpp"
 #include "facet/framebuffer.hpp"
-#include "setup/setup.hpp"
+#include "core/setup/setup.hpp"
 
 namespace facet::detail {
 namespace {

@@ -8,7 +8,7 @@
 #include <span>
 #include <vector>
 
-#include "clip/clip.hpp"
+#include "core/clip/clip.hpp"
 #include "facet/detail/raster.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/render_state.hpp"

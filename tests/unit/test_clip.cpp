@@ -3,7 +3,7 @@
 
 #include <cmath>
 
-#include "clip/clip.hpp"
+#include "core/clip/clip.hpp"
 
 namespace facet::detail {
 namespace {

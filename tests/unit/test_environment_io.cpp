@@ -23,7 +23,7 @@
 
 #include "facet/environment.hpp"
 #include "facet/error.hpp"
-#include "io/exr.hpp"
+#include "job/io/exr.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace facet {

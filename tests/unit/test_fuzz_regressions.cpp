@@ -15,8 +15,8 @@
 #include <nlohmann/json.hpp>
 
 #include "facet/error.hpp"
-#include "io/loaders.hpp"
-#include "texture/decode.hpp"
+#include "job/io/loaders.hpp"
+#include "scene/texture/decode.hpp"
 
 namespace facet {
 namespace {

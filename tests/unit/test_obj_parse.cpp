@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "facet/error.hpp"
-#include "io/obj_parse.hpp"
+#include "job/io/obj_parse.hpp"
 
 namespace facet {
 namespace {

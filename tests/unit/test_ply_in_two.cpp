@@ -13,7 +13,7 @@
 #include "facet/error.hpp"
 #include "facet/mesh.hpp"
 #include "facet/warnings.hpp"
-#include "io/loaders.hpp"
+#include "job/io/loaders.hpp"
 
 namespace facet {
 namespace {

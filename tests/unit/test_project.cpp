@@ -10,7 +10,7 @@
 
 #include "facet/detail/triangle_setup.hpp"
 #include "facet/framebuffer.hpp"
-#include "setup/project.hpp"
+#include "core/setup/project.hpp"
 
 namespace facet::detail {
 namespace {

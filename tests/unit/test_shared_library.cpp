@@ -5,7 +5,7 @@
 
 #include <gtest/gtest.h>
 
-#include "core/shared_library.hpp"
+#include "job/shared_library.hpp"
 
 namespace facet {
 namespace {

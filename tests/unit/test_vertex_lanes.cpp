@@ -11,7 +11,7 @@
 
 #include "bench/bench_shader.hpp"
 #include "facet/detail/vertex_stage.hpp"
-#include "setup/project.hpp"
+#include "core/setup/project.hpp"
 
 namespace facet::detail {
 namespace {

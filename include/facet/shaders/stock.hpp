@@ -17,7 +17,7 @@
 #include "facet/shaders/surface_color.hpp"
 #include "facet/shaders/unlit.hpp"
 
-// The library compiles the pipeline for each stock shader once (src/shaders/); programs link those instances.
+// The library compiles the pipeline for each stock shader once (src/scene/shaders/); programs link those instances.
 FACET_EXTERN_SHADER(facet::SurfaceShader);
 FACET_EXTERN_SHADER(facet::UntexturedSurfaceShader);
 FACET_EXTERN_SHADER(facet::GouraudShader);

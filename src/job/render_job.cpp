@@ -1,0 +1,346 @@
+// render_job.cpp - a RenderJob performed: load, frame, view, look, draw, write every output or none.
+#include "facet/render_job.hpp"
+
+#include <algorithm>
+#include <cctype>
+#include <chrono>
+#include <cmath>
+#include <cstdint>
+#include <iterator>
+#include <map>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "facet/error.hpp"
+#include "facet/image_io.hpp"
+#include "facet/model_io.hpp"
+#include "facet/output_template.hpp"
+#include "facet/text.hpp"
+#include "core/file_util.hpp"
+#include "job/io/output_file.hpp"
+
+namespace facet {
+
+namespace {
+
+// Seconds since it was made or last asked.
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+}  // namespace
+
+std::vector<std::filesystem::path> output_paths(const OutputSpec& o) {
+  std::vector<std::filesystem::path> paths;
+  for (const std::filesystem::path* p : {&o.color, &o.depth, &o.normal, &o.ids, &o.mask, &o.camera})
+    if (!p->empty()) paths.push_back(*p);
+  return paths;
+}
+
+void check_output_formats(const OutputSpec& o, bool animation) {
+  struct Rule {
+    const std::filesystem::path* path;
+    const char* what;
+    std::vector<std::string_view> extensions;
+  };
+  // An animation is one GIF or video, or PNG frames when its name numbers them ({frame}).
+  const bool sequence = animation && template_has(o.color.string(), "frame");
+  const Rule rules[] = {
+      animation && !sequence
+          ? Rule{&o.color, "an animation as .gif, .mp4 or .webm, or as PNG frames named with {frame}",
+                 {".gif", ".mp4", ".webm"}}
+          : Rule{&o.color, "the colour image as PNG (.png)", {".png"}},
+      {&o.depth, "depth as .npy or .exr", {".npy", ".exr"}},
+      {&o.normal, "normals as .npy or .exr", {".npy", ".exr"}},
+      {&o.ids, "ids as .npy", {".npy"}},
+      {&o.mask, "the mask as PNG (.png)", {".png"}},
+      {&o.camera, "the camera as JSON (.json)", {".json"}}};
+  for (const Rule& rule : rules) {
+    const std::string extension = lower_extension(*rule.path);
+    if (extension.empty()) continue;
+    if (std::find(rule.extensions.begin(), rule.extensions.end(), extension) == rule.extensions.end())
+      throw std::invalid_argument(rule.path->string() + ": facet writes " + rule.what + ", not " + extension);
+  }
+}
+
+std::size_t remove_stale_temporaries(std::span<const OutputSpec> outputs) {
+  std::vector<std::filesystem::path> paths;
+  for (const OutputSpec& spec : outputs)
+    for (std::filesystem::path& path : output_paths(spec)) paths.push_back(std::move(path));
+  return remove_stale_temporaries(std::span<const std::filesystem::path>(paths));
+}
+
+std::optional<OutputClash> find_output_clash(std::span<const OutputSpec> outputs) {
+  std::map<std::filesystem::path, std::size_t> writer;  // each path and the first entry that writes it
+  for (std::size_t k = 0; k < outputs.size(); ++k)
+    for (const std::filesystem::path& path : output_paths(outputs[k])) {
+      const auto [it, added] = writer.try_emplace(path.lexically_normal(), k);
+      if (!added && it->second != k) return OutputClash{it->second, k, path};
+    }
+  return std::nullopt;
+}
+
+FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
+                          const SceneOptions& options, glm::vec4 clear, const BufferRequest& request) {
+  const bool surface_pass = request.normal || request.ids;
+  if (surface_pass && (options.wireframe || options.edges))
+    throw std::invalid_argument("normal and id outputs show surfaces: not with wireframe or edges");
+  renderer.clear(target, clear, 1.0f);
+  scene.render(renderer, target, view, options);
+  renderer.finish(target);
+  FrameBuffers out;
+  out.width = target.width();
+  out.height = target.height();
+  if (request.color) out.color = target.rgba8();
+  // Depth and mask come from one depth read, so every buffer agrees on which pixels are empty.
+  if (request.depth || request.mask) out.depth = linear_depth(target, view.clip_from_view);
+  if (request.mask) {
+    out.mask.resize(out.depth.size());
+    for (std::size_t i = 0; i < out.depth.size(); ++i) out.mask[i] = out.depth[i] > 0.0f ? 255 : 0;
+    if (!request.depth) out.depth = {};
+  }
+  if (surface_pass) {
+    // Ids and the normals found from them come from sample 0, as depth and the mask do: never a blend of samples.
+    Framebuffer id_target(target.width(), target.height(), target.samples());
+    out.surfaces = scene.render_ids(renderer, id_target, view, options);
+    if (request.normal) out.normal = scene.camera_normals(out.surfaces, view);
+    if (request.ids) out.ids = file_ids(scene, out.surfaces);
+  }
+  return out;
+}
+
+std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfaces) {
+  std::vector<std::uint32_t> out(2 * surfaces.instance.size(), kNoSurface);
+  for (std::size_t p = 0; p < surfaces.instance.size(); ++p) {
+    if (surfaces.instance[p] == kNoSurface) continue;
+    const Mesh& mesh = *scene.instances()[surfaces.instance[p]].mesh;
+    out[2 * p] = mesh.instance_id(surfaces.triangle[p]);
+    out[2 * p + 1] = mesh.face_id(surfaces.triangle[p]);
+  }
+  return out;
+}
+
+void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
+                    const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs, RenderTimings* timings) {
+  Stopwatch clock;
+  // The colour image is encoded straight from the framebuffer, not from a copy.
+  const BufferRequest request{.color = false,
+                              .depth = !outputs.depth.empty(),
+                              .normal = !outputs.normal.empty(),
+                              .ids = !outputs.ids.empty(),
+                              .mask = !outputs.mask.empty()};
+  const FrameBuffers buffers = draw_buffers(renderer, target, scene, view, options, clear, request);
+  if (timings) timings->draw = clock.lap();
+  std::vector<std::filesystem::path> written;
+  try {
+    const int w = buffers.width, h = buffers.height;
+    if (!outputs.color.empty()) {
+      write_png(outputs.color, target, clear.a < 1.0f);
+      written.push_back(outputs.color);
+    }
+    if (!outputs.depth.empty()) {
+      write_float_image(outputs.depth, w, h, 1, buffers.depth);
+      written.push_back(outputs.depth);
+    }
+    if (!outputs.normal.empty()) {
+      write_float_image(outputs.normal, w, h, 3, std::span(&buffers.normal.data()->x, 3 * buffers.normal.size()));
+      written.push_back(outputs.normal);
+    }
+    if (!outputs.ids.empty()) {
+      write_npy(outputs.ids, w, h, 2, buffers.ids);
+      written.push_back(outputs.ids);
+    }
+    if (!outputs.mask.empty()) {
+      write_png_gray(outputs.mask, w, h, buffers.mask);
+      written.push_back(outputs.mask);
+    }
+    if (!outputs.camera.empty()) write_text(outputs.camera, camera_json(view, w, h));
+    if (timings) timings->write = clock.lap();
+  } catch (...) {
+    for (const std::filesystem::path& path : written) discard_output(path);
+    throw;
+  }
+}
+
+namespace {
+
+// Whether any triangle spans an area (a model of collinear or coincident corners draws no pixel).
+bool has_area(const Mesh& mesh) {
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]];
+    const glm::vec3 c = mesh.positions[mesh.indices[t + 2]];
+    if (glm::length(glm::cross(b - a, c - a)) > 0.0f) return true;
+  }
+  return false;
+}
+
+// A job's model loaded and framed, its view and look, ready to draw.
+struct JobFrame {
+  View view;
+  SceneOptions options;
+  glm::vec4 clear{};
+  Scene scene;
+};
+
+JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
+  if (job.width < 1 || job.height < 1 || job.width > kMaxDimension || job.height > kMaxDimension)
+    throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
+  Stopwatch clock;
+  auto mesh = std::make_shared<Mesh>(load_model(job.model, job.load));
+  if (!has_area(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
+  apply_look_color(*mesh, job.look);
+  if (timings) timings->load = clock.lap();
+  const Framing framing = framing_of(*mesh, job.model.string());
+  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
+  JobFrame frame;
+  frame.view = job.camera.file_camera
+                   ? file_camera_view(*mesh, *job.camera.file_camera, framing, aspect, job.model.string())
+                   : make_view(job.camera, framing, aspect);
+  frame.clear = clear_color(job.look, kDefaultBackground);
+  frame.options = scene_options(job.look, frame.view.view_from_world, Shading::automatic, glm::vec3(frame.clear),
+                                mesh->lights, job.camera.up);
+  frame.scene.add(Instance{mesh, glm::mat4(1.0f)});
+  if (timings) timings->prepare = clock.lap();
+  return frame;
+}
+
+// A contact sheet or turntable is a colour output alone, seen through cameras of its own.
+void check_colour_only(const RenderJob& job, const char* what, const char* flag) {
+  const OutputSpec& o = job.outputs;
+  if (!o.depth.empty() || !o.normal.empty() || !o.ids.empty() || !o.mask.empty() || !o.camera.empty())
+    throw std::invalid_argument(std::string(flag) + ": " + what +
+                                " is a colour output alone; it has no depth, normal, ids, mask or camera output");
+  if (job.camera.file_camera)
+    throw std::invalid_argument(std::string(flag) + ": " + what + " places its own cameras, not the file's");
+  if (o.color.empty()) throw std::invalid_argument(std::string(flag) + ": " + what + " needs a colour output to write");
+}
+
+// The contact sheet: each view drawn into a cell framebuffer, copied into its place in the grid and labelled.
+void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
+  const OutputSpec& o = job.outputs;
+  check_colour_only(job, "a contact sheet", "views");
+  const int n = static_cast<int>(job.views.size());
+  const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
+  const int rows = (n + columns - 1) / columns;
+  if (static_cast<long>(job.width) * columns > kMaxDimension || static_cast<long>(job.height) * rows > kMaxDimension)
+    throw std::invalid_argument("views: a sheet of " + std::to_string(columns) + "x" + std::to_string(rows) +
+                                " views of " + std::to_string(job.width) + "x" + std::to_string(job.height) +
+                                " is over " + std::to_string(kMaxDimension) + " pixels a side");
+  JobFrame frame = prepare_job(job, timings);  // the model is prepared once, as for any render; each view reuses it
+  Stopwatch clock;
+  const Framing framing = framing_of(*frame.scene.instances()[0].mesh, job.model.string());
+  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
+  const int sheet_width = job.width * columns, sheet_height = job.height * rows;
+  std::vector<std::uint8_t> sheet(static_cast<std::size_t>(sheet_width) * sheet_height * 4);
+  for (std::size_t p = 0; p < sheet.size(); p += 4)  // empty cells show the background
+    for (int c = 0; c < 4; ++c)
+      sheet[p + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(std::lround(frame.clear[c] * 255.0f));
+  Framebuffer cell(job.width, job.height, job.samples);
+  const int scale = job.width >= 480 ? 2 : 1;
+  for (int k = 0; k < n; ++k) {
+    const SheetView view = job.views[static_cast<std::size_t>(k)];
+    const View v = make_view(sheet_camera(view, job.camera, framing, aspect), framing, aspect);
+    const SceneOptions options = scene_options(job.look, v.view_from_world, Shading::automatic,
+                                               glm::vec3(frame.clear), frame.scene.instances()[0].mesh->lights,
+                                               job.camera.up);
+    renderer.clear(cell, frame.clear, 1.0f);
+    frame.scene.render(renderer, cell, v, options);
+    renderer.finish(cell);
+    // The label goes on the cell before it joins the sheet, so a label wider than its cell is cut at the cell's edge.
+    std::vector<std::uint8_t> rgba = cell.rgba8();
+    const std::string label = sheet_view_label(view);
+    const TextSize size = text_size(label, scale);
+    fill_rect(rgba, job.width, job.height, 0, 0, size.width + 8 * scale, size.height + 6 * scale,
+              glm::vec4(0.0f, 0.0f, 0.0f, 0.55f));
+    draw_text(rgba, job.width, job.height, 4 * scale, 4 * scale, label, glm::vec4(1.0f), scale);
+    const int x0 = (k % columns) * job.width, y0 = (k / columns) * job.height;
+    for (int y = 0; y < job.height; ++y)
+      std::copy_n(rgba.begin() + static_cast<std::ptrdiff_t>(y) * job.width * 4, job.width * 4,
+                  sheet.begin() + (static_cast<std::ptrdiff_t>(y0 + y) * sheet_width + x0) * 4);
+  }
+  if (timings) timings->draw = clock.lap();
+  write_png(o.color, sheet_width, sheet_height, sheet, frame.clear.a < 1.0f);
+  if (timings) timings->write = clock.lap();
+}
+
+// The turntable: the camera turned round the up axis frame by frame, the frames encoded as one GIF or video.
+void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
+  check_colour_only(job, "a turntable", "turntable");
+  if (job.turntable > kMaxTurntableFrames)
+    throw std::invalid_argument("turntable: at most " + std::to_string(kMaxTurntableFrames) + " frames");
+  const std::uint64_t pixels = static_cast<std::uint64_t>(job.width) * job.height * job.turntable;
+  if (pixels > (std::uint64_t{1} << 30))
+    throw std::invalid_argument("turntable: " + std::to_string(job.turntable) + " frames of " +
+                                std::to_string(job.width) + "x" + std::to_string(job.height) +
+                                " are over 2^30 pixels; use fewer frames or a smaller resolution");
+  JobFrame frame = prepare_job(job, timings);
+  Stopwatch clock;
+  const Framing framing = framing_of(*frame.scene.instances()[0].mesh, job.model.string());
+  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
+  Framebuffer target(job.width, job.height, job.samples);
+  std::vector<std::vector<std::uint8_t>> frames;
+  for (int k = 0; k < job.turntable; ++k) {
+    CameraSpec camera = job.camera;
+    camera.azimuth_degrees += 360.0f * static_cast<float>(k) / static_cast<float>(job.turntable);
+    const View view = make_view(camera, framing, aspect);
+    const SceneOptions options = scene_options(job.look, view.view_from_world, Shading::automatic,
+                                               glm::vec3(frame.clear), frame.scene.instances()[0].mesh->lights,
+                                               job.camera.up);
+    renderer.clear(target, frame.clear, 1.0f);
+    frame.scene.render(renderer, target, view, options);
+    renderer.finish(target);
+    frames.push_back(target.rgba8());
+  }
+  if (timings) timings->draw = clock.lap();
+  if (template_has(job.outputs.color.string(), "frame")) {
+    // PNG frames, each complete before the next: a failure leaves the ones already written, which a rerun replaces.
+    for (int k = 0; k < job.turntable; ++k)
+      write_png(expand_template(job.outputs.color.string(), TemplateValues{.frame = k}), job.width, job.height,
+                frames[static_cast<std::size_t>(k)], frame.clear.a < 1.0f);
+  } else {
+    // A whole turn in about 3 s, at no more than 50 frames a second (GIF delays are whole centiseconds).
+    write_animation(job.outputs.color, job.width, job.height, frames, std::max(0.02, 3.0 / job.turntable));
+  }
+  if (timings) timings->write = clock.lap();
+}
+
+}  // namespace
+
+void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
+  const std::vector<std::filesystem::path> paths = output_paths(job.outputs);
+  for (std::size_t i = 0; i < paths.size(); ++i)
+    for (std::size_t k = i + 1; k < paths.size(); ++k)
+      if (paths[i].lexically_normal() == paths[k].lexically_normal())
+        throw std::invalid_argument("outputs: " + paths[k].string() + " is named twice");
+  check_output_formats(job.outputs, job.turntable > 0);
+  if (!job.views.empty() && job.turntable > 0)
+    throw std::invalid_argument("views: a contact sheet is one image, not a turntable");
+  if (!job.views.empty()) return render_sheet(job, renderer, timings);
+  if (job.turntable > 0) return render_turntable(job, renderer, timings);
+  JobFrame frame = prepare_job(job, timings);
+  Framebuffer target(job.width, job.height, job.samples);
+  draw_and_write(renderer, target, frame.scene, frame.view, frame.options, frame.clear, job.outputs, timings);
+}
+
+FrameBuffers render_buffers(const RenderJob& job, Renderer& renderer, const BufferRequest& request,
+                            std::string* camera) {
+  JobFrame frame = prepare_job(job, nullptr);
+  Framebuffer target(job.width, job.height, job.samples);
+  FrameBuffers buffers = draw_buffers(renderer, target, frame.scene, frame.view, frame.options, frame.clear, request);
+  if (camera) *camera = camera_json(frame.view, job.width, job.height);
+  return buffers;
+}
+
+}  // namespace facet
