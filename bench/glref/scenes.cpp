@@ -5,8 +5,8 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <map>
 #include <numbers>
+#include <unordered_map>
 
 #include <assimp/Importer.hpp>
 #include <assimp/postprocess.h>
@@ -70,12 +70,21 @@ bool finite(const aiVector3D& v) { return std::isfinite(v.x) && std::isfinite(v.
 // bitwise the same position, then normalized ((0, 0, 1) where the sum vanishes).
 void smooth_normals(Scene& scene) {
   using Key = std::array<std::uint32_t, 3>;
-  const auto key = [](const float* p) {
-    Key k;
-    std::memcpy(k.data(), p, sizeof k);
-    return k;
+  struct Hash {
+    std::size_t operator()(const Key& k) const {
+      return (std::size_t{k[0]} * 0x9E3779B97F4A7C15ull) ^ (std::size_t{k[1]} * 0xC2B2AE3D27D4EB4Full) ^ k[2];
+    }
   };
-  std::map<Key, std::array<double, 3>> sums;
+  // Each vertex's position group: vertices at bitwise the same position share one sum.
+  std::unordered_map<Key, std::uint32_t, Hash> groups;
+  groups.reserve(scene.vertices.size());
+  std::vector<std::uint32_t> group_of(scene.vertices.size());
+  for (std::size_t v = 0; v < scene.vertices.size(); ++v) {
+    Key k;
+    std::memcpy(k.data(), scene.vertices[v].position, sizeof k);
+    group_of[v] = groups.try_emplace(k, static_cast<std::uint32_t>(groups.size())).first->second;
+  }
+  std::vector<std::array<double, 3>> sums(groups.size(), {0.0, 0.0, 0.0});
   for (std::size_t t = 0; t + 2 < scene.indices.size(); t += 3) {
     const float* p[3];
     for (int c = 0; c < 3; ++c) p[c] = scene.vertices[scene.indices[t + static_cast<std::size_t>(c)]].position;
@@ -83,17 +92,18 @@ void smooth_normals(Scene& scene) {
     const double e2[3] = {p[2][0] - p[0][0], p[2][1] - p[0][1], p[2][2] - p[0][2]};
     const double n[3] = {e1[1] * e2[2] - e1[2] * e2[1], e1[2] * e2[0] - e1[0] * e2[2], e1[0] * e2[1] - e1[1] * e2[0]};
     for (int c = 0; c < 3; ++c) {
-      auto& sum = sums[key(p[c])];
+      auto& sum = sums[group_of[scene.indices[t + static_cast<std::size_t>(c)]]];
       for (int a = 0; a < 3; ++a) sum[static_cast<std::size_t>(a)] += n[a];
     }
   }
-  for (Vertex& v : scene.vertices) {
-    const auto& s = sums[key(v.position)];
+  for (std::size_t v = 0; v < scene.vertices.size(); ++v) {
+    const auto& s = sums[group_of[v]];
     const double length = std::sqrt(s[0] * s[0] + s[1] * s[1] + s[2] * s[2]);
+    float* normal = scene.vertices[v].normal;
     if (length > 0) {
-      for (int a = 0; a < 3; ++a) v.normal[a] = static_cast<float>(s[static_cast<std::size_t>(a)] / length);
+      for (int a = 0; a < 3; ++a) normal[a] = static_cast<float>(s[static_cast<std::size_t>(a)] / length);
     } else {
-      v.normal[0] = 0, v.normal[1] = 0, v.normal[2] = 1;
+      normal[0] = 0, normal[1] = 0, normal[2] = 1;
     }
   }
 }
