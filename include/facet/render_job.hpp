@@ -172,8 +172,11 @@ FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene,
                           const SceneOptions& options, glm::vec4 clear, const BufferRequest& request);
 
 // Per pixel of `surfaces` (from this scene), the file's ids of the triangle seen: its mesh's Mesh::instance_id and
-// Mesh::face_id, two values per pixel; kNoSurface for both where empty. What --output-ids writes.
-std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfaces);
+// Mesh::face_id, two values per pixel; kNoSurface for both where empty. What --output-ids writes. A caller that
+// numbers the scene's instances itself (Python by its nodes) passes `instance_ids`, one per Scene::instances(),
+// which then take the place of Mesh::instance_id.
+std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfaces,
+                                    std::span<const std::uint32_t> instance_ids = {});
 
 // Clears, draws the scene, and writes the outputs. Normals and ids take a second pass (Scene::render_ids) over a
 // framebuffer of target's size; ids name each triangle's Mesh::instance_id and Mesh::face_id. A failure writing

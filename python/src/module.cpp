@@ -153,7 +153,7 @@ class RendererCore {
       frame = draw_buffers(renderer_, target_, scene.scene, view, options, clear, drawn);
       if (request.color) frame.color = color_bytes(target_.color(), rgba);
       // Python numbers instances by their nodes, not by the file's ids that draw_buffers gives.
-      if (request.ids) ids = node_ids(scene, frame.surfaces);
+      if (request.ids) ids = file_ids(scene.scene, frame.surfaces, scene.node_ids);
     }
     return arrays_of(std::move(frame), request, rgba, std::move(ids));
   }
@@ -165,17 +165,6 @@ class RendererCore {
  private:
   static View view_of(py::handle view_from_world, py::handle clip_from_view, float near, float far) {
     return View{matrix4(view_from_world, "view"), matrix4(clip_from_view, "projection"), near, far};
-  }
-
-  // Per pixel: the node id of the instance seen and the face id of its triangle.
-  static std::vector<std::uint32_t> node_ids(const SceneCore& scene, const SurfaceIds& s) {
-    std::vector<std::uint32_t> out(2 * s.instance.size(), kNoSurface);
-    for (std::size_t p = 0; p < s.instance.size(); ++p) {
-      if (s.instance[p] == kNoSurface) continue;
-      out[2 * p] = scene.node_ids[s.instance[p]];
-      out[2 * p + 1] = scene.scene.instances()[s.instance[p]].mesh->face_id(s.triangle[p]);
-    }
-    return out;
   }
 
   Renderer renderer_;

@@ -121,12 +121,14 @@ FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene,
   return out;
 }
 
-std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfaces) {
+std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfaces,
+                                    std::span<const std::uint32_t> instance_ids) {
   std::vector<std::uint32_t> out(2 * surfaces.instance.size(), kNoSurface);
   for (std::size_t p = 0; p < surfaces.instance.size(); ++p) {
-    if (surfaces.instance[p] == kNoSurface) continue;
-    const Mesh& mesh = *scene.instances()[surfaces.instance[p]].mesh;
-    out[2 * p] = mesh.instance_id(surfaces.triangle[p]);
+    const std::uint32_t instance = surfaces.instance[p];
+    if (instance == kNoSurface) continue;
+    const Mesh& mesh = *scene.instances()[instance].mesh;
+    out[2 * p] = instance_ids.empty() ? mesh.instance_id(surfaces.triangle[p]) : instance_ids[instance];
     out[2 * p + 1] = mesh.face_id(surfaces.triangle[p]);
   }
   return out;
