@@ -135,24 +135,11 @@ class Environment {
     const Mask lower = d.y < 0.0f;
     return {select(lower, fx, px) * 0.5f + 0.5f, select(lower, fz, pz) * 0.5f + 0.5f};
   }
-  // detail::OctahedralMap::sample's operations on one level of radiance_ ...
+  // detail::OctahedralMap::sample on one level of radiance_ ...
   glm::vec3 sample_level(int level, glm::vec2 uv) const {
-    const int size = level_size_[static_cast<std::size_t>(level)];
-    const float n = static_cast<float>(size);
-    const auto coordinate = [n](float v) {
-      const float c = v * n - 0.5f;
-      return c > 0.0f ? (c < n - 1.0f ? c : n - 1.0f) : 0.0f;
-    };
-    const float s = coordinate(uv.x), t = coordinate(uv.y);
-    const int i = static_cast<int>(s), j = static_cast<int>(t);
-    const int i1 = i + 1 < size ? i + 1 : size - 1, j1 = j + 1 < size ? j + 1 : size - 1;
-    const float a = s - static_cast<float>(i), b = t - static_cast<float>(j);
-    const glm::vec4* texels = reinterpret_cast<const glm::vec4*>(radiance_.data()) +
-                              level_offset_[static_cast<std::size_t>(level)];
-    const auto at = [&](int x, int y) { return texels[y * size + x]; };
-    const glm::vec4 bottom = at(i, j) + (at(i1, j) - at(i, j)) * a;
-    const glm::vec4 top = at(i, j1) + (at(i1, j1) - at(i, j1)) * a;
-    return glm::vec3(bottom + (top - bottom) * b);
+    const auto k = static_cast<std::size_t>(level);
+    return detail::OctahedralMap::sample(reinterpret_cast<const glm::vec4*>(radiance_.data()) + level_offset_[k],
+                                         level_size_[k], uv);
   }
   // ... and for 16 lanes, each from its own level, the texels gathered channel by channel.
   FACET_LANES_INLINE simd::Vec3 sample_lanes(const simd::Int& level, const simd::Vec2& uv) const {
