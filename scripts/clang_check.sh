@@ -26,7 +26,6 @@ for e in entries:
         if skip: skip = False; continue
         if a == "-o": skip = True; continue
         if a == "-c": continue
-        if a.startswith("-mtune-ctrl="): continue  # GCC's tuning switches (CMakeLists.txt), unknown to Clang
         out.append(a)
     out += ["-fsyntax-only", "-Wall", "-Wextra", "-Werror"]
     print("cd " + shlex.quote(e["directory"]) + " && " + " ".join(map(shlex.quote, out)))

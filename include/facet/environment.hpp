@@ -94,29 +94,29 @@ class Environment {
   }
 
   // The split sum's second factor at NdotV and roughness (brdf_table), from the table this environment holds.
-  // ... and for 16 lanes: the same operations, the four table entries gathered.
+  // ... and for 16 lanes: the same operations, the four table entries gathered per lane.
   FACET_LANES_INLINE simd::Vec2 split_sum(const simd::Float& n_dot_v, const simd::Float& roughness) const {
     using namespace simd;
-    constexpr int n = kBrdfTableSize;
+    constexpr float n = kBrdfTableSize;
     const auto coordinate = [](const Float& v) {
-      const Float c = v * static_cast<float>(n) - 0.5f;
+      const Float c = v * n - 0.5f;
       return select(c > 0.0f, select(c < n - 1.0f, c, splat(n - 1.0f)), splat(0.0f));
     };
     const Float s = coordinate(n_dot_v), r = coordinate(roughness);
     const Int i = truncate(s), j = truncate(r);
     const Float a = s - to_float(i), b = r - to_float(j);
-    const Int i1 = blend(i + 1 < n, i + 1, i), j1 = blend(j + 1 < n, j + 1, j);
-    // Entry (x, y)'s first float; A and B follow each other.
-    const auto at = [](const Int& x, const Int& y) { return (y * n + x) * 2; };
-    const Int e00 = at(i, j), e10 = at(i1, j), e01 = at(i, j1), e11 = at(i1, j1);
-    const float* table = &table_[0].x;
-    const auto entry = [&](int c) {
-      const Float c00 = gather(table + c, e00), c10 = gather(table + c, e10);
-      const Float c01 = gather(table + c, e01), c11 = gather(table + c, e11);
-      const Float bottom = c00 + (c10 - c00) * a, top = c01 + (c11 - c01) * a;
-      return bottom + (top - bottom) * b;
-    };
-    return {entry(0), entry(1)};
+    Vec2 t00, t10, t01, t11;
+    for (int k = 0; k < kLanes; ++k) {
+      const int i1 = i[k] + 1 < kBrdfTableSize ? i[k] + 1 : i[k], j1 = j[k] + 1 < kBrdfTableSize ? j[k] + 1 : j[k];
+      const glm::vec2 c00 = table_[j[k] * kBrdfTableSize + i[k]], c10 = table_[j[k] * kBrdfTableSize + i1];
+      const glm::vec2 c01 = table_[j1 * kBrdfTableSize + i[k]], c11 = table_[j1 * kBrdfTableSize + i1];
+      t00.x[k] = c00.x, t00.y[k] = c00.y, t10.x[k] = c10.x, t10.y[k] = c10.y;
+      t01.x[k] = c01.x, t01.y[k] = c01.y, t11.x[k] = c11.x, t11.y[k] = c11.y;
+    }
+    const auto lerp = [](const Float& p, const Float& q, const Float& w) { return p + (q - p) * w; };
+    const Float bottom_x = lerp(t00.x, t10.x, a), bottom_y = lerp(t00.y, t10.y, a);
+    const Float top_x = lerp(t01.x, t11.x, a), top_y = lerp(t01.y, t11.y, a);
+    return {lerp(bottom_x, top_x, b), lerp(bottom_y, top_y, b)};
   }
   glm::vec2 split_sum(float n_dot_v, float roughness) const {
     return detail::brdf_table_lookup(table_, n_dot_v, roughness);
@@ -141,37 +141,42 @@ class Environment {
     return detail::OctahedralMap::sample(reinterpret_cast<const glm::vec4*>(radiance_.data()) + level_offset_[k],
                                          level_size_[k], uv);
   }
-  // ... and for 16 lanes, each from its own level, the texels gathered channel by channel.
+  // ... and for 16 lanes, each from its own level: the same operations, the texels read lane by lane.
   FACET_LANES_INLINE simd::Vec3 sample_lanes(const simd::Int& level, const simd::Vec2& uv) const {
     using namespace simd;
-    const Int size = gather(level_size_.data(), level), offset = gather(level_offset_.data(), level);
-    const Float n = to_float(size);
+    Float n;
+    for (int k = 0; k < kLanes; ++k) n[k] = static_cast<float>(level_size_[static_cast<std::size_t>(level[k])]);
     const Float hi = n - 1.0f;
     const auto coordinate = [&](const Float& v) {
       const Float c = v * n - 0.5f;
-      return select(c > 0.0f, select(c < hi, c, hi), splat(0.0f));
+      return select(c > 0.0f, select(c < hi, c, hi), splat(0.0f));  // as OctahedralMap::sample clamps
     };
     const Float s = coordinate(uv.x), t = coordinate(uv.y);
     const Int i = truncate(s), j = truncate(t);
-    const Int i1 = blend(i + 1 < size, i + 1, size - 1), j1 = blend(j + 1 < size, j + 1, size - 1);
     const Float a = s - to_float(i), b = t - to_float(j);
-    // Texel (x, y)'s first float: four floats a texel (RGB and padding).
-    const auto at = [&](const Int& x, const Int& y) { return (offset + y * size + x) * 4; };
-    const Int e00 = at(i, j), e10 = at(i1, j), e01 = at(i, j1), e11 = at(i1, j1);
-    const auto channel = [&](int c) {
-      const float* texels = radiance_.data() + c;
-      const Float c00 = gather(texels, e00), c10 = gather(texels, e10);
-      const Float c01 = gather(texels, e01), c11 = gather(texels, e11);
-      const Float bottom = c00 + (c10 - c00) * a, top = c01 + (c11 - c01) * a;
-      return bottom + (top - bottom) * b;
-    };
-    return {channel(0), channel(1), channel(2)};
+    const glm::vec4* levels = reinterpret_cast<const glm::vec4*>(radiance_.data());
+    Vec3 t00, t10, t01, t11;
+    for (int k = 0; k < kLanes; ++k) {
+      const auto l = static_cast<std::size_t>(level[k]);
+      const int size = level_size_[l];
+      const glm::vec4* texels = levels + level_offset_[l];
+      const int i1 = i[k] + 1 < size ? i[k] + 1 : size - 1, j1 = j[k] + 1 < size ? j[k] + 1 : size - 1;
+      const glm::vec4 c00 = texels[j[k] * size + i[k]], c10 = texels[j[k] * size + i1];
+      const glm::vec4 c01 = texels[j1 * size + i[k]], c11 = texels[j1 * size + i1];
+      t00.x[k] = c00.x, t00.y[k] = c00.y, t00.z[k] = c00.z;
+      t10.x[k] = c10.x, t10.y[k] = c10.y, t10.z[k] = c10.z;
+      t01.x[k] = c01.x, t01.y[k] = c01.y, t01.z[k] = c01.z;
+      t11.x[k] = c11.x, t11.y[k] = c11.y, t11.z[k] = c11.z;
+    }
+    const auto lerp = [](const Float& p, const Float& q, const Float& w) { return p + (q - p) * w; };
+    const Vec3 bottom{lerp(t00.x, t10.x, a), lerp(t00.y, t10.y, a), lerp(t00.z, t10.z, a)};
+    const Vec3 top{lerp(t01.x, t11.x, a), lerp(t01.y, t11.y, a), lerp(t01.z, t11.z, a)};
+    return {lerp(bottom.x, top.x, b), lerp(bottom.y, top.y, b), lerp(bottom.z, top.z, b)};
   }
 
   std::array<glm::vec3, 9> irradiance_sh_{};  // E's coefficients with the cosine lobe and basis constants folded in
   // The prefiltered radiance: every level's octahedral map (world space, roughest last) in one array of RGBA
-  // floats, so that 16 lanes reading different levels gather from one base; level k starts at texel
-  // level_offset_[k] and is level_size_[k] texels square.
+  // floats; level k starts at texel level_offset_[k] and is level_size_[k] texels square.
   std::vector<float> radiance_;
   std::array<std::int32_t, kRoughnessLevels> level_size_{}, level_offset_{};
   const glm::vec2* table_;                                      // brdf_table's entries

@@ -183,20 +183,6 @@ FACET_LANES_INLINE Float floor(Float v) {
 }
 #endif
 
-// The value at base[index[k]] in each lane k: a plain loop, which GCC's vectoriser turns into one gather
-// instruction in the AVX2 and AVX-512 clones (CMakeLists.txt lets it) and into element loads elsewhere. Lookups
-// of tables and texels written this way cost a few instructions per 16 lanes instead of several per lane.
-FACET_LANES_INLINE Float gather(const float* base, const Int& index) {
-  Float out;
-  for (int k = 0; k < kLanes; ++k) out[k] = base[index[k]];
-  return out;
-}
-FACET_LANES_INLINE Int gather(const std::int32_t* base, const Int& index) {
-  Int out;
-  for (int k = 0; k < kLanes; ++k) out[k] = base[index[k]];
-  return out;
-}
-
 FACET_LANES_INLINE Float to_float(const Int& v) { return __builtin_convertvector(v.native, native::Float); }
 FACET_LANES_INLINE Int truncate(const Float& v) { return __builtin_convertvector(v.native, native::Int); }
 // Value conversions between the integer lane types, as static_cast does them.

@@ -156,7 +156,9 @@ struct BasicPbrShader : PbrUniforms {
       n = Vec3{select(back, -n.x, n.x), select(back, -n.y, n.y), select(back, -n.z, n.z)};
       PbrInputs<Float> in = inputs_lanes(f);
       if (screen_occlusion) {
-        in.occlusion = in.occlusion * screen_open(f.screen_x, f.screen_y);
+        Float open;
+        for (int k = 0; k < kLanes; ++k) open[k] = screen_open(f.screen_x[k], f.screen_y[k]);
+        in.occlusion = in.occlusion * open;
       }
       const Vec3 world = f.get(&Varyings::world);
       brdf::Rgb<Float> radiance = shade(in, n, n, world);
@@ -251,7 +253,7 @@ struct BasicPbrShader : PbrUniforms {
     const float* table = detail::srgb_encode_table();
     return {detail::srgb_encode(c.r, table), detail::srgb_encode(c.g, table), detail::srgb_encode(c.b, table)};
   }
-  // detail::srgb_encode's operations in lanes, the two table entries gathered.
+  // detail::srgb_encode's operations in lanes, the two table entries gathered per lane.
   FACET_LANES_INLINE static brdf::Rgb<simd::Float> encode(const brdf::Rgb<simd::Float>& c) {
     using namespace simd;
     const float* table = detail::srgb_encode_table();
@@ -261,7 +263,8 @@ struct BasicPbrShader : PbrUniforms {
       Int i = truncate(f);
       i = blend(i < detail::kSrgbEncodeSteps, i, splat(detail::kSrgbEncodeSteps - 1));
       const Float w = f - to_float(i);
-      const Float t0 = gather(table, i), t1 = gather(table + 1, i);
+      Float t0, t1;
+      for (int k = 0; k < kLanes; ++k) t0[k] = table[i[k]], t1[k] = table[i[k] + 1];
       return t0 + (t1 - t0) * w;
     };
     return {channel(c.r), channel(c.g), channel(c.b)};
@@ -366,14 +369,6 @@ struct BasicPbrShader : PbrUniforms {
     const int row = std::min(static_cast<int>(y) >> 1, screen_occlusion_height - 1);
     return screen_occlusion[static_cast<std::size_t>(row) * static_cast<std::size_t>(screen_occlusion_width) +
                             static_cast<std::size_t>(column)];
-  }
-  FACET_LANES_INLINE simd::Float screen_open(const simd::Float& x, const simd::Float& y) const {
-    using namespace simd;
-    const Int column = truncate(x) >> 1, row = truncate(y) >> 1;
-    const int last_column = screen_occlusion_width - 1, last_row = screen_occlusion_height - 1;
-    const Int c = blend(column < last_column, column, splat(last_column));
-    const Int r = blend(row < last_row, row, splat(last_row));
-    return gather(screen_occlusion, r * screen_occlusion_width + c);
   }
 
   // E(n), the prefiltered radiance along r and the split-sum table, or, without an environment, the ambient colour
