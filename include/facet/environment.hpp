@@ -2,7 +2,6 @@
 #pragma once
 
 #include <array>
-#include <cstdint>
 #include <filesystem>
 #include <memory>
 #include <vector>
@@ -76,7 +75,8 @@ class Environment {
     i = i < kRoughnessLevels - 2 ? i : kRoughnessLevels - 2;
     const float f = x - static_cast<float>(i);
     const glm::vec2 uv = detail::octahedral_from_direction(d);
-    const glm::vec3 a = sample_level(i, uv), b = sample_level(i + 1, uv);
+    const glm::vec3 a = levels_[static_cast<std::size_t>(i)].sample(uv);
+    const glm::vec3 b = levels_[static_cast<std::size_t>(i + 1)].sample(uv);
     return a + (b - a) * f;
   }
 
@@ -135,17 +135,11 @@ class Environment {
     const Mask lower = d.y < 0.0f;
     return {select(lower, fx, px) * 0.5f + 0.5f, select(lower, fz, pz) * 0.5f + 0.5f};
   }
-  // detail::OctahedralMap::sample on one level of radiance_ ...
-  glm::vec3 sample_level(int level, glm::vec2 uv) const {
-    const auto k = static_cast<std::size_t>(level);
-    return detail::OctahedralMap::sample(reinterpret_cast<const glm::vec4*>(radiance_.data()) + level_offset_[k],
-                                         level_size_[k], uv);
-  }
-  // ... and for 16 lanes, each from its own level: the same operations, the texels read lane by lane.
+  // detail::OctahedralMap::sample for 16 lanes, each from its own level.
   FACET_LANES_INLINE simd::Vec3 sample_lanes(const simd::Int& level, const simd::Vec2& uv) const {
     using namespace simd;
     Float n;
-    for (int k = 0; k < kLanes; ++k) n[k] = static_cast<float>(level_size_[static_cast<std::size_t>(level[k])]);
+    for (int k = 0; k < kLanes; ++k) n[k] = static_cast<float>(levels_[static_cast<std::size_t>(level[k])].size());
     const Float hi = n - 1.0f;
     const auto coordinate = [&](const Float& v) {
       const Float c = v * n - 0.5f;
@@ -154,13 +148,12 @@ class Environment {
     const Float s = coordinate(uv.x), t = coordinate(uv.y);
     const Int i = truncate(s), j = truncate(t);
     const Float a = s - to_float(i), b = t - to_float(j);
-    const glm::vec4* levels = reinterpret_cast<const glm::vec4*>(radiance_.data());
     Vec3 t00, t10, t01, t11;
     for (int k = 0; k < kLanes; ++k) {
-      const auto l = static_cast<std::size_t>(level[k]);
-      const int size = level_size_[l];
-      const glm::vec4* texels = levels + level_offset_[l];
+      const detail::OctahedralMap& map = levels_[static_cast<std::size_t>(level[k])];
+      const int size = map.size();
       const int i1 = i[k] + 1 < size ? i[k] + 1 : size - 1, j1 = j[k] + 1 < size ? j[k] + 1 : size - 1;
+      const glm::vec4* texels = map.texels();
       const glm::vec4 c00 = texels[j[k] * size + i[k]], c10 = texels[j[k] * size + i1];
       const glm::vec4 c01 = texels[j1 * size + i[k]], c11 = texels[j1 * size + i1];
       t00.x[k] = c00.x, t00.y[k] = c00.y, t00.z[k] = c00.z;
@@ -175,10 +168,7 @@ class Environment {
   }
 
   std::array<glm::vec3, 9> irradiance_sh_{};  // E's coefficients with the cosine lobe and basis constants folded in
-  // The prefiltered radiance: every level's octahedral map (world space, roughest last) in one array of RGBA
-  // floats; level k starts at texel level_offset_[k] and is level_size_[k] texels square.
-  std::vector<float> radiance_;
-  std::array<std::int32_t, kRoughnessLevels> level_size_{}, level_offset_{};
+  std::array<detail::OctahedralMap, kRoughnessLevels> levels_;  // world space, roughest last
   const glm::vec2* table_;                                      // brdf_table's entries
 };
 

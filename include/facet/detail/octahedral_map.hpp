@@ -76,10 +76,8 @@ class OctahedralMap {
   // Bilinear lookup along unit direction d, clamped at the square's edges.
   glm::vec3 sample(glm::vec3 d) const { return sample(octahedral_from_direction(d)); }
   // The same at the map's coordinates uv (octahedral_from_direction).
-  glm::vec3 sample(glm::vec2 uv) const { return sample(texels_.data(), size_, uv); }
-  // The same on any size x size map of texels in this layout (an Environment keeps its levels in one array).
-  static glm::vec3 sample(const glm::vec4* texels, int size, glm::vec2 uv) {
-    const float n = static_cast<float>(size);
+  glm::vec3 sample(glm::vec2 uv) const {
+    const float n = static_cast<float>(size_);
     // Clamped to [0, n - 1], NaN (from a degenerate direction) to 0, so that every index is in range.
     const auto coordinate = [n](float v) {
       const float c = v * n - 0.5f;
@@ -87,13 +85,10 @@ class OctahedralMap {
     };
     const float s = coordinate(uv.x), t = coordinate(uv.y);
     const int i = static_cast<int>(s), j = static_cast<int>(t);
-    const int i1 = std::min(i + 1, size - 1), j1 = std::min(j + 1, size - 1);
+    const int i1 = std::min(i + 1, size_ - 1), j1 = std::min(j + 1, size_ - 1);
     const float a = s - static_cast<float>(i), b = t - static_cast<float>(j);
-    const auto at = [&](int x, int y) {
-      return texels[static_cast<std::size_t>(y) * static_cast<std::size_t>(size) + static_cast<std::size_t>(x)];
-    };
-    const glm::vec4 bottom = at(i, j) + (at(i1, j) - at(i, j)) * a;
-    const glm::vec4 top = at(i, j1) + (at(i1, j1) - at(i, j1)) * a;
+    const glm::vec4 bottom = texels_[index(i, j)] + (texels_[index(i1, j)] - texels_[index(i, j)]) * a;
+    const glm::vec4 top = texels_[index(i, j1)] + (texels_[index(i1, j1)] - texels_[index(i, j1)]) * a;
     return glm::vec3(bottom + (top - bottom) * b);
   }
 

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cmath>
-#include <cstring>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -184,12 +183,11 @@ Environment::Environment(const EnvironmentImage& image, float rotation_degrees, 
     return glm::mix(a, source[static_cast<std::size_t>(i + 1)].sample(d), f);
   };
 
-  std::array<OctahedralMap, kRoughnessLevels> levels;
-  levels[0] = source[0];
+  levels_[0] = source[0];
   for (int k = 1; k < kRoughnessLevels; ++k) {
     const float roughness = static_cast<float>(k) / static_cast<float>(kRoughnessLevels - 1);
     const std::vector<LobeSample> samples = lobe_samples(roughness * roughness, 32, source_size, source_levels);
-    OctahedralMap& level = levels[static_cast<std::size_t>(k)];
+    OctahedralMap& level = levels_[static_cast<std::size_t>(k)];
     level = OctahedralMap(std::max(16, source_size >> (k + 1)));
     fill_in_parallel(level, [&](glm::vec3 n) {
       const glm::mat3 frame = frame_around(n);
@@ -201,19 +199,6 @@ Environment::Environment(const EnvironmentImage& image, float rotation_degrees, 
       }
       return weight > 0.0f ? sum / weight : glm::vec3(0.0f);
     });
-  }
-
-  std::int32_t offset = 0;
-  for (std::size_t k = 0; k < levels.size(); ++k) {
-    level_size_[k] = levels[k].size();
-    level_offset_[k] = offset;
-    offset += levels[k].size() * levels[k].size();
-  }
-  radiance_.resize(static_cast<std::size_t>(offset) * 4);
-  for (std::size_t k = 0; k < levels.size(); ++k) {
-    const auto count = static_cast<std::size_t>(levels[k].size()) * static_cast<std::size_t>(levels[k].size());
-    std::memcpy(radiance_.data() + static_cast<std::size_t>(level_offset_[k]) * 4, levels[k].texels(),
-                count * sizeof(glm::vec4));
   }
 }
 
