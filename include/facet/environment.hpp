@@ -72,10 +72,11 @@ class Environment {
     const float x =
         (roughness > 0.0f ? (roughness < 1.0f ? roughness : 1.0f) : 0.0f) * static_cast<float>(kRoughnessLevels - 1);
     int i = static_cast<int>(x);
-    i = i < kRoughnessLevels - 2 ? i : kRoughnessLevels - 2;
+    i = i < kRoughnessLevels - 1 ? i : kRoughnessLevels - 1;  // roughness 1 reads the roughest level alone
     const float f = x - static_cast<float>(i);
     const glm::vec2 uv = detail::octahedral_from_direction(d);
     const glm::vec3 a = levels_[static_cast<std::size_t>(i)].sample(uv);
+    if (f == 0.0f) return a;  // at a level's own roughness (as the lanes take it: a + (b - a) 0 is a)
     const glm::vec3 b = levels_[static_cast<std::size_t>(i + 1)].sample(uv);
     return a + (b - a) * f;
   }
@@ -86,11 +87,23 @@ class Environment {
     const Float x = select(roughness > 0.0f, select(roughness < 1.0f, roughness, splat(1.0f)), splat(0.0f)) *
                     static_cast<float>(kRoughnessLevels - 1);
     Int i = truncate(x);
-    i = blend(i < kRoughnessLevels - 2, i, splat(kRoughnessLevels - 2));
+    i = blend(i < kRoughnessLevels - 1, i, splat(kRoughnessLevels - 1));
     const Float f = x - to_float(i);
     const Vec2 uv = octahedral_lanes(d);
-    const Vec3 a = sample_lanes(i, uv), b = sample_lanes(i + 1, uv);
-    return {a.x + (b.x - a.x) * f, a.y + (b.y - a.y) * f, a.z + (b.z - a.z) * f};
+    const auto blend_levels = [&f](const Vec3& a, const Vec3& b) -> Vec3 {
+      return {a.x + (b.x - a.x) * f, a.y + (b.y - a.y) * f, a.z + (b.z - a.z) * f};
+    };
+    // Most materials' roughness is one factor, so every lane reads the same two levels; at a level's own roughness
+    // (f = 0, roughness 1 among them) the second adds nothing (a + (b - a) 0 is a, bit for bit).
+    const int first = i[0];
+    if (lane_bits(i == first) == (1u << kLanes) - 1u) {
+      const detail::OctahedralMap& level = levels_[static_cast<std::size_t>(first)];
+      const Vec3 a = sample_lanes(level, uv);
+      if (lane_bits(f == 0.0f) == (1u << kLanes) - 1u) return a;
+      return blend_levels(a, sample_lanes(levels_[static_cast<std::size_t>(first + 1)], uv));
+    }
+    const Int next = blend(i < kRoughnessLevels - 1, i + 1, i);  // where f is 0
+    return blend_levels(sample_lanes(i, uv), sample_lanes(next, uv));
   }
 
   // The split sum's second factor at NdotV and roughness (brdf_table), from the table this environment holds.
@@ -135,6 +148,42 @@ class Environment {
     const Mask lower = d.y < 0.0f;
     return {select(lower, fx, px) * 0.5f + 0.5f, select(lower, fz, pz) * 0.5f + 0.5f};
   }
+  // detail::OctahedralMap::sample for 16 lanes from one level.
+  FACET_LANES_INLINE static simd::Vec3 sample_lanes(const detail::OctahedralMap& map, const simd::Vec2& uv) {
+    using namespace simd;
+    const int size = map.size();
+    const float n = static_cast<float>(size), hi = n - 1.0f;
+    const auto coordinate = [&](const Float& v) {
+      const Float c = v * n - 0.5f;
+      return select(c > 0.0f, select(c < hi, c, splat(hi)), splat(0.0f));  // as OctahedralMap::sample clamps
+    };
+    const Float s = coordinate(uv.x), t = coordinate(uv.y);
+    const Int i = truncate(s), j = truncate(t);
+    const Float a = s - to_float(i), b = t - to_float(j);
+    const Int i1 = blend(i + 1 < size, i + 1, splat(size - 1)), j1 = blend(j + 1 < size, j + 1, splat(size - 1));
+    const Int row0 = j * size, row1 = j1 * size;
+    const glm::vec4* texels = map.texels();
+    Vec3 t00, t10, t01, t11;
+    for (int k = 0; k < kLanes; ++k) {
+      const glm::vec4 c00 = texels[row0[k] + i[k]], c10 = texels[row0[k] + i1[k]];
+      const glm::vec4 c01 = texels[row1[k] + i[k]], c11 = texels[row1[k] + i1[k]];
+      t00.x[k] = c00.x, t00.y[k] = c00.y, t00.z[k] = c00.z;
+      t10.x[k] = c10.x, t10.y[k] = c10.y, t10.z[k] = c10.z;
+      t01.x[k] = c01.x, t01.y[k] = c01.y, t01.z[k] = c01.z;
+      t11.x[k] = c11.x, t11.y[k] = c11.y, t11.z[k] = c11.z;
+    }
+    return bilinear(t00, t10, t01, t11, a, b);
+  }
+  // The bilinear blend of four corners' texels at fractions a (along a row) and b (down), as OctahedralMap::sample
+  // takes it.
+  FACET_LANES_INLINE static simd::Vec3 bilinear(const simd::Vec3& t00, const simd::Vec3& t10, const simd::Vec3& t01,
+                                                const simd::Vec3& t11, const simd::Float& a, const simd::Float& b) {
+    using simd::Float;
+    const auto lerp = [](const Float& p, const Float& q, const Float& w) { return p + (q - p) * w; };
+    const simd::Vec3 bottom{lerp(t00.x, t10.x, a), lerp(t00.y, t10.y, a), lerp(t00.z, t10.z, a)};
+    const simd::Vec3 top{lerp(t01.x, t11.x, a), lerp(t01.y, t11.y, a), lerp(t01.z, t11.z, a)};
+    return {lerp(bottom.x, top.x, b), lerp(bottom.y, top.y, b), lerp(bottom.z, top.z, b)};
+  }
   // detail::OctahedralMap::sample for 16 lanes, each from its own level.
   FACET_LANES_INLINE simd::Vec3 sample_lanes(const simd::Int& level, const simd::Vec2& uv) const {
     using namespace simd;
@@ -161,10 +210,7 @@ class Environment {
       t01.x[k] = c01.x, t01.y[k] = c01.y, t01.z[k] = c01.z;
       t11.x[k] = c11.x, t11.y[k] = c11.y, t11.z[k] = c11.z;
     }
-    const auto lerp = [](const Float& p, const Float& q, const Float& w) { return p + (q - p) * w; };
-    const Vec3 bottom{lerp(t00.x, t10.x, a), lerp(t00.y, t10.y, a), lerp(t00.z, t10.z, a)};
-    const Vec3 top{lerp(t01.x, t11.x, a), lerp(t01.y, t11.y, a), lerp(t01.z, t11.z, a)};
-    return {lerp(bottom.x, top.x, b), lerp(bottom.y, top.y, b), lerp(bottom.z, top.z, b)};
+    return bilinear(t00, t10, t01, t11, a, b);
   }
 
   std::array<glm::vec3, 9> irradiance_sh_{};  // E's coefficients with the cosine lobe and basis constants folded in
