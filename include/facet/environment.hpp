@@ -35,7 +35,7 @@ EnvironmentImage studio_environment();
 // An environment prefiltered for the physically based shaders (built once, then shared by every draw and frame):
 // - irradiance: spherical harmonics up to degree 2 of the cosine-weighted irradiance E(n) (Ramamoorthi and
 //   Hanrahan, "An Efficient Representation for Irradiance Environment Maps", 2001);
-// - radiance: the image convolved with the GGX lobe at kRoughnessLevels roughnesses (0, 0.2, ..., 1), each level
+// - radiance: the image convolved with the GGX lobe at kRoughnessLevels roughnesses (0, 0.25, ..., 1), each level
 //   an octahedral map, sampled bilinearly and blended between the two nearest roughnesses (Karis, "Real Shading in
 //   Unreal Engine 4", 2013: the split sum's first factor, with N = V = R);
 // - the split sum's second factor, the table of A and B over NdotV and roughness (brdf_table below).
@@ -43,7 +43,7 @@ EnvironmentImage studio_environment();
 // axis to the world's (a Z-up model's +Z); `intensity` scales its radiance.
 class Environment {
  public:
-  static constexpr int kRoughnessLevels = 6;
+  static constexpr int kRoughnessLevels = 5;
 
   explicit Environment(const EnvironmentImage& image, float rotation_degrees = 0.0f, float intensity = 1.0f,
                        const glm::mat3& world_from_upright = glm::mat3(1.0f));
