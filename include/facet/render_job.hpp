@@ -42,6 +42,12 @@ struct LookSpec {
   bool hdri_background = false;  // draw the environment behind the model instead of the background colour
   float hdri_blur = 0.0f;        // how blurred: 0 sharp to 1
   bool model_lights = true;      // the physically based look: light the model by the lights its file places too
+  // Lights the caller places (world space): besides the model's and the key light in the physically based look;
+  // in the classic shadings, instead of the headlight.
+  std::vector<Light> lights{};
+  // Set: the model is lit by `lights` alone plus this uniform ambient colour, without an environment or a
+  // headlight, as pyrender lights a scene.
+  std::optional<glm::vec3> ambient{};
   bool shadows = false;          // the physically based look: directional and spot lights cast shadows
   bool ambient_occlusion = false;  // the physically based look: screen-space ambient occlusion
 };
@@ -125,7 +131,7 @@ inline constexpr glm::vec3 kHeadlightFromCamera{-0.3f, 0.5f, 0.8f};
 // (Shading::automatic) is lit by the look's environment, the lights the model's file places (`model_lights`,
 // unless the look turns them off), and a directional key light of intensity pi (a white diffuse surface facing
 // it shows white) when the look gives a light direction; the other shadings by the light direction or the
-// headlight. Environments are prefiltered once per process and file (environment_for). Throws
+// headlight; a look with an ambient colour by its own lights and that colour alone. Environments are prefiltered once per process and file (environment_for). Throws
 // std::invalid_argument for a zero light direction or a bad exposure or rotation, InputError for an unreadable
 // environment file.
 SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_world, Shading default_shading,

@@ -127,20 +127,21 @@ class RendererCore {
                   const std::string& shading, bool cull_back, bool wireframe, py::list lights, py::handle ambient,
                   py::handle background, bool rgba, const std::vector<std::string>& buffers) {
     const View view = view_of(view_from_world, clip_from_view, near, far);
-    SceneOptions options;
-    options.shading = shading_named(shading);
-    // Back faces are culled per material, as pyrender culls them: single-sided materials only, and every mesh the
-    // module makes names its materials' sides (materials.hpp); SKIP_CULL_FACES draws every back face.
-    options.cull = CullMode::none;
-    options.cull_single_sided = cull_back;
-    options.wireframe = wireframe;
-    options.lights.clear();
-    for (const py::handle light : lights) options.lights.push_back(light_of(light));
+    // pyrender's lighting in the job layer's terms: the scene's lights and ambient colour, no environment.
+    LookSpec look;
+    look.shading = shading_named(shading);
+    look.wireframe = wireframe;
+    // Back faces are culled per material, as pyrender culls them (the look's default: single-sided materials only,
+    // and every mesh the module makes names its materials' sides, materials.hpp); SKIP_CULL_FACES draws them all.
+    if (!cull_back) look.cull = CullMode::none;
+    for (const py::handle light : lights) look.lights.push_back(light_of(light));
     // Shadows are drawn for the lights the flags ask them of (each tuple says whether its light casts).
-    options.shadows = std::any_of(options.lights.begin(), options.lights.end(),
-                                  [](const Light& l) { return l.casts_shadows && l.kind != Light::Kind::point; });
-    options.ambient = finite_rows<3>(py::array::ensure(ambient).reshape({1, 3}), "ambient_light")[0];
+    look.shadows = std::any_of(look.lights.begin(), look.lights.end(),
+                               [](const Light& l) { return l.casts_shadows && l.kind != Light::Kind::point; });
+    look.ambient = finite_rows<3>(py::array::ensure(ambient).reshape({1, 3}), "ambient_light")[0];
     const glm::vec4 clear = finite_rows<4>(py::array::ensure(background).reshape({1, 4}), "bg_color")[0];
+    look.model_lights = false;
+    const SceneOptions options = scene_options(look, view.view_from_world, Shading::automatic, glm::vec3(clear));
     const BufferRequest request = request_of(buffers);
     FrameBuffers frame;
     std::vector<std::uint32_t> ids;

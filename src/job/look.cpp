@@ -29,10 +29,16 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
   } else {
     light = glm::transpose(glm::mat3(view_from_world)) * kHeadlightFromCamera;  // fixed to the camera
   }
+  if (look.ambient) {
+    const glm::vec3 a = *look.ambient;
+    if (!(a.r >= 0.0f && a.g >= 0.0f && a.b >= 0.0f) || !std::isfinite(a.r + a.g + a.b))
+      throw std::invalid_argument("ambient light: must be finite and not negative");
+    options.ambient = a;
+  }
   if (options.shading == Shading::automatic) {
     if (!(look.exposure > 0.0f) || !std::isfinite(look.exposure))
       throw std::invalid_argument("exposure: must be a finite number above 0");
-    options.environment = environment_for(look, up);
+    if (!look.ambient) options.environment = environment_for(look, up);
     options.tone_mapping = look.tone_mapping;
     options.exposure = look.exposure;
     if (!(look.hdri_blur >= 0.0f && look.hdri_blur <= 1.0f))
@@ -41,6 +47,7 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
     options.background_blur = look.hdri_blur;
     options.lights.clear();
     if (look.model_lights) options.lights.assign(model_lights.begin(), model_lights.end());
+    options.lights.insert(options.lights.end(), look.lights.begin(), look.lights.end());
     if (look.light_direction) options.lights.push_back(Light{Light::Kind::directional, light, glm::vec3(1.0f), kPi});
     options.shadows = look.shadows;
     options.ambient_occlusion = look.ambient_occlusion;
@@ -49,7 +56,8 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
       warn("shadows: no directional or spot light to cast them (the environment casts none); give a light "
            "direction");
   } else {
-    options.lights = {Light{Light::Kind::directional, light, glm::vec3(1.0f), 1.0f}};
+    if (look.ambient || !look.lights.empty()) options.lights = look.lights;
+    else options.lights = {Light{Light::Kind::directional, light, glm::vec3(1.0f), 1.0f}};
   }
   if (look.color) options.color = glm::vec4(*look.color, 1.0f);
   options.cull = look.cull.value_or(CullMode::none);

@@ -149,6 +149,41 @@ TEST(Look, OptionsAndClearColourFollowTheSpec) {
   EXPECT_THROW(scene_options(look, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.0f)), std::invalid_argument);
 }
 
+// pyrender's lighting, as the Python renderer asks for it: the caller's lights and an ambient colour, no
+// environment and no headlight, in every shading; without an ambient colour the caller's lights join the model's.
+TEST(Look, AnAmbientColourLightsByTheCallersLightsAlone) {
+  LookSpec look;
+  look.ambient = glm::vec3(0.1f, 0.2f, 0.3f);
+  SceneOptions options = scene_options(look, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.0f));
+  EXPECT_EQ(options.environment, nullptr);
+  EXPECT_EQ(options.ambient, glm::vec3(0.1f, 0.2f, 0.3f));
+  EXPECT_TRUE(options.lights.empty());
+  look.shading = Shading::gouraud;
+  EXPECT_TRUE(scene_options(look, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.0f)).lights.empty());
+  const Light spot{Light::Kind::spot, glm::vec3(0, 1, 0), glm::vec3(1.0f), 5.0f};
+  look.lights = {spot};
+  options = scene_options(look, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.0f));
+  ASSERT_EQ(options.lights.size(), 1u);
+  EXPECT_EQ(options.lights[0].kind, Light::Kind::spot);
+
+  LookSpec studio;
+  studio.lights = {spot};
+  const Light file_light{Light::Kind::point, glm::vec3(0, 0, 1), glm::vec3(1.0f), 2.0f};
+  options = scene_options(studio, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.0f), std::span(&file_light, 1));
+  EXPECT_NE(options.environment, nullptr);
+  ASSERT_EQ(options.lights.size(), 2u);
+  EXPECT_EQ(options.lights[0].kind, Light::Kind::point);
+  EXPECT_EQ(options.lights[1].kind, Light::Kind::spot);
+  studio.lights.clear();
+  studio.shading = Shading::gouraud;
+  EXPECT_EQ(scene_options(studio, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.0f)).lights.size(), 1u);
+
+  look.ambient = glm::vec3(-0.1f, 0.0f, 0.0f);
+  EXPECT_THROW(scene_options(look, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.0f)), std::invalid_argument);
+  look.ambient = glm::vec3(std::nanf(""), 0.0f, 0.0f);
+  EXPECT_THROW(scene_options(look, glm::mat4(1.0f), Shading::automatic, glm::vec3(0.0f)), std::invalid_argument);
+}
+
 TEST(Look, WireframeOnALightBackgroundIsDark) {
   LookSpec look;
   look.wireframe = true;
