@@ -73,6 +73,7 @@ set(FACET_JOB_SOURCES
 # libspng), the writers of files, and the render job, sheets and output templates that write them. The browser
 # build leaves them out.
 set(FACET_HOST_JOB_SOURCES
+  src/job/animation.cpp
   src/job/io/assimp_loader.cpp
   src/job/io/exr.cpp
   src/job/io/gif.cpp

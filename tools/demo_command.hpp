@@ -6,6 +6,7 @@
 #include <CLI/CLI.hpp>
 
 #include "cli_options.hpp"
+#include "facet/render_job.hpp"
 
 namespace facet::cli {
 
@@ -13,8 +14,8 @@ struct DemoArgs {
   std::string name;
   LookArgs look;
   OutputArgs output;
-  double time = 1.0;  // seconds into the animation; at 1 s the rotating cube shows three faces
-  int frames = 1;
+  double time = RenderJob{}.time;  // seconds into the animation
+  int frames = RenderJob{}.frames;
 };
 
 // Adds the `demo` subcommand, filling `args` when it is parsed.

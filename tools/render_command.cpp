@@ -56,7 +56,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
       ->add_option(
           "--turntable", args.turntable,
           "Render N frames round the model's up axis, 3 s a turn: --output NAME.gif, .mp4, .webm or {frame} PNGs")
-      ->check(number_in(1, kMaxTurntableFrames, true))
+      ->check(number_in(1, kMaxAnimationFrames, true))
       ->type_name("N");
   render->add_flag("--timings", args.timings,
                    "Print the time of each stage (load, prepare, draw, write) and the peak memory on stderr");

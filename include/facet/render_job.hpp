@@ -10,6 +10,7 @@
 
 #include <glm/glm.hpp>
 
+#include "facet/demo_scenes.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/model_io.hpp"
 #include "facet/renderer.hpp"
@@ -88,6 +89,12 @@ std::size_t remove_stale_temporaries(std::span<const OutputSpec> outputs);
 
 struct RenderJob {
   std::filesystem::path model;
+  // A built-in demo scene (demo_scenes.hpp) instead of a model file: its own meshes, motion, camera, shading and
+  // background, under the look's settings. `time` is the moment of its first frame in seconds; `frames` frames
+  // follow 1/30 s apart, written as the outputs' {frame} numbers them, or as one GIF or video.
+  std::optional<Demo> demo{};
+  double time = 1.0;  // at 1 s the spinning cube shows three faces
+  int frames = 1;
   int width = 1024, height = 768;
   CameraSpec camera;
   LookSpec look;
@@ -108,7 +115,8 @@ struct RenderJob {
   LoadOptions load;
 };
 
-inline constexpr int kMaxTurntableFrames = 3600;
+// The most frames a turntable or a demo's animation may have.
+inline constexpr int kMaxAnimationFrames = 3600;
 
 // Where a render's time went, in seconds, when the caller asks (facet render --timings).
 struct RenderTimings {
@@ -197,10 +205,12 @@ FrameBuffers render_buffers(const RenderJob& job, Renderer& renderer, const Buff
                             std::string* camera = nullptr);
 
 // Loads the model, frames it, draws it and writes the outputs; with job.views, draws the contact sheet; with
-// job.turntable, the turntable. Throws std::invalid_argument for a sheet or turntable asked for depth, normals,
-// ids, a mask, the camera or a file camera, for both at once, a sheet larger than kMaxDimension a side, or a
-// turntable of more than kMaxTurntableFrames frames or 2^30 pixels in all. Throws InputError for a bad model file or an
-// output that cannot be written, std::invalid_argument for a bad job (size, camera, two outputs on one path).
+// job.turntable, the turntable; with job.demo, the demo's frames. Throws std::invalid_argument for a sheet, a
+// turntable or a video asked for depth, normals, ids, a mask, the camera or a file camera, for a sheet and a
+// turntable at once, a sheet larger than kMaxDimension a side, a turntable or demo of more than
+// kMaxAnimationFrames frames (or a video of more than 2^30 pixels in all), a demo's frames that their outputs'
+// names do not number, a bad size, camera or look, two outputs on one path. Throws InputError for a bad model
+// file or an output that cannot be written.
 void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings = nullptr);
 
 }  // namespace facet

@@ -3,7 +3,6 @@
 
 #include <algorithm>
 #include <cctype>
-#include <chrono>
 #include <cmath>
 #include <cstdint>
 #include <iterator>
@@ -20,27 +19,13 @@
 #include "facet/output_template.hpp"
 #include "facet/text.hpp"
 #include "core/file_util.hpp"
+#include "job/job_frame.hpp"
 #include "job/io/output_file.hpp"
 
 namespace facet {
 
-namespace {
-
-// Seconds since it was made or last asked.
-class Stopwatch {
- public:
-  double lap() {
-    const auto now = std::chrono::steady_clock::now();
-    const double seconds = std::chrono::duration<double>(now - last_).count();
-    last_ = now;
-    return seconds;
-  }
-
- private:
-  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
-};
-
-}  // namespace
+using detail::JobFrame;
+using detail::Stopwatch;
 
 std::vector<std::filesystem::path> output_paths(const OutputSpec& o) {
   std::vector<std::filesystem::path> paths;
@@ -188,15 +173,9 @@ bool has_area(const Mesh& mesh) {
   return false;
 }
 
-// A job's model loaded and framed, its view and look, ready to draw.
-struct JobFrame {
-  View view;
-  SceneOptions options;
-  glm::vec4 clear{};
-  Scene scene;
-};
+}  // namespace
 
-JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
+JobFrame detail::prepare_job(const RenderJob& job, RenderTimings* timings) {
   if (job.width < 1 || job.height < 1 || job.width > kMaxDimension || job.height > kMaxDimension)
     throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
   Stopwatch clock;
@@ -219,7 +198,7 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
 }
 
 // A contact sheet or turntable is a colour output alone, seen through cameras of its own.
-void check_colour_only(const RenderJob& job, const char* what, const char* flag) {
+void detail::check_colour_only(const RenderJob& job, const char* what, const char* flag) {
   const OutputSpec& o = job.outputs;
   if (!o.depth.empty() || !o.normal.empty() || !o.ids.empty() || !o.mask.empty() || !o.camera.empty())
     throw std::invalid_argument(std::string(flag) + ": " + what +
@@ -229,10 +208,12 @@ void check_colour_only(const RenderJob& job, const char* what, const char* flag)
   if (o.color.empty()) throw std::invalid_argument(std::string(flag) + ": " + what + " needs a colour output to write");
 }
 
+namespace {
+
 // The contact sheet: each view drawn into a cell framebuffer, copied into its place in the grid and labelled.
 void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
   const OutputSpec& o = job.outputs;
-  check_colour_only(job, "a contact sheet", "views");
+  detail::check_colour_only(job, "a contact sheet", "views");
   const int n = static_cast<int>(job.views.size());
   const int columns = static_cast<int>(std::ceil(std::sqrt(static_cast<double>(n))));
   const int rows = (n + columns - 1) / columns;
@@ -240,7 +221,7 @@ void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timin
     throw std::invalid_argument("views: a sheet of " + std::to_string(columns) + "x" + std::to_string(rows) +
                                 " views of " + std::to_string(job.width) + "x" + std::to_string(job.height) +
                                 " is over " + std::to_string(kMaxDimension) + " pixels a side");
-  JobFrame frame = prepare_job(job, timings);  // the model is prepared once, as for any render; each view reuses it
+  JobFrame frame = detail::prepare_job(job, timings);  // the model is prepared once, as for any render; each view reuses it
   Stopwatch clock;
   const Framing framing = framing_of(*frame.scene.instances()[0].mesh, job.model.string());
   const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
@@ -277,47 +258,6 @@ void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timin
   if (timings) timings->write = clock.lap();
 }
 
-// The turntable: the camera turned round the up axis frame by frame, the frames encoded as one GIF or video.
-void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
-  check_colour_only(job, "a turntable", "turntable");
-  if (job.turntable > kMaxTurntableFrames)
-    throw std::invalid_argument("turntable: at most " + std::to_string(kMaxTurntableFrames) + " frames");
-  const std::uint64_t pixels = static_cast<std::uint64_t>(job.width) * job.height * job.turntable;
-  if (pixels > (std::uint64_t{1} << 30))
-    throw std::invalid_argument("turntable: " + std::to_string(job.turntable) + " frames of " +
-                                std::to_string(job.width) + "x" + std::to_string(job.height) +
-                                " are over 2^30 pixels; use fewer frames or a smaller resolution");
-  JobFrame frame = prepare_job(job, timings);
-  Stopwatch clock;
-  const Framing framing = framing_of(*frame.scene.instances()[0].mesh, job.model.string());
-  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
-  Framebuffer target(job.width, job.height, job.samples);
-  std::vector<std::vector<std::uint8_t>> frames;
-  for (int k = 0; k < job.turntable; ++k) {
-    CameraSpec camera = job.camera;
-    camera.azimuth_degrees += 360.0f * static_cast<float>(k) / static_cast<float>(job.turntable);
-    const View view = make_view(camera, framing, aspect);
-    const SceneOptions options = scene_options(job.look, view.view_from_world, Shading::automatic,
-                                               glm::vec3(frame.clear), frame.scene.instances()[0].mesh->lights,
-                                               job.camera.up);
-    renderer.clear(target, frame.clear, 1.0f);
-    frame.scene.render(renderer, target, view, options);
-    renderer.finish(target);
-    frames.push_back(target.rgba8());
-  }
-  if (timings) timings->draw = clock.lap();
-  if (template_has(job.outputs.color.string(), "frame")) {
-    // PNG frames, each complete before the next: a failure leaves the ones already written, which a rerun replaces.
-    for (int k = 0; k < job.turntable; ++k)
-      write_png(expand_template(job.outputs.color.string(), TemplateValues{.frame = k}), job.width, job.height,
-                frames[static_cast<std::size_t>(k)], frame.clear.a < 1.0f);
-  } else {
-    // A whole turn in about 3 s, at no more than 50 frames a second (GIF delays are whole centiseconds).
-    write_animation(job.outputs.color, job.width, job.height, frames, std::max(0.02, 3.0 / job.turntable));
-  }
-  if (timings) timings->write = clock.lap();
-}
-
 }  // namespace
 
 void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
@@ -326,19 +266,22 @@ void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
     for (std::size_t k = i + 1; k < paths.size(); ++k)
       if (paths[i].lexically_normal() == paths[k].lexically_normal())
         throw std::invalid_argument("outputs: " + paths[k].string() + " is named twice");
-  check_output_formats(job.outputs, job.turntable > 0);
+  const bool animated =
+      job.turntable > 0 || (job.demo && (job.frames > 1 || is_animation_path(job.outputs.color)));
+  check_output_formats(job.outputs, animated);
+  if (job.demo) return detail::render_demo(job, renderer, timings);
   if (!job.views.empty() && job.turntable > 0)
     throw std::invalid_argument("views: a contact sheet is one image, not a turntable");
   if (!job.views.empty()) return render_sheet(job, renderer, timings);
-  if (job.turntable > 0) return render_turntable(job, renderer, timings);
-  JobFrame frame = prepare_job(job, timings);
+  if (job.turntable > 0) return detail::render_turntable(job, renderer, timings);
+  JobFrame frame = detail::prepare_job(job, timings);
   Framebuffer target(job.width, job.height, job.samples);
   draw_and_write(renderer, target, frame.scene, frame.view, frame.options, frame.clear, job.outputs, timings);
 }
 
 FrameBuffers render_buffers(const RenderJob& job, Renderer& renderer, const BufferRequest& request,
                             std::string* camera) {
-  JobFrame frame = prepare_job(job, nullptr);
+  JobFrame frame = detail::prepare_job(job, nullptr);
   Framebuffer target(job.width, job.height, job.samples);
   FrameBuffers buffers = draw_buffers(renderer, target, frame.scene, frame.view, frame.options, frame.clear, request);
   if (camera) *camera = camera_json(frame.view, job.width, job.height);

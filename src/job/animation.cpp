@@ -1,0 +1,142 @@
+// animation.cpp - jobs of many frames: a turntable's turning camera and a demo's moving scene, drawn by one loop.
+#include <algorithm>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "facet/demo_scenes.hpp"
+#include "facet/image_io.hpp"
+#include "facet/output_template.hpp"
+#include "facet/render_job.hpp"
+#include "job/job_frame.hpp"
+
+namespace facet::detail {
+
+namespace {
+
+// One frame as an animation's source makes it: what to draw, through which view, how.
+struct AnimationFrame {
+  Scene* scene;  // the source's
+  View view;
+  SceneOptions options;
+};
+using AnimationSource = std::function<AnimationFrame(int frame)>;
+
+// Whether the job's colour output is one GIF or video of every frame, rather than PNG frames named with {frame}.
+bool is_video(const RenderJob& job) {
+  return is_animation_path(job.outputs.color) && !template_has(job.outputs.color.string(), "frame");
+}
+
+// A video holds every frame in memory until it is encoded: at most kMaxAnimationFrames, and 2^30 pixels in all.
+void check_video_size(const RenderJob& job, int frames, const char* flag) {
+  if (frames > kMaxAnimationFrames)
+    throw std::invalid_argument(std::string(flag) + ": at most " + std::to_string(kMaxAnimationFrames) + " frames");
+  const std::uint64_t pixels = static_cast<std::uint64_t>(job.width) * job.height * frames;
+  if (is_video(job) && pixels > (std::uint64_t{1} << 30))
+    throw std::invalid_argument(std::string(flag) + ": " + std::to_string(frames) + " frames of " +
+                                std::to_string(job.width) + "x" + std::to_string(job.height) +
+                                " are over 2^30 pixels; use fewer frames or a smaller resolution");
+}
+
+// Draws frames 0 .. count - 1 of `source` and writes them as the job's outputs say: one GIF or video of them all,
+// `seconds_per_frame` apart; else each frame's outputs, their names' {frame} expanded, as soon as it is drawn (a
+// failure leaves the frames already written, which a rerun replaces). Times the drawing and the writing.
+void draw_frames(const RenderJob& job, int count, double seconds_per_frame, glm::vec4 clear,
+                 const AnimationSource& source, Renderer& renderer, RenderTimings* timings) {
+  Framebuffer target(job.width, job.height, job.samples);
+  const bool video = is_video(job);
+  std::vector<std::vector<std::uint8_t>> frames;  // a video's, encoded together at the end
+  RenderTimings spent;
+  Stopwatch clock;
+  for (int k = 0; k < count; ++k) {
+    const AnimationFrame frame = source(k);
+    if (video) {
+      renderer.clear(target, clear, 1.0f);
+      frame.scene->render(renderer, target, frame.view, frame.options);
+      renderer.finish(target);
+      frames.push_back(target.rgba8());
+      spent.draw += clock.lap();
+      continue;
+    }
+    const TemplateValues values{.frame = k};
+    const auto expand = [&](const std::filesystem::path& path) {
+      return path.empty() ? path : std::filesystem::path(expand_template(path.string(), values));
+    };
+    const OutputSpec& o = job.outputs;
+    const OutputSpec outputs{.color = expand(o.color),
+                             .depth = expand(o.depth),
+                             .normal = expand(o.normal),
+                             .ids = expand(o.ids),
+                             .mask = expand(o.mask),
+                             .camera = expand(o.camera)};
+    RenderTimings t;
+    draw_and_write(renderer, target, *frame.scene, frame.view, frame.options, clear, outputs, &t);
+    spent.draw += t.draw;
+    spent.write += t.write;
+    clock.lap();
+  }
+  if (video) {
+    write_animation(job.outputs.color, job.width, job.height, frames, seconds_per_frame);
+    spent.write += clock.lap();
+  }
+  if (timings) timings->draw = spent.draw, timings->write = spent.write;
+}
+
+}  // namespace
+
+void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
+  check_colour_only(job, "a turntable", "turntable");
+  check_video_size(job, job.turntable, "turntable");
+  JobFrame frame = prepare_job(job, timings);
+  const Framing framing = framing_of(*frame.scene.instances()[0].mesh, job.model.string());
+  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
+  const auto turned = [&](int k) {
+    CameraSpec camera = job.camera;
+    camera.azimuth_degrees += 360.0f * static_cast<float>(k) / static_cast<float>(job.turntable);
+    const View view = make_view(camera, framing, aspect);
+    return AnimationFrame{&frame.scene, view,
+                          scene_options(job.look, view.view_from_world, Shading::automatic, glm::vec3(frame.clear),
+                                        frame.scene.instances()[0].mesh->lights, job.camera.up)};
+  };
+  // A whole turn in about 3 s, at no more than 50 frames a second (GIF delays are whole centiseconds).
+  draw_frames(job, job.turntable, std::max(0.02, 3.0 / job.turntable), frame.clear, turned, renderer, timings);
+}
+
+void render_demo(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
+  if (!job.model.empty()) throw std::invalid_argument("demo: a demo draws its own scene, not " + job.model.string());
+  if (!job.views.empty() || job.turntable > 0)
+    throw std::invalid_argument("demo: a demo has its own camera and motion: no views or turntable");
+  if (job.frames < 1) throw std::invalid_argument("frames: at least 1");
+  if (is_video(job)) check_colour_only(job, "an animation", "frames");
+  check_video_size(job, job.frames, "frames");
+  if (job.frames > 1 && !is_video(job))
+    for (const std::filesystem::path& path : output_paths(job.outputs))
+      if (!template_has(path.string(), "frame"))
+        throw std::invalid_argument(path.string() + ": " + std::to_string(job.frames) +
+                                    " frames need {frame} in the name, one file per frame");
+  Stopwatch clock;
+  DemoModel demo = make_demo(*job.demo);
+  if (job.look.color) {
+    Mesh recoloured = *demo.mesh;
+    apply_look_color(recoloured, job.look);
+    demo.mesh = std::make_shared<const Mesh>(std::move(recoloured));
+  }
+  const glm::vec4 clear = clear_color(job.look, demo.background);
+  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
+  if (timings) timings->prepare = clock.lap();
+  std::optional<Scene> scene;
+  constexpr double kSecondsPerFrame = 1.0 / 30.0;
+  const auto moment = [&](int k) {
+    DemoFrame frame = demo_frame(demo, job.time + k * kSecondsPerFrame, aspect);
+    scene.emplace();
+    for (Instance& instance : frame.instances) scene->add(std::move(instance));
+    return AnimationFrame{&*scene, frame.view,
+                          scene_options(job.look, frame.view.view_from_world, demo.shading, glm::vec3(clear))};
+  };
+  draw_frames(job, job.frames, kSecondsPerFrame, clear, moment, renderer, timings);
+}
+
+}  // namespace facet::detail

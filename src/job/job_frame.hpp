@@ -1,0 +1,44 @@
+// job_frame.hpp - what the render job's parts share: a model loaded and framed for drawing, and their timing.
+#pragma once
+
+#include <chrono>
+
+#include <glm/glm.hpp>
+
+#include "facet/render_job.hpp"
+
+namespace facet::detail {
+
+// Seconds since it was made or last asked.
+class Stopwatch {
+ public:
+  double lap() {
+    const auto now = std::chrono::steady_clock::now();
+    const double seconds = std::chrono::duration<double>(now - last_).count();
+    last_ = now;
+    return seconds;
+  }
+
+ private:
+  std::chrono::steady_clock::time_point last_ = std::chrono::steady_clock::now();
+};
+
+// A job's model loaded and framed, its view and look, ready to draw.
+struct JobFrame {
+  View view;
+  SceneOptions options;
+  glm::vec4 clear{};
+  Scene scene;
+};
+
+// Loads job.model and frames it as job.camera says; times the load and the preparation.
+JobFrame prepare_job(const RenderJob& job, RenderTimings* timings);
+
+// Refuses a job of several images (a sheet, a turntable: `what`, set by `flag`) that asks for more than colour.
+void check_colour_only(const RenderJob& job, const char* what, const char* flag);
+
+// The jobs of many frames (animation.cpp): the turntable, and a demo's frames.
+void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* timings);
+void render_demo(const RenderJob& job, Renderer& renderer, RenderTimings* timings);
+
+}  // namespace facet::detail
