@@ -107,6 +107,28 @@ void expect_same_setup(const TriangleSetup& a, const TriangleSetup& b) {
 
 // With several samples per pixel, bounds grow to the pixels any sample may lie in, and a small triangle is culled
 // only when it covers none of their samples.
+// The coverage test is one function at every width: culling's 32 bits, setup's 64, and the edge that raster steps
+// across pixels (a * i + b * j + q >= 0, make_edge) decide every pixel centre alike, corners on a coarse grid so
+// that many centres lie on edges, where the fill rule decides.
+TEST(CoverageTest, OneEdgeFunctionAtEveryWidthAndInRastersForm) {
+  std::mt19937 rng(41);
+  std::uniform_int_distribution<std::int32_t> corner(0, 24 * 32);  // 24 pixels on an 1/8-pixel grid
+  int inside = 0, outside = 0;
+  for (int n = 0; n < 20000; ++n) {
+    const std::int32_t xa = corner(rng) * 8, ya = corner(rng) * 8, xb = corner(rng) * 8, yb = corner(rng) * 8;
+    const std::int32_t dx = xb - xa, dy = yb - ya;
+    const Edge edge = make_edge(dx, dy, xa, ya);
+    const std::int32_t i = corner(rng) / 32, j = corner(rng) / 32;
+    const std::int32_t cx = i * kSubpixelScale + kSubpixelScale / 2, cy = j * kSubpixelScale + kSubpixelScale / 2;
+    const bool wide = edge_function<std::int64_t>(dx, dy, xa, ya, cx, cy) >= 0;
+    ASSERT_EQ(edge_function<std::int32_t>(dx, dy, xa, ya, cx, cy) >= 0, wide) << n;
+    ASSERT_EQ(std::int64_t{edge.a} * i + std::int64_t{edge.b} * j + edge.q >= 0, wide) << n;
+    (wide ? inside : outside)++;
+  }
+  EXPECT_GT(inside, 5000);
+  EXPECT_GT(outside, 5000);
+}
+
 TEST(SetupCull, RejectsExactlyWhatFullSetupCulls) {
   const Soup soup = tiny_triangles(16 * 400, 7);
   for (const int samples : {1, 2, 4, 8})

@@ -13,14 +13,10 @@ namespace facet::detail {
 // product stays below 2^22. Other lanes may wrap (unsigned, so defined) and are masked by the caller.
 [[gnu::always_inline]] inline std::int32_t inside_all(const std::int32_t X[3], const std::int32_t Y[3], std::int32_t cx,
                                                       std::int32_t cy) {
-  const auto u = [](std::int32_t v) { return static_cast<std::uint32_t>(v); };
   std::int32_t inside = 1;
   for (int k = 0; k < 3; ++k) {
     const int a = k, b = (k + 1) % 3;
-    const std::int32_t dx = X[b] - X[a], dy = Y[b] - Y[a];
-    const auto bias = static_cast<std::uint32_t>(top_left_bias(dx, dy));
-    const std::uint32_t edge = u(dx) * u(cy - Y[a]) - u(dy) * u(cx - X[a]) + bias;
-    inside &= static_cast<std::int32_t>(edge) >= 0;
+    inside &= edge_function<std::int32_t>(X[b] - X[a], Y[b] - Y[a], X[a], Y[a], cx, cy) >= 0;
   }
   return inside;
 }

@@ -177,8 +177,8 @@ class Binner {
           bool inside = true;
           for (int k = 0; k < 3; ++k) {
             const int a = k, b = (k + 1) % 3;
-            const std::int64_t dx = s.X[b] - s.X[a], dy = s.Y[b] - s.Y[a];
-            inside &= dx * (cy - s.Y[a]) - dy * (cx - s.X[a]) + top_left_bias(dx, dy) >= 0;
+            inside &= edge_function<std::int64_t>(std::int64_t{s.X[b]} - s.X[a], std::int64_t{s.Y[b]} - s.Y[a], s.X[a],
+                                                  s.Y[a], cx, cy) >= 0;
           }
           if (inside) return true;
         }

@@ -4,6 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 #include <glm/glm.hpp>
 
@@ -69,10 +70,23 @@ template <class I>
   return (((dy == 0) & (dx > 0)) | (dy < 0)) ? I{0} : I{-1};
 }
 
+// The coverage test, once for every stage that makes it: the edge function of clockwise edge (dx, dy) from corner
+// (x_a, y_a) at point (px, py), all in 1/256 pixel, the fill rule's bias included; the point is inside the edge
+// when it is >= 0. Culling evaluates it in 32 bits on 16 triangles at once, setup in 64 bits, and the edges that
+// raster, visibility and multisampling step across pixels and samples are its linear form (make_edge). Computed
+// in I's unsigned type, so that lanes of the cull pass whose products wrap stay defined (their results are
+// masked there); exact wherever the products fit in I.
+template <class I>
+[[gnu::always_inline]] inline I edge_function(I dx, I dy, I x_a, I y_a, I px, I py) {
+  using U = std::make_unsigned_t<I>;
+  return static_cast<I>(static_cast<U>(dx) * static_cast<U>(py - y_a) - static_cast<U>(dy) * static_cast<U>(px - x_a) +
+                        static_cast<U>(top_left_bias(dx, dy)));
+}
+
 // The edge function of clockwise edge (dx, dy) from corner (x, y) at the centre of pixel (0, 0): k of Edge.
 [[gnu::always_inline]] inline std::int64_t edge_at_centre(std::int64_t dx, std::int64_t dy, std::int64_t x,
                                                           std::int64_t y) {
-  return (kSubpixelScale / 2) * (-dy + dx) + (dy * x - dx * y) + top_left_bias(dx, dy);
+  return edge_function<std::int64_t>(dx, dy, x, y, kSubpixelScale / 2, kSubpixelScale / 2);
 }
 
 // The edge of TriangleSetup from clockwise corner (x, y) along (dx, dy), all in 1/256 pixel (see Edge).
