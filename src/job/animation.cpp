@@ -118,25 +118,15 @@ void render_demo(const RenderJob& job, Renderer& renderer, RenderTimings* timing
         throw std::invalid_argument(path.string() + ": " + std::to_string(job.frames) +
                                     " frames need {frame} in the name, one file per frame");
   Stopwatch clock;
-  DemoModel demo = make_demo(*job.demo);
-  if (job.look.color) {
-    Mesh recoloured = *demo.mesh;
-    apply_look_color(recoloured, job.look);
-    demo.mesh = std::make_shared<const Mesh>(std::move(recoloured));
-  }
-  const glm::vec4 clear = clear_color(job.look, demo.background);
-  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
+  const DemoModel demo = prepare_demo(job);
+  std::optional<JobFrame> frame;
+  frame.emplace(demo_job_frame(job, demo, 0));
   if (timings) timings->prepare = clock.lap();
-  std::optional<Scene> scene;
-  constexpr double kSecondsPerFrame = 1.0 / 30.0;
   const auto moment = [&](int k) {
-    DemoFrame frame = demo_frame(demo, job.time + k * kSecondsPerFrame, aspect);
-    scene.emplace();
-    for (Instance& instance : frame.instances) scene->add(std::move(instance));
-    return AnimationFrame{&*scene, frame.view,
-                          scene_options(job.look, frame.view.view_from_world, demo.shading, glm::vec3(clear))};
+    if (k > 0) frame.emplace(demo_job_frame(job, demo, k));
+    return AnimationFrame{&frame->scene, frame->view, frame->options};
   };
-  draw_frames(job, job.frames, kSecondsPerFrame, clear, moment, renderer, timings);
+  draw_frames(job, job.frames, kDemoSecondsPerFrame, frame->clear, moment, renderer, timings);
 }
 
 }  // namespace facet::detail

@@ -1,10 +1,11 @@
-// job_frame.hpp - what the render job's parts share: a model loaded and framed for drawing, and their timing.
+// job_frame.hpp - what the render job's parts share: a model or demo made ready to draw, and their timing.
 #pragma once
 
 #include <chrono>
 
 #include <glm/glm.hpp>
 
+#include "facet/demo_scenes.hpp"
 #include "facet/render_job.hpp"
 
 namespace facet::detail {
@@ -32,7 +33,14 @@ struct JobFrame {
 };
 
 // Loads job.model and frames it as job.camera says; times the load and the preparation.
-JobFrame prepare_job(const RenderJob& job, RenderTimings* timings);
+JobFrame prepare_job(const RenderJob& job, RenderTimings* timings = nullptr);
+
+// The demo a job names (job.demo), with the look's colour over its own.
+DemoModel prepare_demo(const RenderJob& job);
+// Frame `frame` of a demo job: the demo at job.time + frame * kDemoSecondsPerFrame, through its own view, the
+// job's look over the demo's shading and background.
+inline constexpr double kDemoSecondsPerFrame = 1.0 / 30.0;
+JobFrame demo_job_frame(const RenderJob& job, const DemoModel& demo, int frame);
 
 // Refuses a job of several images (a sheet, a turntable: `what`, set by `flag`) that asks for more than colour.
 void check_colour_only(const RenderJob& job, const char* what, const char* flag);

@@ -161,42 +161,6 @@ void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const
   }
 }
 
-namespace {
-
-// Whether any triangle spans an area (a model of collinear or coincident corners draws no pixel).
-bool has_area(const Mesh& mesh) {
-  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
-    const glm::vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]];
-    const glm::vec3 c = mesh.positions[mesh.indices[t + 2]];
-    if (glm::length(glm::cross(b - a, c - a)) > 0.0f) return true;
-  }
-  return false;
-}
-
-}  // namespace
-
-JobFrame detail::prepare_job(const RenderJob& job, RenderTimings* timings) {
-  if (job.width < 1 || job.height < 1 || job.width > kMaxDimension || job.height > kMaxDimension)
-    throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
-  Stopwatch clock;
-  auto mesh = std::make_shared<Mesh>(load_model(job.model, job.load));
-  if (!has_area(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
-  apply_look_color(*mesh, job.look);
-  if (timings) timings->load = clock.lap();
-  const Framing framing = framing_of(*mesh, job.model.string());
-  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
-  JobFrame frame;
-  frame.view = job.camera.file_camera
-                   ? file_camera_view(*mesh, *job.camera.file_camera, framing, aspect, job.model.string())
-                   : make_view(job.camera, framing, aspect);
-  frame.clear = clear_color(job.look, kDefaultBackground);
-  frame.options = scene_options(job.look, frame.view.view_from_world, Shading::automatic, glm::vec3(frame.clear),
-                                mesh->lights, job.camera.up);
-  frame.scene.add(Instance{mesh, glm::mat4(1.0f)});
-  if (timings) timings->prepare = clock.lap();
-  return frame;
-}
-
 // A contact sheet or turntable is a colour output alone, seen through cameras of its own.
 void detail::check_colour_only(const RenderJob& job, const char* what, const char* flag) {
   const OutputSpec& o = job.outputs;

@@ -1,0 +1,78 @@
+// job_frame.cpp - a job's scene made ready to draw: a model file loaded and framed, or a demo at a moment.
+#include "job/job_frame.hpp"
+
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <utility>
+
+#include "facet/demo_scenes.hpp"
+#include "facet/error.hpp"
+#include "facet/model_io.hpp"
+
+namespace facet::detail {
+
+namespace {
+
+void check_resolution(const RenderJob& job) {
+  if (job.width < 1 || job.height < 1 || job.width > kMaxDimension || job.height > kMaxDimension)
+    throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
+}
+
+// Whether any triangle spans an area (a model of collinear or coincident corners draws no pixel).
+bool has_area(const Mesh& mesh) {
+  for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
+    const glm::vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]];
+    const glm::vec3 c = mesh.positions[mesh.indices[t + 2]];
+    if (glm::length(glm::cross(b - a, c - a)) > 0.0f) return true;
+  }
+  return false;
+}
+
+}  // namespace
+
+JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
+  check_resolution(job);
+  Stopwatch clock;
+  auto mesh = std::make_shared<Mesh>(load_model(job.model, job.load));
+  if (!has_area(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
+  apply_look_color(*mesh, job.look);
+  if (timings) timings->load = clock.lap();
+  const Framing framing = framing_of(*mesh, job.model.string());
+  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
+  JobFrame frame;
+  frame.view = job.camera.file_camera
+                   ? file_camera_view(*mesh, *job.camera.file_camera, framing, aspect, job.model.string())
+                   : make_view(job.camera, framing, aspect);
+  frame.clear = clear_color(job.look, kDefaultBackground);
+  frame.options = scene_options(job.look, frame.view.view_from_world, Shading::automatic, glm::vec3(frame.clear),
+                                mesh->lights, job.camera.up);
+  frame.scene.add(Instance{mesh, glm::mat4(1.0f)});
+  if (timings) timings->prepare = clock.lap();
+  return frame;
+}
+
+// A contact sheet or turntable is a colour output alone, seen through cameras of its own.
+DemoModel prepare_demo(const RenderJob& job) {
+  check_resolution(job);
+  DemoModel demo = make_demo(*job.demo);
+  if (job.look.color) {
+    Mesh recoloured = *demo.mesh;
+    apply_look_color(recoloured, job.look);
+    demo.mesh = std::make_shared<const Mesh>(std::move(recoloured));
+  }
+  return demo;
+}
+
+JobFrame demo_job_frame(const RenderJob& job, const DemoModel& demo, int frame) {
+  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
+  DemoFrame moment = demo_frame(demo, job.time + frame * kDemoSecondsPerFrame, aspect);
+  JobFrame out;
+  out.view = moment.view;
+  out.clear = clear_color(job.look, demo.background);
+  for (Instance& instance : moment.instances) out.scene.add(std::move(instance));
+  out.options = scene_options(job.look, out.view.view_from_world, demo.shading, glm::vec3(out.clear));
+  return out;
+}
+
+}  // namespace facet::detail
