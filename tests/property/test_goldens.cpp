@@ -1,0 +1,141 @@
+// test_goldens.cpp - the golden images drawn through the job layer and compared byte for byte, in any build.
+// tests/golden/golden_images.sh checks them through the CLI; this checks the same pictures without it, so that a
+// build without the CLI's libraries (the aarch64 cross build run under QEMU, scripts/test-aarch64.sh) shows that it
+// draws exactly what the x86-64 build draws.
+#include <gtest/gtest.h>
+
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <iterator>
+#include <string>
+#include <vector>
+
+#include "facet/demo_scenes.hpp"
+#include "facet/names.hpp"
+#include "facet/render_job.hpp"
+#include "job/job_frame.hpp"
+#include "scene/texture/image_decode.hpp"
+#include "support/scratch_dir.hpp"
+
+#define STB_IMAGE_WRITE_IMPLEMENTATION
+#define STB_IMAGE_WRITE_STATIC
+#pragma GCC diagnostic push
+#pragma GCC diagnostic ignored "-Wall"
+#pragma GCC diagnostic ignored "-Wextra"
+#pragma GCC diagnostic ignored "-Wmissing-field-initializers"
+#pragma GCC diagnostic ignored "-Wunused-function"
+#include <stb/stb_image_write.h>
+#pragma GCC diagnostic pop
+
+namespace facet {
+namespace {
+
+const std::filesystem::path kModels = "/usr/share/assimp/models";
+
+// A golden of tests/golden/images and the job that draws it, as golden_images.sh asks the CLI for it.
+struct Golden {
+  std::string name;
+  std::function<void(RenderJob&)> set;
+};
+
+std::vector<Golden> goldens() {
+  const auto demo = [](Demo d, int samples = 1) {
+    return [d, samples](RenderJob& job) { job.demo = d, job.samples = samples; };
+  };
+  const auto model = [](std::filesystem::path path, std::function<void(RenderJob&)> more = {}) {
+    return [path, more](RenderJob& job) {
+      job.model = kModels / path;
+      if (more) more(job);
+    };
+  };
+  const std::filesystem::path wuson = "OBJ/WusonOBJ.obj", box = "OBJ/box.obj";
+  const std::filesystem::path gltf = "glTF2";
+  std::vector<Golden> out = {
+      {"demo_cube", demo(Demo::cube)},
+      {"demo_torus", demo(Demo::torus)},
+      {"demo_two_cubes", demo(Demo::two_cubes)},
+      {"demo_pentagon", demo(Demo::pentagon)},
+      {"wireframe", model(wuson, [](RenderJob& job) { job.look.wireframe = true; })},
+      {"edges", model(box, [](RenderJob& job) { job.look.edges = true; })},
+      {"antialiased_wuson", model(wuson, [](RenderJob& job) { job.samples = 4; })},
+      {"antialiased_edges", model(box, [](RenderJob& job) { job.look.edges = true, job.samples = 4; })},
+      {"antialiased_demo_torus", demo(Demo::torus, 4)},
+      {"gltf_box_textured_binary", model(gltf / "BoxTextured-glTF-Binary/BoxTextured.glb")},
+      {"gltf_box_textured_embedded", model(gltf / "BoxTextured-glTF-Embedded/BoxTextured.gltf")},
+      {"gltf_box_textured_separate", model(gltf / "BoxTextured-glTF/BoxTextured.gltf")},
+      {"gltf_texture_transform", model(gltf / "textureTransform/TextureTransformTest.gltf",
+                                       [](RenderJob& job) { job.width = 320, job.height = 240; })},
+      {"ply_vertex_colors", model("PLY/float-color.ply")},
+      {"stl_binary", model("STL/Spider_binary.stl")},
+  };
+#ifndef FACET_NO_IMAGE_CODECS
+  // Its textures are JPEG files, which a build without libjpeg-turbo decodes with stb_image, whose inverse DCT
+  // rounds differently: the golden holds libjpeg-turbo's texels.
+  out.push_back({"textured_obj", model("OBJ/spider.obj")});
+#endif
+  for (const char* p : {"perspective", "orthographic", "frustum", "oblique", "isometric", "dimetric", "trimetric",
+                        "front", "top", "side"})
+    out.push_back({std::string("projection_") + p,
+                   model(wuson, [p](RenderJob& job) { job.camera.projection = *parse_projection(p); })});
+  return out;
+}
+
+std::vector<unsigned char> file_bytes(const std::filesystem::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+TEST(Goldens, TheJobLayerDrawsEveryGoldenExactly) {
+  const char* source = std::getenv("FACET_SOURCE_DIR");
+  ASSERT_TRUE(source && *source) << "FACET_SOURCE_DIR must name the source tree (ctest sets it)";
+  const std::filesystem::path images = std::filesystem::path(source) / "tests/golden/images";
+  const std::filesystem::path out = test::scratch_dir("goldens");
+  Renderer renderer(2);
+  int compared = 0;
+  for (const Golden& golden : goldens()) {
+    SCOPED_TRACE(golden.name);
+    RenderJob job;
+    job.width = 240, job.height = 180, job.samples = 1;
+    golden.set(job);
+    detail::JobFrame frame =
+        job.demo ? detail::demo_job_frame(job, detail::prepare_demo(job), 0) : detail::prepare_job(job);
+    Framebuffer target(job.width, job.height, job.samples);
+    renderer.clear(target, frame.clear, 1.0f);
+    frame.scene.render(renderer, target, frame.view, frame.options);
+    renderer.finish(target);
+    const std::vector<std::uint8_t> actual = target.rgba8();
+
+    const std::filesystem::path path = images / (golden.name + ".png");
+    const std::vector<unsigned char> bytes = file_bytes(path);
+    ASSERT_FALSE(bytes.empty()) << path;
+    const DecodedImage expected = decode_image(bytes, 16384, path.string());
+    ASSERT_EQ(expected.width, job.width);
+    ASSERT_EQ(expected.height, job.height);
+    // The goldens are opaque RGB: every colour channel must match.
+    std::vector<std::uint8_t> diff(actual.size(), 0);
+    int differing = 0;
+    for (std::size_t p = 0; p < actual.size(); p += 4) {
+      bool same = true;
+      for (std::size_t c = 0; c < 3; ++c) same &= actual[p + c] == expected.rgba[p + c];
+      differing += same ? 0 : 1;
+      diff[p] = same ? 0 : 255;
+      diff[p + 3] = 255;
+    }
+    if (differing > 0) {
+      const std::string actual_png = (out / (golden.name + ".actual.png")).string();
+      const std::string diff_png = (out / (golden.name + ".diff.png")).string();
+      stbi_write_png(actual_png.c_str(), job.width, job.height, 4, actual.data(), job.width * 4);
+      stbi_write_png(diff_png.c_str(), job.width, job.height, 4, diff.data(), job.width * 4);
+      ADD_FAILURE() << differing << " pixels differ from " << path << " (actual " << actual_png << ", diff "
+                    << diff_png << ")";
+    }
+    ++compared;
+  }
+  EXPECT_GE(compared, 25);
+}
+
+}  // namespace
+}  // namespace facet
