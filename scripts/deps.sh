@@ -7,7 +7,8 @@ packages=(g++ cmake ninja-build pkg-config libglm-dev libstb-dev libtinyobjloade
           libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels python3 time ccache clang parallel dpkg-dev mmdebstrap
           python3-dev pybind11-dev python3-numpy python3-pytest python3-setuptools python3-pip
           libsdl2-dev xvfb xauth libgif-dev libspng-dev libturbojpeg0-dev libavcodec-dev libavformat-dev libswscale-dev ffmpeg
-          libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri qemu-user emscripten chromium "$@")
+          libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri qemu-user emscripten chromium
+          googletest g++-aarch64-linux-gnu "$@")
 missing=()
 for p in "${packages[@]}"; do
   dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "ok installed" || missing+=("$p")

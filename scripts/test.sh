@@ -1,7 +1,7 @@
 #!/usr/bin/env bash
 # test.sh - installs what is missing, builds facet warning-free, and runs every test (ctest), then the pipeline's
-# property tests built by Clang, then the tests under ASan+UBSan, then the threading and determinism tests under
-# ThreadSanitizer.
+# property tests built by Clang and built for aarch64 (run under qemu-user), then the tests under ASan+UBSan, then
+# the threading and determinism tests under ThreadSanitizer.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
 # Each stage says what it took, so a slow run shows where its time went (docs/DEVELOPING.md lists the usual costs).
@@ -33,6 +33,10 @@ cmake --build --preset clang -j "$jobs"
 stage "Clang build"
 ctest --preset clang -j "$jobs"
 stage "Clang property tests"
+
+# The same property tests and goldens built for aarch64 and run under qemu-user.
+scripts/test-aarch64.sh
+stage "aarch64 build and tests"
 
 if [ "${FACET_SKIP_SANITIZE:-0}" != 1 ]; then
   cmake --preset asan >/dev/null

@@ -1,0 +1,13 @@
+#!/usr/bin/env bash
+# test-aarch64.sh - builds facet's portable layers and the pipeline's property tests for 64-bit ARM (Debian's
+# g++-aarch64-linux-gnu) and runs them under qemu-user: the oracle and property tests, and the goldens drawn byte
+# for byte as the x86-64 build draws them. Installs what is missing (scripts/deps.sh).
+# Usage: scripts/test-aarch64.sh [BUILD_DIR]   (default build-aarch64)
+set -euo pipefail
+cd "$(dirname "${BASH_SOURCE[0]}")/.."
+build=${1:-build-aarch64}
+scripts/deps.sh
+export CCACHE_BASEDIR=$PWD CCACHE_NOHASHDIR=true
+cmake -S tests/portable -B "$build" -G Ninja -DCMAKE_TOOLCHAIN_FILE="$PWD/cmake/aarch64-linux-gnu.cmake" >/dev/null
+cmake --build "$build" -j "$(nproc)"
+ctest --test-dir "$build" -j "$(nproc)" --output-on-failure
