@@ -139,9 +139,9 @@ inline constexpr glm::vec3 kHeadlightFromCamera{-0.3f, 0.5f, 0.8f};
 // (Shading::automatic) is lit by the look's environment, the lights the model's file places (`model_lights`,
 // unless the look turns them off), and a directional key light of intensity pi (a white diffuse surface facing
 // it shows white) when the look gives a light direction; the other shadings by the light direction or the
-// headlight; a look with an ambient colour by its own lights and that colour alone. Environments are prefiltered once per process and file (environment_for). Throws
-// std::invalid_argument for a zero light direction or a bad exposure or rotation, InputError for an unreadable
-// environment file.
+// headlight; a look with an ambient colour by its own lights and that colour alone. Environments are prefiltered
+// once per process and file (environment_for). Throws std::invalid_argument for a zero light direction, a bad
+// exposure or rotation or a negative ambient colour, InputError for an unreadable environment file.
 SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_world, Shading default_shading,
                            glm::vec3 background, std::span<const Light> model_lights = {},
                            UpAxis up = UpAxis::pos_y);

@@ -185,7 +185,8 @@ void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timin
     throw std::invalid_argument("views: a sheet of " + std::to_string(columns) + "x" + std::to_string(rows) +
                                 " views of " + std::to_string(job.width) + "x" + std::to_string(job.height) +
                                 " is over " + std::to_string(kMaxDimension) + " pixels a side");
-  JobFrame frame = detail::prepare_job(job, timings);  // the model is prepared once, as for any render; each view reuses it
+  // The model is prepared once, as for any render; each view reuses it.
+  JobFrame frame = detail::prepare_job(job, timings);
   Stopwatch clock;
   const Framing framing = framing_of(*frame.scene.instances()[0].mesh, job.model.string());
   const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);

@@ -129,8 +129,8 @@ TEST(Goldens, TheJobLayerDrawsEveryGoldenExactly) {
       const std::string diff_png = (out / (golden.name + ".diff.png")).string();
       stbi_write_png(actual_png.c_str(), job.width, job.height, 4, actual.data(), job.width * 4);
       stbi_write_png(diff_png.c_str(), job.width, job.height, 4, diff.data(), job.width * 4);
-      ADD_FAILURE() << differing << " pixels differ from " << path << " (actual " << actual_png << ", diff "
-                    << diff_png << ")";
+      ADD_FAILURE() << differing << " pixels differ from " << path << " (actual " << actual_png << ", diff " << diff_png
+                    << ")";
     }
     ++compared;
   }
