@@ -4,6 +4,7 @@
 #include <algorithm>
 
 #include "facet/fragment_lanes.hpp"
+#include "facet/renderer.hpp"
 #include "facet/shader.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
 #include "facet/simd.hpp"
@@ -41,3 +42,6 @@ struct DepthShader {
 };
 
 }  // namespace facet
+
+// The library compiles these pipelines once (src/scene/shaders/); programs link those instances.
+FACET_EXTERN_SHADER(facet::DepthShader);

@@ -3,6 +3,7 @@
 
 #include "facet/environment.hpp"
 #include "facet/fragment_lanes.hpp"
+#include "facet/renderer.hpp"
 #include "facet/shader.hpp"
 #include "facet/shaders/brdf.hpp"
 #include "facet/shaders/pbr.hpp"
@@ -57,3 +58,6 @@ struct EnvironmentBackgroundShader {
 };
 
 }  // namespace facet
+
+// The library compiles these pipelines once (src/scene/shaders/); programs link those instances.
+FACET_EXTERN_SHADER(facet::EnvironmentBackgroundShader);

@@ -1,6 +1,7 @@
 // flat.hpp - FlatShader: lit per pixel with one normal per face, so a face under directional light is one colour.
 #pragma once
 
+#include "facet/renderer.hpp"
 #include "facet/shaders/lit.hpp"
 
 namespace facet {
@@ -45,3 +46,6 @@ struct FlatShader : LitUniforms {
 };
 
 }  // namespace facet
+
+// The library compiles these pipelines once (src/scene/shaders/); programs link those instances.
+FACET_EXTERN_SHADER(facet::FlatShader);

@@ -1,6 +1,7 @@
 // gouraud.hpp - GouraudShader: lighting evaluated per vertex, the light terms interpolated, albedo applied per pixel.
 #pragma once
 
+#include "facet/renderer.hpp"
 #include "facet/shaders/lit.hpp"
 
 namespace facet {
@@ -46,3 +47,6 @@ struct GouraudShader : LitUniforms {
 };
 
 }  // namespace facet
+
+// The library compiles these pipelines once (src/scene/shaders/); programs link those instances.
+FACET_EXTERN_SHADER(facet::GouraudShader);

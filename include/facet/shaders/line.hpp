@@ -1,6 +1,7 @@
 // line.hpp - LineShader: one constant colour, for wireframes and edge overlays.
 #pragma once
 
+#include "facet/renderer.hpp"
 #include "facet/shader.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
 
@@ -21,3 +22,6 @@ struct LineShader {
 };
 
 }  // namespace facet
+
+// The library compiles these pipelines once (src/scene/shaders/); programs link those instances.
+FACET_EXTERN_SHADER(facet::LineShader);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include "facet/fragment_lanes.hpp"
+#include "facet/renderer.hpp"
 #include "facet/shader.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
 #include "facet/simd.hpp"
@@ -32,3 +33,6 @@ struct NormalShader {
 };
 
 }  // namespace facet
+
+// The library compiles these pipelines once (src/scene/shaders/); programs link those instances.
+FACET_EXTERN_SHADER(facet::NormalShader);

@@ -8,9 +8,11 @@
 
 #include "facet/environment.hpp"
 #include "facet/fragment_lanes.hpp"
+#include "facet/renderer.hpp"
 #include "facet/shader.hpp"
 #include "facet/shaders/brdf.hpp"
 #include "facet/shaders/brdf_layers.hpp"
+#include "facet/shaders/masked.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
 #include "facet/shaders/normal_mapping.hpp"
 #include "facet/shaders/pbr_material.hpp"
@@ -398,3 +400,9 @@ using UntexturedPbrShader = BasicPbrShader<false>;
 using TangentPbrShader = BasicPbrShader<true, true>;
 
 }  // namespace facet
+
+// The library compiles these pipelines once (src/scene/shaders/); programs link those instances.
+FACET_EXTERN_SHADER(facet::PbrShader);
+FACET_EXTERN_SHADER(facet::UntexturedPbrShader);
+FACET_EXTERN_SHADER(facet::TangentPbrShader);
+FACET_EXTERN_SHADER(facet::Masked<facet::PbrShader>);

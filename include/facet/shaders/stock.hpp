@@ -1,4 +1,4 @@
-// stock.hpp - every stock shader in one include.
+// stock.hpp - every stock shader in one include (each header declares its pipelines the library compiles).
 #pragma once
 
 #include "facet/renderer.hpp"
@@ -16,20 +16,3 @@
 #include "facet/shaders/surface.hpp"
 #include "facet/shaders/surface_color.hpp"
 #include "facet/shaders/unlit.hpp"
-
-// The library compiles the pipeline for each stock shader once (src/scene/shaders/); programs link those instances.
-FACET_EXTERN_SHADER(facet::SurfaceShader);
-FACET_EXTERN_SHADER(facet::UntexturedSurfaceShader);
-FACET_EXTERN_SHADER(facet::GouraudShader);
-FACET_EXTERN_SHADER(facet::FlatShader);
-FACET_EXTERN_SHADER(facet::UnlitShader);
-FACET_EXTERN_SHADER(facet::NormalShader);
-FACET_EXTERN_SHADER(facet::DepthShader);
-FACET_EXTERN_SHADER(facet::LineShader);
-FACET_EXTERN_SHADER(facet::Masked<facet::SurfaceShader>);
-FACET_EXTERN_SHADER(facet::Masked<facet::UnlitShader>);
-FACET_EXTERN_SHADER(facet::PbrShader);
-FACET_EXTERN_SHADER(facet::UntexturedPbrShader);
-FACET_EXTERN_SHADER(facet::TangentPbrShader);
-FACET_EXTERN_SHADER(facet::Masked<facet::PbrShader>);
-FACET_EXTERN_SHADER(facet::EnvironmentBackgroundShader);

@@ -4,7 +4,9 @@
 #include <algorithm>
 #include <cmath>
 
+#include "facet/renderer.hpp"
 #include "facet/shaders/lit.hpp"
+#include "facet/shaders/masked.hpp"
 #include "facet/shaders/normal_mapping.hpp"
 
 namespace facet {
@@ -61,3 +63,8 @@ struct UntexturedSurfaceShader : SurfaceShader {
 };
 
 }  // namespace facet
+
+// The library compiles these pipelines once (src/scene/shaders/); programs link those instances.
+FACET_EXTERN_SHADER(facet::SurfaceShader);
+FACET_EXTERN_SHADER(facet::UntexturedSurfaceShader);
+FACET_EXTERN_SHADER(facet::Masked<facet::SurfaceShader>);

@@ -2,7 +2,9 @@
 #pragma once
 
 #include "facet/fragment_lanes.hpp"
+#include "facet/renderer.hpp"
 #include "facet/shader.hpp"
+#include "facet/shaders/masked.hpp"
 #include "facet/shaders/mesh_vertex.hpp"
 #include "facet/shaders/surface_color.hpp"
 #include "facet/simd.hpp"
@@ -34,3 +36,7 @@ struct UnlitShader {
 };
 
 }  // namespace facet
+
+// The library compiles these pipelines once (src/scene/shaders/); programs link those instances.
+FACET_EXTERN_SHADER(facet::UnlitShader);
+FACET_EXTERN_SHADER(facet::Masked<facet::UnlitShader>);
