@@ -5,6 +5,7 @@
 # The core: framebuffer, renderer, clipping, set-up and binning, the shader contract's pipeline, lanes, maths.
 set(FACET_CORE_SOURCES
   src/core/buffers.cpp
+  src/core/cpu_level.cpp
   src/core/file_util.cpp
   src/core/clip/clip.cpp
   src/core/framebuffer.cpp

@@ -17,6 +17,7 @@
 #include "bench/bench_scenes.hpp"
 #include "bench/bench_shader.hpp"
 #include "cli_options.hpp"
+#include "facet/cpu_level.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/image_io.hpp"
 #include "facet/renderer.hpp"
@@ -159,15 +160,15 @@ int run(const BenchArgs& o, int width, int height, int threads, const BenchGeome
   if (o.json)
     std::printf(
         "{\"renderer\":\"%s\",\"scene\":\"%s\",\"triangles\":%zu,\"width\":%d,\"height\":%d,\"threads\":%d,"
-        "\"warmup\":%d,\"frames\":%d,\"median_ms\":%.3f,\"min_ms\":%.3f,\"max_ms\":%.3f%s}\n",
+        "\"warmup\":%d,\"frames\":%d,\"median_ms\":%.3f,\"min_ms\":%.3f,\"max_ms\":%.3f%s,\"isa\":\"%s\"}\n",
         json_escape(renderer_name).c_str(), json_escape(g.name).c_str(), triangles, width, height, threads, o.warmup,
-        o.frames, t.median, t.min, t.max, samples_field.c_str());
+        o.frames, t.median, t.min, t.max, samples_field.c_str(), cpu_level());
   else
     std::printf(
         "%s  %s  %zu triangles  %dx%d  threads %d%s  median %.3f ms (min %.3f, max %.3f), %d frames after %d "
-        "warm-up\n",
+        "warm-up, %s\n",
         renderer_name.c_str(), g.name.c_str(), triangles, width, height, threads, samples_text.c_str(), t.median, t.min,
-        t.max, o.frames, o.warmup);
+        t.max, o.frames, o.warmup, cpu_level());
   return std::fflush(stdout) == 0 ? 0 : 1;
 }
 

@@ -7,6 +7,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "facet/cpu_level.hpp"
 #include "facet/error.hpp"
 #include "facet/output_template.hpp"
 #include "facet/render_job.hpp"
@@ -119,8 +120,9 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
 namespace {
 
 // One line per render: "facet: timings: MODEL: load 2.1 ms, prepare 0.8 ms, draw 3.9 ms, write 24.6 ms, total 31.4 ms,
-// peak memory 48.2 MiB, page faults 4053" (the process's peak resident memory and its page faults so far: pages
-// touched for the first time, which the kernel zeroes, are much of a single render's cost).
+// peak memory 48.2 MiB, page faults 4053, avx512" (the process's peak resident memory and its page faults so far:
+// pages touched for the first time, which the kernel zeroes, are much of a single render's cost; and the CPU level
+// the pipeline ran with, cpu_level()).
 void render_timed(const RenderJob& job, Renderer& renderer, bool print) {
   if (!print) return render(job, renderer);
   RenderTimings t;
@@ -130,10 +132,10 @@ void render_timed(const RenderJob& job, Renderer& renderer, bool print) {
   ::getrusage(RUSAGE_SELF, &usage);
   std::fprintf(stderr,
                "facet: timings: %s: load %.1f ms, prepare %.1f ms, draw %.1f ms, write %.1f ms, total %.1f ms, "
-               "peak memory %.1f MiB, page faults %ld\n",
+               "peak memory %.1f MiB, page faults %ld, %s\n",
                job.model.string().c_str(), ms(t.load), ms(t.prepare), ms(t.draw), ms(t.write),
                ms(t.load + t.prepare + t.draw + t.write), static_cast<double>(usage.ru_maxrss) / 1024.0,
-               usage.ru_minflt + usage.ru_majflt);
+               usage.ru_minflt + usage.ru_majflt, cpu_level());
 }
 
 }  // namespace

@@ -163,6 +163,27 @@ run_bad "--sphere 2 is out of range" --sphere 2
 run_bad "--sphere not a number" --sphere 1x
 run_bad "--resolution 0,5" --sphere 16 --resolution 0,5
 run_bad "--resolution without a comma" --sphere 16 --resolution 64
+# "isa" names the CPU level that ran: never one this CPU lacks, and under QEMU exactly the level of the CPU it
+# emulates, Haswell's AVX2 and the baseline of qemu64 (the x86-64 clones the test machine itself may never run).
+isa_of() { grep -o '"isa":"[a-z0-9]*"' <<<"$1" | cut -d'"' -f4; }
+native=$(isa_of "$("$facet" bench --sphere 8 --resolution 32,24 --frames 1 --warmup 0 --json 2>/dev/null)")
+case $native in
+  avx512) grep -qw avx512f /proc/cpuinfo && ok "isa: avx512 on a CPU with AVX-512" || bad "isa" "avx512 without AVX-512" ;;
+  avx2) grep -qw avx2 /proc/cpuinfo && ok "isa: avx2 on a CPU with AVX2" || bad "isa" "avx2 without AVX2" ;;
+  baseline) ok "isa: baseline" ;;
+  *) bad "isa" "unexpected level '$native'" ;;
+esac
+if command -v qemu-x86_64 >/dev/null; then
+  for cpu in "Haswell,-pcid,-x2apic,-tsc-deadline,-hle,-invpcid,-rtm avx2" "qemu64 baseline"; do
+    read -r model level <<<"$cpu"
+    got=$(isa_of "$(qemu-x86_64 -cpu "$model" "$facet" bench --sphere 8 --resolution 32,24 --frames 1 --warmup 0 \
+      --threads 1 --json 2>/dev/null)")
+    [ "$got" = "$level" ] && ok "isa under QEMU's ${model%%,*}: $got" || bad "isa under QEMU's ${model%%,*}" "got '$got', not $level"
+  done
+else
+  bad "isa under QEMU" "qemu-x86_64 is missing: scripts/deps.sh installs qemu-user"
+fi
+
 run_bad "--frames 0" --sphere 16 --frames 0
 run_bad "--warmup -1" --sphere 16 --warmup -1
 run_bad "--threads -1" --sphere 16 --threads -1

@@ -221,11 +221,11 @@ else
   bad "several models" "exit $status, made: $made; $(head -n 2 "$scratch/many.log")"
 fi
 
-# --timings: one line per render on stderr with every stage, the peak memory and the page faults.
+# --timings: one line per render on stderr with every stage, the peak memory, the page faults and the CPU level.
 stages='load [0-9.]+ ms, prepare [0-9.]+ ms, draw [0-9.]+ ms, write [0-9.]+ ms, total [0-9.]+ ms'
 if "$facet" render "$models/box.obj" --resolution 64,48 --output "$scratch/timed.png" --timings 2>"$scratch/timed.log" &&
   [ "$(wc -l <"$scratch/timed.log")" = 1 ] &&
-  grep -Eq "^facet: timings: .*box.obj: $stages, peak memory [0-9.]+ MiB, page faults [1-9][0-9]*\$" "$scratch/timed.log"; then
+  grep -Eq "^facet: timings: .*box.obj: $stages, peak memory [0-9.]+ MiB, page faults [1-9][0-9]*, (avx512|avx2|baseline)\$" "$scratch/timed.log"; then
   ok "--timings: $(cat "$scratch/timed.log")"
 else
   bad "--timings" "$(head -n 2 "$scratch/timed.log")"
