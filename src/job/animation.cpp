@@ -1,5 +1,6 @@
 // animation.cpp - jobs of many frames: a turntable's turning camera and a demo's moving scene, drawn by one loop.
 #include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <functional>
 #include <optional>
@@ -110,6 +111,7 @@ void render_demo(const RenderJob& job, Renderer& renderer, RenderTimings* timing
   if (!job.views.empty() || job.turntable > 0)
     throw std::invalid_argument("demo: a demo has its own camera and motion: no views or turntable");
   if (job.frames < 1) throw std::invalid_argument("frames: at least 1");
+  if (!std::isfinite(job.time)) throw std::invalid_argument("time: must be a finite number of seconds");
   if (is_video(job)) check_colour_only(job, "an animation", "frames");
   check_video_size(job, job.frames, "frames");
   if (job.frames > 1 && !is_video(job))

@@ -1,6 +1,7 @@
 // test_animation_job.cpp - jobs of many frames: a demo's moving scene and a turntable, written as frames or a GIF.
 #include <gtest/gtest.h>
 
+#include <cmath>
 #include <filesystem>
 #include <stdexcept>
 #include <string>
@@ -87,6 +88,9 @@ TEST(DemoJob, RefusesWhatItCannotWrite) {
   job.frames = 0;
   EXPECT_THROW(render(job, renderer), std::invalid_argument);
   job.frames = 1;
+  job.time = std::nan("");
+  EXPECT_THROW(render(job, renderer), std::invalid_argument);
+  job.time = 1.0;
   job.model = "/usr/share/assimp/models/OBJ/box.obj";  // a demo is not a model file
   EXPECT_THROW(render(job, renderer), std::invalid_argument);
   job.model.clear();
