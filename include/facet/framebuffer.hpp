@@ -10,6 +10,8 @@
 
 #include <glm/glm.hpp>
 
+#include "facet/detail/default_init.hpp"
+
 namespace facet {
 
 inline constexpr int kTileSize = 64;  // pixels; one thread owns a tile while it is rasterized
@@ -87,6 +89,7 @@ class Framebuffer {
   // color() for writing: the caller may store anything, so the next clear rewrites every tile (and, with several
   // samples, the next draw over a tile resolves over it).
   std::span<std::uint32_t> mutable_color() {
+    apply_pending_clears();
     contents_exposed_ = true;
     return samples_ > 1 ? std::span<std::uint32_t>(resolved_) : std::span<std::uint32_t>(color_);
   }
@@ -95,10 +98,11 @@ class Framebuffer {
   std::span<const std::uint32_t> sample_color(int sample) const {
     return std::span<const std::uint32_t>(color_).subspan(sample_offset(sample), pixel_count());
   }
-  // Depth of sample 0 of every pixel (the only one with a single sample).
+  // Depth of sample 0 of every pixel (the only one with a single sample). Valid after Renderer::finish().
   std::span<const float> depth() const { return std::span<const float>(depth_).first(pixel_count()); }
   // depth() for writing: also voids the hierarchical depth bounds (they become "unknown") and the kept clear.
   std::span<float> mutable_depth() {
+    apply_pending_clears();
     contents_exposed_ = true;
     std::fill(block_max_depth_.begin(), block_max_depth_.end(), kUnknownDepthBound);
     return std::span<float>(depth_).first(pixel_count());
@@ -131,6 +135,12 @@ class Framebuffer {
   // pixel row at a time. Only the owner of that row of tiles calls it.
   void resolve_clear_tile_row(int tile_row);
   void resolve_all_clears();
+  // Before the caller writes pixels itself: the clears recorded so far (a new framebuffer's included) are applied
+  // first, so that they do not later overwrite what it writes.
+  void apply_pending_clears() {
+    if (std::find(tile_needs_clear_.begin(), tile_needs_clear_.end(), 1) != tile_needs_clear_.end())
+      resolve_all_clears();
+  }
 
   // For the rasterizer. Hierarchical depth: one upper bound on the stored depth per 8x8 block; a triangle whose
   // nearest point in a block is behind the bound is rejected for the whole block without a per-pixel test. Each
@@ -154,9 +164,13 @@ class Framebuffer {
   void reset_depth_bounds(int tile_index, float value);
 
   int width_, height_, samples_, tiles_x_, tiles_y_;
-  std::vector<std::uint32_t, CacheAlignedAllocator<std::uint32_t>> color_;
-  std::vector<std::uint32_t, CacheAlignedAllocator<std::uint32_t>> resolved_;  // with several samples
-  std::vector<float, CacheAlignedAllocator<float>> depth_;
+  // Left unset when made: a new framebuffer records a clear to colour 0 and depth 1 instead, which the first clear
+  // asked for replaces, so its planes are written once, by that clear or by the draws, not twice.
+  template <class T>
+  using Plane = std::vector<T, detail::DefaultInitAllocator<CacheAlignedAllocator<T>>>;
+  Plane<std::uint32_t> color_;
+  Plane<std::uint32_t> resolved_;  // with several samples
+  Plane<float> depth_;
   std::vector<float, CacheAlignedAllocator<float>> block_max_depth_;
   detail::PendingClear pending_;
   std::vector<std::uint8_t> tile_needs_clear_;

@@ -52,11 +52,13 @@ Framebuffer::Framebuffer(int width, int height, int samples) : width_(width), he
     throw std::invalid_argument("samples per pixel must be 1, 2, 4 or 8, not " + std::to_string(samples));
   tiles_x_ = (width + kTileSize - 1) / kTileSize;
   tiles_y_ = (height + kTileSize - 1) / kTileSize;
-  color_.assign(pixel_count() * static_cast<std::size_t>(samples), 0);
-  depth_.assign(pixel_count() * static_cast<std::size_t>(samples), 1.0f);
-  if (samples > 1) resolved_.assign(pixel_count(), 0);
+  color_.resize(pixel_count() * static_cast<std::size_t>(samples));
+  depth_.resize(pixel_count() * static_cast<std::size_t>(samples));
+  if (samples > 1) resolved_.resize(pixel_count());
   block_max_depth_.assign(bounds_per_sample() * static_cast<std::size_t>(samples), 1.0f);
-  tile_needs_clear_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y_, 0);
+  // Every tile starts with a clear to colour 0 and depth 1 pending (see color_).
+  pending_ = {true, true, 0, 1.0f};
+  tile_needs_clear_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y_, 1);
   tile_holds_clear_.assign(tile_needs_clear_.size(), 0);
 }
 
