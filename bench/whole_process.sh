@@ -1,15 +1,16 @@
 #!/usr/bin/env bash
 # whole_process.sh - `facet render MODEL --output f.png` as a user times it, against the reference renderer doing
 # the same job (Assimp loads the file, llvmpipe draws one frame, the PNG is written), as whole processes.
-# Usage: bench/whole_process.sh FACET GLREF [ROUNDS]. 1920x1080, 2 threads each; the two alternate in every round
-# (the host is noisy), each timed right after an untimed run of its own; prints every round, the medians and the
-# ratio glref / facet per model. Where f3d and Xvfb
+# Usage: bench/whole_process.sh FACET GLREF [ROUNDS] [SAMPLES]. 1920x1080, 2 threads each, SAMPLES (default 1)
+# samples per pixel on both sides; the two alternate in every round (the host is noisy), each timed right after an
+# untimed run of its own; prints every round, the medians and the ratio glref / facet per model. Where f3d and Xvfb
 # are installed, f3d's offscreen render of the same file (--output, on Mesa in an Xvfb started once) is a third
 # column.
 set -euo pipefail
 facet=$(realpath "$1")
 glref=$(realpath "$2")
 rounds=${3:-5}
+samples=${4:-1}
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
@@ -54,15 +55,17 @@ for model in /usr/share/assimp/models/OBJ/WusonOBJ.obj "$work/sphere200k.obj" "$
   echo "### $(basename "$model")"
   printf '%-6s %12s %12s %8s %12s\n' round "facet (ms)" "glref (ms)" ratio "f3d (ms)"
   for r in $(seq "$rounds"); do
-    # One sample, as glref draws: the same job (facet render's default of 4 samples is timed in PERFORMANCE.md's
-    # multisampling table).
+    # The same sample count on both sides: the same job.
     # Each program runs once untimed right before its timed run, so each is timed in the state that a second run
     # (a script's loop, a service) meets, and none pays for the idle host that the one before it left behind: on
     # this virtual machine a process started after a second of idleness can take twice as long. The order of the
     # two alternates from round to round.
-    run_facet() { ms "$facet" render "$model" --output "$work/f.png" --resolution 1920,1080 --threads 2 --samples 1; }
+    run_facet() {
+      ms "$facet" render "$model" --output "$work/f.png" --resolution 1920,1080 --threads 2 --samples "$samples"
+    }
     run_glref() {
-      ms "$glref" --mesh "$model" --warmup 0 --frames 1 --threads 2 --resolution 1920,1080 --png "$work/g.png"
+      ms "$glref" --mesh "$model" --warmup 0 --frames 1 --threads 2 --resolution 1920,1080 --samples "$samples" \
+        --png "$work/g.png"
     }
     if [ $((r % 2)) = 1 ]; then
       run_facet >/dev/null; a=$(run_facet); run_glref >/dev/null; b=$(run_glref)

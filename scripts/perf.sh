@@ -65,4 +65,5 @@ echo "## the browser page in headless Chromium, 800x600"
 bash bench/web_fps.sh "$rounds" 5
 
 echo "## whole processes: facet render against glref (load, draw, write the PNG), every round"
-bash bench/whole_process.sh build/tools/facet build/bench/glref "$rounds"
+bash bench/whole_process.sh build/tools/facet build/bench/glref "$rounds" 1
+bash bench/whole_process.sh build/tools/facet build/bench/glref "$rounds" 4
