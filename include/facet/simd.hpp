@@ -183,6 +183,14 @@ FACET_LANES_INLINE Float floor(Float v) {
 }
 #endif
 
+// The value at base[index[k]] in each lane k, loaded lane by lane: facet builds without gather instructions
+// (docs/ARCHITECTURE.md, "Physically based shading", says why), so tables and texels are read this way.
+FACET_LANES_INLINE Float gather(const float* base, const Int& index) {
+  Float out;
+  for (int k = 0; k < kLanes; ++k) out[k] = base[index[k]];
+  return out;
+}
+
 FACET_LANES_INLINE Float to_float(const Int& v) { return __builtin_convertvector(v.native, native::Float); }
 FACET_LANES_INLINE Int truncate(const Float& v) { return __builtin_convertvector(v.native, native::Int); }
 // Value conversions between the integer lane types, as static_cast does them.

@@ -119,11 +119,7 @@ FACET_LANES_INLINE F load_at(const float* row, int x0) {
 }
 // The values at row-relative offsets, per pixel or gathered per lane.
 inline float at(const float* row, int x) { return row[x]; }
-FACET_LANES_INLINE simd::Float at(const float* row, const simd::Int& x) {
-  simd::Float v;
-  for (int k = 0; k < simd::kLanes; ++k) v[k] = row[x[k]];
-  return v;
-}
+FACET_LANES_INLINE simd::Float at(const float* row, const simd::Int& x) { return simd::gather(row, x); }
 
 // View-space positions rebuilt from a projection's depth: z from the window depth, x and y from the pixel's
 // normalized device coordinates (any projection without shear: perspective, orthographic, off-centre).

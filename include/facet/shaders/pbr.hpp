@@ -158,9 +158,7 @@ struct BasicPbrShader : PbrUniforms {
       n = Vec3{select(back, -n.x, n.x), select(back, -n.y, n.y), select(back, -n.z, n.z)};
       PbrInputs<Float> in = inputs_lanes(f);
       if (screen_occlusion) {
-        Float open;
-        for (int k = 0; k < kLanes; ++k) open[k] = screen_open(f.screen_x[k], f.screen_y[k]);
-        in.occlusion = in.occlusion * open;
+        in.occlusion = in.occlusion * screen_open(f.screen_x, f.screen_y);
       }
       const Vec3 world = f.get(&Varyings::world);
       brdf::Rgb<Float> radiance = shade(in, n, n, world);
@@ -265,8 +263,7 @@ struct BasicPbrShader : PbrUniforms {
       Int i = truncate(f);
       i = blend(i < detail::kSrgbEncodeSteps, i, splat(detail::kSrgbEncodeSteps - 1));
       const Float w = f - to_float(i);
-      Float t0, t1;
-      for (int k = 0; k < kLanes; ++k) t0[k] = table[i[k]], t1[k] = table[i[k] + 1];
+      const Float t0 = gather(table, i), t1 = gather(table + 1, i);
       return t0 + (t1 - t0) * w;
     };
     return {channel(c.r), channel(c.g), channel(c.b)};
@@ -371,6 +368,14 @@ struct BasicPbrShader : PbrUniforms {
     const int row = std::min(static_cast<int>(y) >> 1, screen_occlusion_height - 1);
     return screen_occlusion[static_cast<std::size_t>(row) * static_cast<std::size_t>(screen_occlusion_width) +
                             static_cast<std::size_t>(column)];
+  }
+  FACET_LANES_INLINE simd::Float screen_open(const simd::Float& x, const simd::Float& y) const {
+    using namespace simd;
+    const Int column = truncate(x) >> 1, row = truncate(y) >> 1;
+    const int last_column = screen_occlusion_width - 1, last_row = screen_occlusion_height - 1;
+    const Int c = blend(column < last_column, column, splat(last_column));
+    const Int r = blend(row < last_row, row, splat(last_row));
+    return gather(screen_occlusion, r * screen_occlusion_width + c);
   }
 
   // E(n), the prefiltered radiance along r and the split-sum table, or, without an environment, the ambient colour

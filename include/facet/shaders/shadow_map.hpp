@@ -99,9 +99,7 @@ class ShadowMap {
       return simd::blend(t > size_, simd::splat(size_), t);
     };
     const Int index = (clamp(simd::truncate(v0)) + (kBorder + j)) * stride_ + (clamp(simd::truncate(u0)) + (kBorder + i));
-    simd::Float out;
-    for (int k = 0; k < simd::kLanes; ++k) out[k] = depth_[static_cast<std::size_t>(index[k])];
-    return out;
+    return simd::gather(depth_.data(), index);
   }
 
   glm::mat4 clip_from_world_{1.0f};
