@@ -75,11 +75,12 @@ struct ShadeFixture {
   }
 };
 
-FACET_DISPATCH_LEVELS
 std::uint32_t shade_strips_lanes(const ShadeFixture& fx) {
-  simd::UInt sum{};
-  for (const auto& strip : fx.strips) sum += simd::pack_rgba8(fx.shader.fragment_lanes(strip));
-  return sum[0] ^ sum[15];
+  return facet::detail::at_cpu_level([&]() __attribute__((always_inline)) {
+    simd::UInt sum{};
+    for (const auto& strip : fx.strips) sum += simd::pack_rgba8(fx.shader.fragment_lanes(strip));
+    return sum[0] ^ sum[15];
+  });
 }
 
 void BM_ShadeStripLanes(benchmark::State& state) {

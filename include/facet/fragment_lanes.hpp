@@ -95,7 +95,7 @@ FACET_LANES_INLINE simd::Color fragment_each_lane(const S& shader, const Fragmen
 //     static constexpr bool lanes_read_primitive = false;
 // when its fragment_lanes reads neither primitive nor front_facing: the pipeline then leaves them unset. Each of a
 // strip's triangles would otherwise blend both into their lanes, which on sphere:224 costs 4.5% of a frame's
-// instructions (AVX2 clone) for values the benchmark shader never looks at.
+// instructions (AVX2 copy) for values the benchmark shader never looks at.
 template <class S>
 concept LaneShader = Shader<S> && ShaderTraits<S>::fragment_lanes;
 

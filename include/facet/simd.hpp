@@ -13,9 +13,9 @@
 
 // The lane types wrap GCC/Clang vector extensions rather than intrinsics: the compiler lowers each operation for
 // the instruction set of the function it ends up in, so the same shader code becomes one AVX-512 instruction in
-// the x86-64-v4 clone of the tile loop, two AVX2 instructions in the v3 clone, four SSE2 instructions in the
+// the x86-64-v4 copy of the tile loop (detail/dispatch.hpp), two AVX2 instructions in the v3 copy, four SSE2 instructions in the
 // baseline (see detail/dispatch.hpp) and four WebAssembly SIMD instructions in the browser build. GCC 12 lowers a
-// few idioms element by element when they are inlined from the baseline into a clone; docs/ARCHITECTURE.md
+// few idioms element by element when they are inlined from the baseline into a level's copy; docs/ARCHITECTURE.md
 // ("Lane shaders") lists them and what the pipeline uses instead.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
@@ -41,10 +41,10 @@ using UInt = std::uint32_t __attribute__((vector_size(kLanes * sizeof(std::uint3
 // - its destructor is user-provided, so the type is not trivially copyable and every ABI passes and returns it
 //   through memory by reference. A bare 64-byte vector travels in a zmm register between functions compiled for
 //   AVX-512 and in memory between baseline ones, so a helper left out of line (compiled for the baseline) and
-//   called from the AVX-512 clone of the tile loop would read garbage. Inlined, the difference vanishes.
+//   called from the AVX-512 copy of the tile loop would read garbage. Inlined, the difference vanishes.
 // - it is alignas(64) in every ISA. GCC aligns a bare 64-byte vector to the widest vector of the code that names
 //   it (16 bytes in the baseline), so lane values allocated by baseline code would be under-aligned for the
-//   aligned loads of the AVX-512 clone.
+//   aligned loads of the AVX-512 copy.
 template <class Native, class Scalar>
 class alignas(kLaneAlign) Lanes {
  public:
@@ -128,7 +128,7 @@ inline constexpr Int kLaneY = kLaneIndex >> 3;
 // broadcast (or a broadcast memory operand); adding +0 turns -0 into +0, so it cannot, and each splat of a
 // run-time value would cost an addition and a separate broadcast. Meant for constants: a run-time value is better
 // left a scalar operand (`a * v`, `uniform - v`, see Vec3 below), since its splat, once a struct member, is built
-// lane by lane in the AVX-512 clone.
+// lane by lane in the AVX-512 copy.
 FACET_LANES_INLINE Float splat(float v) { return v - native::Float{}; }
 FACET_LANES_INLINE Int splat(std::int32_t v) { return native::Int{} + v; }
 
@@ -175,7 +175,7 @@ FACET_LANES_INLINE Float sqrt(Float v) {
   return r;
 }
 
-// A plain loop over the lanes, like sqrt: one rounding instruction where the clone has one (SSE4.1 and later).
+// A plain loop over the lanes, like sqrt: one rounding instruction where the level has one (SSE4.1 and later).
 FACET_LANES_INLINE Float floor(Float v) {
   native::Float r;
   for (int k = 0; k < kLanes; ++k) r[k] = std::floor(v.native[k]);
@@ -248,7 +248,7 @@ FACET_LANES_INLINE unsigned lane_bits(const Mask& m) {
   return bits;
 #else
   unsigned bits = 0;
-#pragma GCC unroll 1  // a loop for the vectoriser: one mask extraction in each clone
+#pragma GCC unroll 1  // a loop for the vectoriser: one mask extraction at each level
   for (int k = 0; k < kLanes; ++k) bits |= static_cast<unsigned>(m.native[k] & 1) << k;
   return bits;
 #endif
@@ -273,8 +273,8 @@ struct alignas(kLaneAlign) Vec3 {
 };
 
 // A uniform vector with a lane vector: the uniform's components stay scalar operands of each operation. A Vec3 of
-// splats of run-time values would be built lane by lane in the AVX-512 clone (16 masked inserts per member: GCC 12
-// lowers the splat for the baseline before the clone exists); a scalar operand becomes one broadcast.
+// splats of run-time values would be built lane by lane in the AVX-512 copy (16 masked inserts per member: GCC 12
+// lowers the splat for the baseline before the level's copy exists); a scalar operand becomes one broadcast.
 FACET_LANES_INLINE Vec3 operator-(const glm::vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 FACET_LANES_INLINE Vec3 operator-(const Vec3& a, const glm::vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
 FACET_LANES_INLINE Vec3 operator+(const Vec3& a, const glm::vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }

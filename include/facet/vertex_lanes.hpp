@@ -65,7 +65,7 @@ struct alignas(simd::kLaneAlign) VertexOutLanes {
 // computing, lane for lane, what vertex() computes, with the same operations in the same order (then both give
 // identical images: facet builds without floating-point contraction). The vertex stage then shades 16 vertices
 // per call and the rest of a draw one at a time; vertex() stays the definition. Declare it FACET_LANES_INLINE,
-// like fragment_lanes, so that it is compiled inside each CPU-level clone of the vertex stage.
+// like fragment_lanes, so that it is compiled inside each CPU level's copy of the vertex stage.
 template <class S>
 concept LaneVertexShader = Shader<S> && ShaderTraits<S>::vertex_lanes;
 

@@ -12,22 +12,22 @@
 namespace facet {
 namespace {
 
-// Clears are pure store bandwidth: compiled for AVX-512 and AVX2 as well as the baseline, picked at run time
-// (ifunc), so a portable build still writes 32 or 64 bytes per store where the CPU can.
+// Clears are pure store bandwidth: compiled per CPU level like the hot loops (detail/dispatch.hpp), so a portable
+// build still writes 32 or 64 bytes per store where the CPU can.
 template <class T>
 void fill_rect(T* first, std::size_t stride, int rows, int columns, T value) {
-  for (int y = 0; y < rows; ++y) {
-    T* row = first + static_cast<std::size_t>(y) * stride;
-    for (int x = 0; x < columns; ++x) row[x] = value;
-  }
+  detail::at_cpu_level([&]() __attribute__((always_inline)) {
+    for (int y = 0; y < rows; ++y) {
+      T* row = first + static_cast<std::size_t>(y) * stride;
+      for (int x = 0; x < columns; ++x) row[x] = value;
+    }
+  });
 }
 
-FACET_CPU_DISPATCH("avx512f", "avx2", "default")
 void fill_color(std::uint32_t* first, std::size_t stride, int rows, int columns, std::uint32_t value) {
   fill_rect(first, stride, rows, columns, value);
 }
 
-FACET_CPU_DISPATCH("avx512f", "avx2", "default")
 void fill_depth(float* first, std::size_t stride, int rows, int columns, float value) {
   fill_rect(first, stride, rows, columns, value);
 }

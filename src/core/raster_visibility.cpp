@@ -219,32 +219,34 @@ template <DepthFunc kFunc, bool kDepthTest>
 
 // Both passes take the depth function as a constant (with_depth_func), so the per-pixel test has no switch inside
 // the loops; the helpers above are inlined into each CPU level's clone.
-FACET_DISPATCH_LEVELS
 void raster_tile_visibility(const RenderState& state, const TileWork& work) {
-  with_depth_func(state.depth_test ? state.depth_func : DepthFunc::always,
-                  [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
-                    for_each_tile_triangle(
-                        work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
-                          if (state.depth_test) raster_triangle_visibility<kFunc, true>(tri, state, work, ref);
-                          else raster_triangle_visibility<kFunc, false>(tri, state, work, ref);
-                        });
-                  });
+  at_cpu_level([&]() __attribute__((always_inline)) {
+    with_depth_func(state.depth_test ? state.depth_func : DepthFunc::always,
+                    [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
+                      for_each_tile_triangle(
+                          work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
+                            if (state.depth_test) raster_triangle_visibility<kFunc, true>(tri, state, work, ref);
+                            else raster_triangle_visibility<kFunc, false>(tri, state, work, ref);
+                          });
+                    });
+  });
 }
 
-FACET_DISPATCH_LEVELS
 void raster_tile_visibility_multisample(const RenderState& state, const TileWork& work, const TileWork* planes) {
-  const int n = work.samples;
-  const SamplePattern& pattern = sample_pattern(n);
-  with_depth_func(
-      state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
-        for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
-          for (int s = 0; s < n; ++s) {
-            const TriangleSetup view = at_sample(tri, pattern, s);
-            if (state.depth_test) raster_triangle_visibility<kFunc, true>(view, state, planes[s], ref);
-            else raster_triangle_visibility<kFunc, false>(view, state, planes[s], ref);
-          }
+  at_cpu_level([&]() __attribute__((always_inline)) {
+    const int n = work.samples;
+    const SamplePattern& pattern = sample_pattern(n);
+    with_depth_func(
+        state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
+          for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
+            for (int s = 0; s < n; ++s) {
+              const TriangleSetup view = at_sample(tri, pattern, s);
+              if (state.depth_test) raster_triangle_visibility<kFunc, true>(view, state, planes[s], ref);
+              else raster_triangle_visibility<kFunc, false>(view, state, planes[s], ref);
+            }
+          });
         });
-      });
+  });
 }
 
 }  // namespace facet::detail

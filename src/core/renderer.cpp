@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "core/thread_pool.hpp"
+#include "facet/cpu_level.hpp"
 #include "facet/detail/multisample.hpp"
 #include "core/setup/setup.hpp"
 
@@ -44,7 +45,10 @@ struct Renderer::Work {
   std::vector<detail::TileScratch> scratch;  // per thread one per sample, for deferred shading
 };
 
-Renderer::Renderer(int threads) : work_(std::make_unique<Work>(resolve_thread_count(threads))) {}
+Renderer::Renderer(int threads) {
+  detail::check_cpu_level_variable();
+  work_ = std::make_unique<Work>(resolve_thread_count(threads));
+}
 
 Renderer::~Renderer() = default;
 

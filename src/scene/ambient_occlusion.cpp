@@ -24,39 +24,42 @@ FACET_LANES_INLINE void store_within(float* out, int x, int width, const simd::F
 
 }  // namespace
 
-FACET_DISPATCH_LEVELS
 void depth_row(const Unprojection& unproject, const float* depth, int width, float* z) {
-  int x = 0;
-  for (; x + simd::kLanes <= width; x += simd::kLanes) {
-    const simd::Float d = simd::load<simd::Float>(depth + x);
-    // Background strips (window depth 1 throughout) are 0, as Unprojection::z gives them, without its division.
-    simd::store(z + x, simd::lane_bits(d < 1.0f) == 0 ? simd::splat(0.0f) : unproject.z(d));
-  }
-  for (; x < width; ++x) z[x] = unproject.z(depth[x]);
+  at_cpu_level([&]() __attribute__((always_inline)) {
+    int x = 0;
+    for (; x + simd::kLanes <= width; x += simd::kLanes) {
+      const simd::Float d = simd::load<simd::Float>(depth + x);
+      // Background strips (window depth 1 throughout) are 0, as Unprojection::z gives them, without its division.
+      simd::store(z + x, simd::lane_bits(d < 1.0f) == 0 ? simd::splat(0.0f) : unproject.z(d));
+    }
+    for (; x < width; ++x) z[x] = unproject.z(depth[x]);
+  });
 }
 
-FACET_DISPATCH_LEVELS
 void openness_row(const Sampling& sampling, int y, Grid& raw) {
-  const float* z = sampling.grid.row(y);
-  float* out = raw.row(y);
-  for (int x = 0; x < raw.width; x += simd::kLanes) {
-    // Most strips of a frame show only the background, or only surface.
-    if (simd::lane_bits(simd::load<simd::Float>(z + x) != 0.0f) == 0)
-      store_within(out, x, raw.width, simd::splat(1.0f));
-    else
-      store_within(out, x, raw.width, sampling.openness<simd::Float>(x, y));
-  }
+  at_cpu_level([&]() __attribute__((always_inline)) {
+    const float* z = sampling.grid.row(y);
+    float* out = raw.row(y);
+    for (int x = 0; x < raw.width; x += simd::kLanes) {
+      // Most strips of a frame show only the background, or only surface.
+      if (simd::lane_bits(simd::load<simd::Float>(z + x) != 0.0f) == 0)
+        store_within(out, x, raw.width, simd::splat(1.0f));
+      else
+        store_within(out, x, raw.width, sampling.openness<simd::Float>(x, y));
+    }
+  });
 }
 
-FACET_DISPATCH_LEVELS
 void blurred_row(const Sampling& sampling, const Grid& raw, int y, float* open) {
-  const float* z = sampling.grid.row(y);
-  for (int x = 0; x < raw.width; x += simd::kLanes) {
-    if (simd::lane_bits(simd::load<simd::Float>(z + x) != 0.0f) == 0)
-      store_within(open, x, raw.width, simd::splat(1.0f));
-    else
-      store_within(open, x, raw.width, sampling.blurred<simd::Float>(raw, x, y));
-  }
+  at_cpu_level([&]() __attribute__((always_inline)) {
+    const float* z = sampling.grid.row(y);
+    for (int x = 0; x < raw.width; x += simd::kLanes) {
+      if (simd::lane_bits(simd::load<simd::Float>(z + x) != 0.0f) == 0)
+        store_within(open, x, raw.width, simd::splat(1.0f));
+      else
+        store_within(open, x, raw.width, sampling.blurred<simd::Float>(raw, x, y));
+    }
+  });
 }
 
 }  // namespace detail::occlusion

@@ -164,27 +164,43 @@ run_bad "--sphere not a number" --sphere 1x
 run_bad "--resolution 0,5" --sphere 16 --resolution 0,5
 run_bad "--resolution without a comma" --sphere 16 --resolution 64
 # "isa" names the CPU level that ran: never one this CPU lacks, and under QEMU exactly the level of the CPU it
-# emulates, Haswell's AVX2 and the baseline of qemu64 (the x86-64 clones the test machine itself may never run).
+# emulates: Haswell's AVX2, Nehalem's SSE4.2 and the baseline of qemu64.
 isa_of() { grep -o '"isa":"[a-z0-9]*"' <<<"$1" | cut -d'"' -f4; }
-native=$(isa_of "$("$facet" bench --sphere 8 --resolution 32,24 --frames 1 --warmup 0 --json 2>/dev/null)")
+rank() { case $1 in baseline) echo 0 ;; sse4) echo 1 ;; avx2) echo 2 ;; avx512) echo 3 ;; *) echo 9 ;; esac; }
+bench_isa() { isa_of "$("$@" bench --sphere 8 --resolution 32,24 --frames 1 --warmup 0 --threads 1 --json 2>/dev/null)"; }
+native=$(bench_isa "$facet")
 case $native in
   avx512) grep -qw avx512f /proc/cpuinfo && ok "isa: avx512 on a CPU with AVX-512" || bad "isa" "avx512 without AVX-512" ;;
   avx2) grep -qw avx2 /proc/cpuinfo && ok "isa: avx2 on a CPU with AVX2" || bad "isa" "avx2 without AVX2" ;;
+  sse4) grep -qw sse4_2 /proc/cpuinfo && ok "isa: sse4 on a CPU with SSE4.2" || bad "isa" "sse4 without SSE4.2" ;;
   baseline) ok "isa: baseline" ;;
   *) bad "isa" "unexpected level '$native'" ;;
 esac
+# FACET_CPU caps the level: each name runs that level, or the CPU's best where that is lower.
+for level in avx512 avx2 sse4 baseline; do
+  want=$level
+  [ "$(rank "$level")" -gt "$(rank "$native")" ] && want=$native
+  got=$(FACET_CPU=$level bench_isa "$facet")
+  [ "$got" = "$want" ] && ok "FACET_CPU=$level runs $got" || bad "FACET_CPU=$level" "ran '$got', not $want"
+done
+if FACET_CPU=avx9 "$facet" bench --sphere 8 --resolution 32,24 --frames 1 --warmup 0 >"$scratch/cpu.out" \
+  2>"$scratch/cpu.err"; then
+  bad "FACET_CPU=avx9" "accepted"
+elif [ "$(wc -l <"$scratch/cpu.err")" = 1 ] && grep -q "FACET_CPU=avx9: not a CPU level" "$scratch/cpu.err"; then
+  ok "FACET_CPU=avx9: $(cat "$scratch/cpu.err")"
+else
+  bad "FACET_CPU=avx9" "$(head -n 3 "$scratch/cpu.err")"
+fi
 # Under QEMU the level follows the emulated CPU, up to the build's own: a build without dispatch (native "baseline"
-# on an AVX2 CPU) runs the baseline everywhere. A sanitizer's runtime cannot start under qemu-user, so the sanitized
-# build checks the native level only; the release build makes these checks.
+# on a CPU with SSE4.2) runs the baseline everywhere. A sanitizer's runtime cannot start under qemu-user, so the
+# sanitized build checks the native level only; the release build makes these checks.
 if [ -n "${FACET_E2E_SANITIZED:-}" ]; then
   :
 elif command -v qemu-x86_64 >/dev/null; then
-  haswell=avx2
-  [ "$native" = baseline ] && grep -qw avx2 /proc/cpuinfo && haswell=baseline
-  for cpu in "Haswell,-pcid,-x2apic,-tsc-deadline,-hle,-invpcid,-rtm $haswell" "qemu64 baseline"; do
+  for cpu in "Haswell,-pcid,-x2apic,-tsc-deadline,-hle,-invpcid,-rtm avx2" "Nehalem sse4" "qemu64 baseline"; do
     read -r model level <<<"$cpu"
-    got=$(isa_of "$(qemu-x86_64 -cpu "$model" "$facet" bench --sphere 8 --resolution 32,24 --frames 1 --warmup 0 \
-      --threads 1 --json 2>/dev/null)")
+    [ "$native" = baseline ] && level=baseline
+    got=$(bench_isa qemu-x86_64 -cpu "$model" "$facet")
     [ "$got" = "$level" ] && ok "isa under QEMU's ${model%%,*}: $got" || bad "isa under QEMU's ${model%%,*}" "got '$got', not $level"
   done
 else

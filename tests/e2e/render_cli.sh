@@ -225,10 +225,28 @@ fi
 stages='load [0-9.]+ ms, prepare [0-9.]+ ms, draw [0-9.]+ ms, write [0-9.]+ ms, total [0-9.]+ ms'
 if "$facet" render "$models/box.obj" --resolution 64,48 --output "$scratch/timed.png" --timings 2>"$scratch/timed.log" &&
   [ "$(wc -l <"$scratch/timed.log")" = 1 ] &&
-  grep -Eq "^facet: timings: .*box.obj: $stages, peak memory [0-9.]+ MiB, page faults [1-9][0-9]*, (avx512|avx2|baseline)\$" "$scratch/timed.log"; then
+  grep -Eq "^facet: timings: .*box.obj: $stages, peak memory [0-9.]+ MiB, page faults [1-9][0-9]*, (avx512|avx2|sse4|baseline)\$" "$scratch/timed.log"; then
   ok "--timings: $(cat "$scratch/timed.log")"
 else
   bad "--timings" "$(head -n 2 "$scratch/timed.log")"
+fi
+# Under FACET_CPU=baseline it names the level that ran: the baseline, on every x86-64 CPU.
+if [ "$(uname -m)" = x86_64 ] &&
+  ! { FACET_CPU=baseline "$facet" render "$models/box.obj" --resolution 64,48 --output "$scratch/timed.png" \
+    --timings 2>&1 | grep -Eq ", baseline\$"; }; then
+  bad "--timings under FACET_CPU=baseline" "does not name the baseline"
+else
+  ok "--timings under FACET_CPU=baseline names it"
+fi
+# An unknown FACET_CPU stops the render with one line, and writes no image.
+rm -f "$scratch/cpu.png"
+if FACET_CPU=fastest "$facet" render "$models/box.obj" --output "$scratch/cpu.png" 2>"$scratch/cpu.log"; then
+  bad "FACET_CPU=fastest" "accepted"
+elif [ "$(wc -l <"$scratch/cpu.log")" = 1 ] && grep -q "FACET_CPU=fastest: not a CPU level" "$scratch/cpu.log" &&
+  [ ! -e "$scratch/cpu.png" ]; then
+  ok "FACET_CPU=fastest: $(cat "$scratch/cpu.log")"
+else
+  bad "FACET_CPU=fastest" "$(head -n 3 "$scratch/cpu.log")"
 fi
 
 # facet info: counts and bounds, one item per line.

@@ -24,7 +24,9 @@ inline void expect_same(const Framebuffer& expected, const Framebuffer& actual, 
     if ((colour || depth) && i < first) first = i;
   }
   EXPECT_EQ(colour_diffs, 0u) << what << ": first differing pixel " << first % expected.width() << ","
-                              << first / expected.width();
+                              << first / expected.width() << std::hex << ", RGBA 0x"
+                              << (first < expected.color().size() ? expected.color()[first] : 0u) << " expected, 0x"
+                              << (first < actual.color().size() ? actual.color()[first] : 0u) << std::dec;
   EXPECT_EQ(depth_diffs, 0u) << what << ": first differing pixel " << first % expected.width() << ","
                              << first / expected.width();
 }

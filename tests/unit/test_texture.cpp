@@ -159,9 +159,10 @@ TEST(TextureSampling, HugeAndNonFiniteCoordinatesAreSafe) {
 }
 
 // sample_lanes as the tile function runs it: compiled in each dispatch clone, the one for this CPU called.
-FACET_DISPATCH_LEVELS
 void sample_lanes_dispatched(const Texture& t, const simd::Vec2& uv, const Sampler& s, simd::Color& out) {
-  out = t.sample_lanes(uv, s);
+  facet::detail::at_cpu_level([&]() __attribute__((always_inline)) {
+    out = t.sample_lanes(uv, s);
+  });
 }
 
 // The lane path gives sample()'s values bit for bit, lane by lane: coordinates below zero (where floor and

@@ -1,23 +1,65 @@
-// dispatch.hpp - run-time CPU dispatch: hot loops compiled for several x86-64 levels, one picked per CPU at load.
+// dispatch.hpp - run-time CPU dispatch: hot loops compiled for several x86-64 levels, one picked per call.
 #pragma once
 
-// FACET_CPU_DISPATCH("arch=x86-64-v3", "default") clones a function for AVX2+FMA CPUs and the baseline; the
-// dynamic loader's ifunc resolver picks one, so a single portable binary uses the wide units where they exist.
-// Building with FACET_NO_DISPATCH keeps only the baseline: the sanitizer configuration does that, so the
-// scalar fallback is tested too.
-// Clang 14 cannot clone function templates (the tile loop is one per shader), so a Clang build compiles them once,
-// for the target its flags name (-march=native, say).
-#if defined(FACET_NO_DISPATCH) || !defined(__x86_64__) || defined(__clang__)
-#define FACET_CPU_DISPATCH(...)
-#else
-#define FACET_CPU_DISPATCH(...) __attribute__((target_clones(__VA_ARGS__)))
+#include <atomic>
+#include <utility>
+
+namespace facet::detail {
+
+// The x86-64 levels the hot loops are compiled for, lowest first: the baseline (SSE2), x86-64-v2 (SSE4.2),
+// x86-64-v3 (AVX2, FMA) and x86-64-v4 (AVX-512).
+enum class CpuLevel : int { baseline, sse4, avx2, avx512 };
+
+// The level the hot loops run at: the highest this CPU supports and this build compiled, capped by the environment
+// variable FACET_CPU or set_cpu_level (facet/cpu_level.hpp). One relaxed load once known: it is read at every
+// dispatched call, some of them per 16 triangles or pixels.
+extern std::atomic<int> g_cpu_level;  // a CpuLevel, or -1 until first asked for
+int find_cpu_level();                 // src/core/cpu_level.cpp
+[[gnu::always_inline]] inline CpuLevel active_cpu_level() {
+  const int level = g_cpu_level.load(std::memory_order_relaxed);
+  return static_cast<CpuLevel>(level >= 0 ? level : find_cpu_level());
+}
+
+}  // namespace facet::detail
+
+// at_cpu_level(body) runs body() compiled for the active level: each level's copy is a function of its own with
+// that level's target attribute, into which the body (an always_inline lambda) and everything it inlines are
+// compiled. A switch picks the copy at every call, so FACET_CPU and the tests can choose a level at run time (the
+// loader's ifunc resolvers of GCC's target_clones choose before any code runs, once and for good), and the same
+// source dispatches under GCC and Clang alike, function templates included. Callers dispatch once per tile, chunk,
+// row or strip of 16 pixels, so the switch costs nothing measurable.
+//
+// Building with FACET_NO_DISPATCH keeps only the baseline: the sanitizer configurations do that, so the scalar
+// fallback is tested too. FACET_DISPATCH_NO_V4 leaves out the AVX-512 copy, a quarter of a shader's compile time:
+// the test command builds that way on CPUs without AVX-512, where it could never run. Off x86-64 (aarch64, the
+// browser) there is one level, the one the build targets.
+#if defined(__x86_64__) && !defined(FACET_NO_DISPATCH)
+#define FACET_DISPATCH_X86 1
 #endif
 
-// The levels of the pipeline's hot loops: x86-64-v4 (AVX-512), x86-64-v3 (AVX2, FMA) and the baseline.
-// FACET_DISPATCH_NO_V4 leaves out the AVX-512 clone, which costs a third of a shader's compile time: the test
-// command builds that way on CPUs without AVX-512, where the clone could never run.
-#if defined(FACET_DISPATCH_NO_V4)
-#define FACET_DISPATCH_LEVELS FACET_CPU_DISPATCH("arch=x86-64-v3", "default")
+namespace facet::detail {
+
+template <class Body>
+[[gnu::always_inline]] inline decltype(auto) at_cpu_level(Body&& body) {
+#if defined(FACET_DISPATCH_X86)
+  switch (active_cpu_level()) {
+#if !defined(FACET_DISPATCH_NO_V4)
+    case CpuLevel::avx512:
+      return [&]() __attribute__((target("arch=x86-64-v4"), noinline)) { return body(); }();
 #else
-#define FACET_DISPATCH_LEVELS FACET_CPU_DISPATCH("arch=x86-64-v4", "arch=x86-64-v3", "default")
+    case CpuLevel::avx512:
 #endif
+    case CpuLevel::avx2:
+      return [&]() __attribute__((target("arch=x86-64-v3"), noinline)) { return body(); }();
+    case CpuLevel::sse4:
+      return [&]() __attribute__((target("arch=x86-64-v2"), noinline)) { return body(); }();
+    case CpuLevel::baseline:
+      break;
+  }
+  return [&]() __attribute__((noinline)) { return body(); }();
+#else
+  return std::forward<Body>(body)();
+#endif
+}
+
+}  // namespace facet::detail

@@ -81,7 +81,7 @@ inline std::uint64_t raster_block_coverage(const TriangleSetup& tri, int bx, int
 // pixel k's covered samples, sample s in bit s; views[s] is the triangle seen from sample s (at_sample), views[0] the
 // triangle itself without multisampling (kMulti false: one sample, at the centre). Depth is tested and written per
 // sample; the shader runs once per pixel, at its centre, and its colour goes to every sample that passed.
-// Always inlined, like raster_triangle: both must be compiled inside each target clone of raster_tile.
+// Always inlined, like raster_triangle: both must be compiled inside each CPU level's copy of raster_tile.
 template <Shader S, bool kMulti>
 [[gnu::always_inline]] inline void shade_quad_samples(const ShadeContext<S>& ctx, const TriangleSetup& tri,
                                                       const TriangleSetup* views, const TileWork& work, int px, int py,

@@ -65,7 +65,7 @@ inline unsigned strip_inside(const TileWork& work, int px, int py) {
   store_strip(work, px, py, bits, colors);
 }
 
-// The bits of the lanes of a strip whose triangle reference is `ref` (a loop, vectorised in the clone's ISA).
+// The bits of the lanes of a strip whose triangle reference is `ref` (a loop, vectorised in each level's ISA).
 [[gnu::always_inline]] inline unsigned strip_lanes_equal(const std::uint32_t* refs, std::uint32_t ref) {
 #if defined(__clang__)
   return simd::lane_bits(simd::load<simd::UInt>(refs) == ref);  // Clang keeps the loop below scalar
@@ -123,8 +123,8 @@ template <LaneShader S>
   const auto interpolate = [&]<bool kFirst>(std::uint32_t ref) __attribute__((always_inline)) {
     const TriangleSetup& tri = triangle_at(work, ref);
     // The lanes of this triangle take its value. A plain loop over the lanes, for the vectoriser (as
-    // strip_lanes_equal): each clone compiles it to one compare per triangle and one masked move or blend per slot,
-    // which the AVX-512 clone folds into the value's last addition. GCC 12 lowers `mask ? a : b` on the lane types
+    // strip_lanes_equal): each level compiles it to one compare per triangle and one masked move or blend per slot,
+    // which the AVX-512 copy folds into the value's last addition. GCC 12 lowers `mask ? a : b` on the lane types
     // lane by lane here, and a bitwise blend costs two instructions (AVX-512) or three per half (AVX2).
     const auto put = [&](auto& slot, const auto& value) __attribute__((always_inline)) {
       if constexpr (kFirst) {
@@ -180,12 +180,13 @@ template <LaneShader S>
 // One fragment_lanes call: the strip's 16 colours, packed, into `colors`. Not inlined: a shader's lane code is most
 // of its pipeline's code, and this way it is compiled once per CPU level, not once per path that shades strips
 // (single-sampled, with prefetching, multisampled). One call per 16 pixels costs nothing measurable. It takes and
-// gives memory, not lane values, whose registers differ between the CPU levels' clones.
+// gives memory, not lane values, whose registers differ between the CPU levels' copies.
 template <LaneShader S>
-FACET_DISPATCH_LEVELS __attribute__((noinline)) void shade_lanes(const S& shader,
-                                                                const FragmentLanes<typename S::Varyings>& fragment,
-                                                                std::uint32_t* colors) {
-  simd::store(colors, simd::pack_rgba8(shader.fragment_lanes(fragment)));
+__attribute__((noinline)) void shade_lanes(const S& shader, const FragmentLanes<typename S::Varyings>& fragment,
+                                           std::uint32_t* colors) {
+  at_cpu_level([&]() __attribute__((always_inline)) {
+    simd::store(colors, simd::pack_rgba8(shader.fragment_lanes(fragment)));
+  });
 }
 
 // The prepared strip's 16 colours; lanes without a triangle take the clear colour (stored only where a fill asks).

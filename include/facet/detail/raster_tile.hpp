@@ -17,19 +17,21 @@ bool shades_deferred(const RenderState& state) {
   return !ShaderTraits<S>::may_discard && state.defer_shading && state.color_write && state.blend == BlendMode::none;
 }
 
-// The whole per-tile loop, with coverage, interpolation and the shader inlined into it, is compiled three times:
-// for x86-64-v4 (AVX-512), x86-64-v3 (AVX2, FMA) and the baseline; the loader picks one per CPU at run time, so
-// one binary runs everywhere and the 16-lane shading path uses the widest vectors the CPU has.
+// The whole per-tile loop, with coverage, interpolation and the shader inlined into it, is compiled once per CPU
+// level (x86-64-v4 with AVX-512, v3 with AVX2 and FMA, v2 with SSE4.2, the baseline) and the active level's copy
+// runs (detail/dispatch.hpp), so one binary runs everywhere and the 16-lane shading path uses the widest vectors
+// the CPU has.
 template <Shader S>
-FACET_DISPATCH_LEVELS
 void raster_tile(const void* draw, const TileWork& work) {
-  const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
-  if (shades_deferred<S>(*ctx.state)) {
-    raster_tile_deferred(ctx, work);
-    return;
-  }
-  for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
-    raster_triangle(ctx, tri, work);
+  at_cpu_level([&]() __attribute__((always_inline)) {
+    const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
+    if (shades_deferred<S>(*ctx.state)) {
+      raster_tile_deferred(ctx, work);
+      return;
+    }
+    for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
+      raster_triangle(ctx, tri, work);
+    });
   });
 }
 
@@ -37,17 +39,18 @@ void raster_tile(const void* draw, const TileWork& work) {
 // raster_tile: inlined into one body, the two paths made GCC 12 give up vectorising the single-sample visibility
 // loops (a frame of sphere:224 took four times as long).
 template <Shader S>
-FACET_DISPATCH_LEVELS
 void raster_tile_multisample(const void* draw, const TileWork& work) {
-  const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
-  if (shades_deferred<S>(*ctx.state)) {
-    raster_tile_deferred_multisample(ctx, work);
-  } else {
-    for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
-      raster_triangle_multisample(ctx, tri, work);
-    });
-  }
-  resolve_tile(work);
+  at_cpu_level([&]() __attribute__((always_inline)) {
+    const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
+    if (shades_deferred<S>(*ctx.state)) {
+      raster_tile_deferred_multisample(ctx, work);
+    } else {
+      for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
+        raster_triangle_multisample(ctx, tri, work);
+      });
+    }
+    resolve_tile(work);
+  });
 }
 
 }  // namespace facet::detail

@@ -80,7 +80,7 @@ struct ClipBlock {
 };
 
 // project_vertex of clip positions [0, count) of the block into out[0, count), branch-free and vectorised in each
-// dispatch clone; compiled once (src/core/setup/project.cpp), not per shader. The one-vertex definition it must agree
+// CPU level's copy; compiled once (src/core/setup/project.cpp), not per shader. The one-vertex definition it must agree
 // with, project_vertex, is in src/core/setup/project.hpp.
 void project_vertices(const ClipBlock& clip, std::size_t count, ProjectedVertex* out, int width, int height);
 

@@ -55,36 +55,37 @@ struct VertexSource {
 
   // The shader runs on 16 vertices per call if it has vertex_lanes, else on one; each block's clip positions are
   // then projected together (see ClipBlock). Compiled per CPU level like raster_tile, for the lane types.
-  FACET_DISPATCH_LEVELS
   static void shade(const void* source, std::size_t begin, std::size_t end, const VertexOutputs& out) {
-    using Varyings = typename S::Varyings;
-    constexpr std::size_t kFloats = float_count_v<Varyings>;
-    const auto& self = *static_cast<const VertexSource*>(source);
-    ClipBlock block;
-    for (std::size_t first = begin; first < end; first += kProjectBlock) {
-      const std::size_t count = std::min(kProjectBlock, end - first);
-      std::size_t k = 0;
-      if constexpr (ShaderTraits<S>::vertex_lanes) {
-        for (; k + simd::kLanes <= count; k += simd::kLanes) {
-          const VertexOutLanes<Varyings> shaded = self.shader->vertex_lanes({self.vertices + first + k});
-          simd::store(block.x + k, shaded.clip_x), simd::store(block.y + k, shaded.clip_y);
-          simd::store(block.z + k, shaded.clip_z), simd::store(block.w + k, shaded.clip_w);
-          float* varyings = out.varyings + (first + k - out.first) * kFloats;
-          for (int lane = 0; lane < simd::kLanes; ++lane)
-            for (std::size_t f = 0; f < kFloats; ++f) varyings[lane * kFloats + f] = shaded.varyings[f][lane];
+    at_cpu_level([&]() __attribute__((always_inline)) {
+      using Varyings = typename S::Varyings;
+      constexpr std::size_t kFloats = float_count_v<Varyings>;
+      const auto& self = *static_cast<const VertexSource*>(source);
+      ClipBlock block;
+      for (std::size_t first = begin; first < end; first += kProjectBlock) {
+        const std::size_t count = std::min(kProjectBlock, end - first);
+        std::size_t k = 0;
+        if constexpr (ShaderTraits<S>::vertex_lanes) {
+          for (; k + simd::kLanes <= count; k += simd::kLanes) {
+            const VertexOutLanes<Varyings> shaded = self.shader->vertex_lanes({self.vertices + first + k});
+            simd::store(block.x + k, shaded.clip_x), simd::store(block.y + k, shaded.clip_y);
+            simd::store(block.z + k, shaded.clip_z), simd::store(block.w + k, shaded.clip_w);
+            float* varyings = out.varyings + (first + k - out.first) * kFloats;
+            for (int lane = 0; lane < simd::kLanes; ++lane)
+              for (std::size_t f = 0; f < kFloats; ++f) varyings[lane * kFloats + f] = shaded.varyings[f][lane];
+          }
         }
+        for (; k < count; ++k) {
+          const VertexOut<Varyings> shaded = self.shader->vertex(self.vertices[first + k]);
+          block.x[k] = shaded.clip.x, block.y[k] = shaded.clip.y, block.z[k] = shaded.clip.z, block.w[k] = shaded.clip.w;
+          const FloatArray<Varyings> f = to_floats(shaded.varyings);
+          std::copy(f.begin(), f.end(), out.varyings + (first + k - out.first) * kFloats);
+        }
+        if (out.clip)
+          for (std::size_t j = 0; j < count; ++j)
+            out.clip[first + j - out.first] = {block.x[j], block.y[j], block.z[j], block.w[j]};
+        if (out.projected) project_vertices(block, count, out.projected + (first - out.first), out.width, out.height);
       }
-      for (; k < count; ++k) {
-        const VertexOut<Varyings> shaded = self.shader->vertex(self.vertices[first + k]);
-        block.x[k] = shaded.clip.x, block.y[k] = shaded.clip.y, block.z[k] = shaded.clip.z, block.w[k] = shaded.clip.w;
-        const FloatArray<Varyings> f = to_floats(shaded.varyings);
-        std::copy(f.begin(), f.end(), out.varyings + (first + k - out.first) * kFloats);
-      }
-      if (out.clip)
-        for (std::size_t j = 0; j < count; ++j)
-          out.clip[first + j - out.first] = {block.x[j], block.y[j], block.z[j], block.w[j]};
-      if (out.projected) project_vertices(block, count, out.projected + (first - out.first), out.width, out.height);
-    }
+    });
   }
 
   // The same clip position again, for the few triangles that cross the frustum (see ClipPositionFn).

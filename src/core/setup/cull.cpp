@@ -162,14 +162,15 @@ template <int kSamples>
   out.accepted = accepted;
 }
 
-FACET_DISPATCH_LEVELS
 void setup_cull_lanes(const SetupInput& in, std::size_t first, CullLanes& out) {
-  switch (in.samples) {
-    case 2: return cull_lanes<2>(in, first, out);
-    case 4: return cull_lanes<4>(in, first, out);
-    case 8: return cull_lanes<8>(in, first, out);
-    default: return cull_lanes<1>(in, first, out);
-  }
+  at_cpu_level([&]() __attribute__((always_inline)) {
+    switch (in.samples) {
+      case 2: return cull_lanes<2>(in, first, out);
+      case 4: return cull_lanes<4>(in, first, out);
+      case 8: return cull_lanes<8>(in, first, out);
+      default: return cull_lanes<1>(in, first, out);
+    }
+  });
 }
 
 }  // namespace facet::detail

@@ -256,21 +256,22 @@ class Binner {
 
 // A pass over the batch's indices ahead of setup, so it should run at memory speed: plain min/max loops that the
 // vectoriser turns into unsigned min/max instructions, which need SSE4.1 or later, hence the clones.
-FACET_DISPATCH_LEVELS
 VertexRange setup_vertex_range(std::span<const std::uint32_t> indices, std::size_t per_primitive,
                                std::size_t vertex_count, std::size_t first, std::size_t count) {
-  const std::uint32_t* index = indices.data() + first * per_primitive;
-  const std::size_t total = count * per_primitive;
-  const std::uint32_t limit = static_cast<std::uint32_t>(std::min<std::size_t>(vertex_count, 0xffffffffu));
-  std::uint32_t lowest = 0xffffffffu, highest = 0;
-  for (std::size_t i = 0; i < total; ++i) {
-    const std::uint32_t v = index[i];
-    const std::uint32_t valid = 0u - static_cast<std::uint32_t>(v < limit);  // all ones or zero, no branch
-    lowest = std::min(lowest, v | ~valid);
-    highest = std::max(highest, v & valid);
-  }
-  // A valid index is below 0xffffffff, so lowest > highest means there was none.
-  return lowest <= highest ? VertexRange{lowest, std::size_t{highest} + 1} : VertexRange{};
+  return at_cpu_level([&]() __attribute__((always_inline)) {
+    const std::uint32_t* index = indices.data() + first * per_primitive;
+    const std::size_t total = count * per_primitive;
+    const std::uint32_t limit = static_cast<std::uint32_t>(std::min<std::size_t>(vertex_count, 0xffffffffu));
+    std::uint32_t lowest = 0xffffffffu, highest = 0;
+    for (std::size_t i = 0; i < total; ++i) {
+      const std::uint32_t v = index[i];
+      const std::uint32_t valid = 0u - static_cast<std::uint32_t>(v < limit);  // all ones or zero, no branch
+      lowest = std::min(lowest, v | ~valid);
+      highest = std::max(highest, v & valid);
+    }
+    // A valid index is below 0xffffffff, so lowest > highest means there was none.
+    return lowest <= highest ? VertexRange{lowest, std::size_t{highest} + 1} : VertexRange{};
+  });
 }
 
 namespace {
