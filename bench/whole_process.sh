@@ -15,29 +15,7 @@ work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
 # Two generated UV spheres: a 200,704-triangle OBJ and an 870,400-triangle ASCII PLY.
-python3 - "$work" <<'PY'
-import math, sys
-def sphere(rings, segments):
-    v = [(math.sin(math.pi * r / rings) * math.cos(2 * math.pi * s / segments), math.cos(math.pi * r / rings),
-          math.sin(math.pi * r / rings) * math.sin(2 * math.pi * s / segments))
-         for r in range(rings + 1) for s in range(segments + 1)]
-    f = []
-    for r in range(rings):
-        for s in range(segments):
-            a, b = r * (segments + 1) + s, (r + 1) * (segments + 1) + s
-            f += [(a, b, a + 1), (a + 1, b, b + 1)]
-    return v, f
-v, f = sphere(224, 448)
-with open(sys.argv[1] + '/sphere200k.obj', 'w') as out:
-    out.writelines(f'v {x:.6f} {y:.6f} {z:.6f}\n' for x, y, z in v)
-    out.writelines(f'f {a + 1} {b + 1} {c + 1}\n' for a, b, c in f)
-v, f = sphere(512, 850)
-with open(sys.argv[1] + '/sphere870k.ply', 'w') as out:
-    out.write(f'ply\nformat ascii 1.0\nelement vertex {len(v)}\nproperty float x\nproperty float y\n'
-              f'property float z\nelement face {len(f)}\nproperty list uchar int vertex_indices\nend_header\n')
-    out.writelines(f'{x:.6f} {y:.6f} {z:.6f}\n' for x, y, z in v)
-    out.writelines(f'3 {a} {b} {c}\n' for a, b, c in f)
-PY
+python3 "$(dirname "$0")/make_spheres.py" "$work"
 
 f3d_display=
 if command -v f3d >/dev/null && command -v Xvfb >/dev/null; then
