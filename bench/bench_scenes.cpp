@@ -98,7 +98,9 @@ BenchGeometry make_quads(int k, bool front_to_back) {
 
 BenchGeometry load_mesh_scene(const std::string& path) {
   const Mesh mesh = load_model(path);
-  if (mesh.indices.size() < 3) throw InputError(path, "the mesh has no triangles");
+  // A point cloud (a file with points and no triangles) is drawn as points, a facet extension of the contract.
+  const bool points = mesh.indices.size() < 3 && !mesh.points.empty();
+  if (mesh.indices.size() < 3 && !points) throw InputError(path, "the mesh has no triangles");
 
   // Keep only vertices that a triangle references, renumbered in order of first use: the reference (assimp) only
   // has face corners, so unreferenced positions must not widen the bounds below.
@@ -116,6 +118,15 @@ BenchGeometry load_mesh_scene(const std::string& path) {
       }
       g.indices.push_back(remap[index]);
     }
+  if (points)
+    for (const std::uint32_t index : mesh.points) {
+      if (remap[index] == kUnused) {
+        remap[index] = static_cast<std::uint32_t>(source.size());
+        source.push_back(index);
+      }
+      g.indices.push_back(remap[index]);
+    }
+  g.points = points;
 
   bool file_normals = mesh.normals.size() == mesh.positions.size();
   bool file_uvs = mesh.uvs.size() == mesh.positions.size();
@@ -154,7 +165,10 @@ BenchGeometry load_mesh_scene(const std::string& path) {
     throw InputError(path, "the mesh is degenerate (all its vertices coincide)");
   for (BenchVertex& v : g.vertices) v.pos = (v.pos - centre) / radius;
 
-  if (!file_normals) smooth_normals(g);
+  if (!file_normals && !points) smooth_normals(g);
+  // A cloud without normals faces the camera.
+  if (!file_normals && points)
+    for (BenchVertex& v : g.vertices) v.normal = glm::vec3(0.0f, 0.0f, 1.0f);
   glm::vec2 uv_lo(std::numeric_limits<float>::infinity()), uv_hi(-std::numeric_limits<float>::infinity());
   for (const BenchVertex& v : g.vertices) {
     uv_lo = glm::min(uv_lo, v.uv);

@@ -11,9 +11,12 @@
 
 namespace facet::bench {
 
+inline constexpr float kBenchPointSize = 2.0f;  // pixels, facet render's default
+
 struct BenchGeometry {
   std::vector<BenchVertex> vertices;
-  std::vector<std::uint32_t> indices;  // 3 per triangle, in draw order
+  std::vector<std::uint32_t> indices;  // 3 per triangle, in draw order; or 1 per point
+  bool points = false;                 // a point cloud's: drawn as 2-pixel squares (kBenchPointSize)
   std::string name;                    // the JSON "scene" value, e.g. "sphere:224"
 };
 

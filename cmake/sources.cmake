@@ -66,6 +66,7 @@ set(FACET_JOB_SOURCES
   src/job/io/ply_loader.cpp
   src/job/io/references.cpp
   src/job/io/stl_loader.cpp
+  src/job/io/xyz_loader.cpp
   src/job/job_frame.cpp
   src/job/look.cpp
   src/job/names.cpp

@@ -8,7 +8,7 @@
 # A finding, once fixed, joins tests/fuzz/regressions/FORMAT/, which every test run reads through the same reader.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-targets=(obj ply stl gltf image environment batch)
+targets=(obj ply stl gltf xyz image environment batch)
 if [ "${1:-}" = --list ]; then
   printf '%s\n' "${targets[@]}"
   exit 0
@@ -38,6 +38,14 @@ case $target in
   ply) seed -iname '*.ply' ;;
   stl) seed -iname '*.stl' ;;
   gltf) seed \( -iname '*.gltf' -o -iname '*.glb' \) ;;
+  xyz)
+    # No point clouds as text among the test models: one of each layout load_xyz reads, written here.
+    printf '0 0 0\n1 2 3\n-1.5e3 4 5.25\n' >"$corpus/xyz3"
+    printf '# x y z r g b\n0,0,0,255,0,0\n1,1,1,0,255,128\n' >"$corpus/xyz-rgb"
+    printf '0 0 0 0 0 1\n1 0 0 0.6 0.8 0\n' >"$corpus/xyz-normals"
+    printf '2\n0 0 0 -1200 255 255 255\n1 1 1 300 10 20 30\n' >"$corpus/pts"
+    printf '0;0;0;0;0;1;10;20;30\r\n1;1;1;1;0;0;40;50;60\r\n' >"$corpus/xyz9"
+    ;;
   image) seed \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.tga' -o -iname '*.bmp' \) ;;
   environment)
     # No environment images among the test models: small ones written here, each behind the byte that picks its

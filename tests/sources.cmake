@@ -18,6 +18,7 @@ set(FACET_LIGHT_TEST_SOURCES
   property/test_goldens.cpp
   property/test_hidden_surfaces.cpp
   property/test_multisample.cpp
+  property/test_points.cpp
   property/test_occlusion_lanes.cpp
   property/test_setup_cull.cpp
   property/test_vertex_batches.cpp
@@ -39,6 +40,7 @@ set(FACET_LIGHT_TEST_SOURCES
   unit/test_gltf_tangents.cpp
   unit/test_gltf_texcoord1.cpp
   unit/test_hostile_files.cpp
+  unit/test_xyz_loader.cpp
   unit/test_image_io.cpp
   unit/test_mesh.cpp
   unit/test_names.cpp

@@ -115,7 +115,8 @@ int run(const BenchArgs& o, int width, int height, int threads, const BenchGeome
   BenchShader shader;
   shader.texture = &texture;
   shader.clip_from_world = bench::multiply(bench::projection_matrix(width, height), bench::view_matrix());
-  const RenderState state{};  // back-face culling (CCW front), depth test LESS with writes, no blending
+  RenderState state{};  // back-face culling (CCW front), depth test LESS with writes, no blending
+  state.point_size = bench::kBenchPointSize;
   const std::span<const BenchVertex> vertices(g.vertices);
   const std::span<const std::uint32_t> indices(g.indices);
   const bool keep_frame0 = !o.png.empty() || !o.depth.empty();
@@ -129,7 +130,8 @@ int run(const BenchArgs& o, int width, int height, int threads, const BenchGeome
     shader.set_model(bench::model_matrix(f, o.scale, o.quads != 0));
     const auto t0 = std::chrono::steady_clock::now();
     renderer.clear(target, {0.1f, 0.1f, 0.15f, 1.0f}, 1.0f);
-    renderer.draw(target, shader, vertices, indices, state);
+    if (g.points) renderer.draw_points(target, shader, vertices, indices, state);
+    else renderer.draw(target, shader, vertices, indices, state);
     renderer.finish(target);
     const auto t1 = std::chrono::steady_clock::now();
     if (f >= o.warmup) ms.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
@@ -154,20 +156,24 @@ int run(const BenchArgs& o, int width, int height, int threads, const BenchGeome
   if (!o.depth.empty()) write_npy(o.depth, width, height, frame0_depth);
 
   const std::string renderer_name = std::string("facet ") + kVersion;
-  const std::size_t triangles = g.indices.size() / 3;
+  // A point cloud reports its points where a mesh reports triangles ("points" in JSON).
+  const char* primitive = g.points ? "points" : "triangles";
+  const std::size_t count = g.points ? g.indices.size() : g.indices.size() / 3;
   const std::string samples_field = o.samples > 1 ? ",\"samples\":" + std::to_string(o.samples) : "";
   const std::string samples_text = o.samples > 1 ? "  samples " + std::to_string(o.samples) : "";
   if (o.json)
     std::printf(
-        "{\"renderer\":\"%s\",\"scene\":\"%s\",\"triangles\":%zu,\"width\":%d,\"height\":%d,\"threads\":%d,"
+        "{\"renderer\":\"%s\",\"scene\":\"%s\",\"%s\":%zu,\"width\":%d,\"height\":%d,\"threads\":%d,"
         "\"warmup\":%d,\"frames\":%d,\"median_ms\":%.3f,\"min_ms\":%.3f,\"max_ms\":%.3f%s,\"isa\":\"%s\"}\n",
-        json_escape(renderer_name).c_str(), json_escape(g.name).c_str(), triangles, width, height, threads, o.warmup,
+        json_escape(renderer_name).c_str(), json_escape(g.name).c_str(), primitive, count, width, height, threads,
+        o.warmup,
         o.frames, t.median, t.min, t.max, samples_field.c_str(), cpu_level());
   else
     std::printf(
-        "%s  %s  %zu triangles  %dx%d  threads %d%s  median %.3f ms (min %.3f, max %.3f), %d frames after %d "
+        "%s  %s  %zu %s  %dx%d  threads %d%s  median %.3f ms (min %.3f, max %.3f), %d frames after %d "
         "warm-up, %s\n",
-        renderer_name.c_str(), g.name.c_str(), triangles, width, height, threads, samples_text.c_str(), t.median, t.min,
+        renderer_name.c_str(), g.name.c_str(), count, primitive, width, height, threads, samples_text.c_str(), t.median,
+        t.min,
         t.max, o.frames, o.warmup, cpu_level());
   return std::fflush(stdout) == 0 ? 0 : 1;
 }

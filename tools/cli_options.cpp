@@ -217,6 +217,13 @@ void add_look_options(CLI::App& app, LookArgs& args) {
       "Face culling (default: none, but glTF's single-sided materials cull back faces)");
   app.add_flag("--no-depth-test", args.no_depth_test, "Draw in submission order without the depth test");
   app.add_flag("--painter", args.painter, "Painter's algorithm: sort triangles back to front, no depth test");
+  app.add_option("--point-size", args.point_size, "Points (a point cloud's): size in pixels")
+      ->capture_default_str()
+      ->check(number_in(1e-3, kMaxPointSize))
+      ->type_name("PX");
+  add_enum_option<PointShape>(
+      app, "--point-shape", point_shape_names(), [&args](PointShape s) { args.point_shape = s; },
+      "Points: a square or a disc of --point-size pixels (default: square)");
   const auto color_check = [](const std::string& name) {
     return parse_check([name](const std::string& v) { parse_color(v, name); }, "");
   };
@@ -320,6 +327,8 @@ LookSpec look_spec(const LookArgs& args) {
   look.model_lights = !args.no_model_lights;
   look.shadows = args.shadows;
   look.ambient_occlusion = args.ambient_occlusion;
+  look.point_size = args.point_size;
+  look.point_shape = args.point_shape;
   return look;
 }
 

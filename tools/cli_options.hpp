@@ -104,6 +104,8 @@ struct LookArgs {
   bool no_model_lights = false;
   bool shadows = false;
   bool ambient_occlusion = false;
+  float point_size = LookSpec{}.point_size;
+  PointShape point_shape = LookSpec{}.point_shape;
   int threads = 0;
   int samples = 4;  // multisample anti-aliasing
 };

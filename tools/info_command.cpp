@@ -66,9 +66,11 @@ int run_info(const InfoArgs& args) {
   std::printf("file: %s\n", args.model.c_str());
   std::printf("format: %s\n", format.c_str());
   const Mesh weld = welded(mesh);
-  std::printf("vertices: %zu\n", distinct(weld.indices));
+  // A point cloud's vertices are its points.
+  std::printf("vertices: %zu\n", mesh.indices.empty() ? mesh.vertex_count() : distinct(weld.indices));
   std::printf("render vertices: %zu\n", mesh.vertex_count());
   std::printf("triangles: %zu\n", mesh.triangle_count());
+  std::printf("points: %zu\n", mesh.point_count());
   std::printf("edges: %zu\n", unique_edges(weld).size());
   std::printf("materials: %zu\n", mesh.materials.size());
   std::size_t textured = 0;

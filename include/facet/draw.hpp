@@ -13,7 +13,7 @@
 
 namespace facet::detail {
 
-// Renderer::draw and draw_lines for shader S: the typed halves of the vertex stage and of the tile loop, handed to
+// Renderer::draw, draw_lines and draw_points for shader S: the typed halves of the vertex stage and of the tile loop, handed to
 // the shader-independent rest of the pipeline (Renderer::execute) as plain function pointers.
 template <class S>
 struct DrawWith {
@@ -27,6 +27,11 @@ struct DrawWith {
   static void lines(Renderer& renderer, Framebuffer& target, const S& shader, std::span<const Vertex> vertices,
                     std::span<const std::uint32_t> indices, const RenderState& state) {
     primitives(PrimitiveKind::lines, renderer, target, shader, vertices, indices, state);
+  }
+
+  static void points(Renderer& renderer, Framebuffer& target, const S& shader, std::span<const Vertex> vertices,
+                     std::span<const std::uint32_t> indices, const RenderState& state) {
+    primitives(PrimitiveKind::points, renderer, target, shader, vertices, indices, state);
   }
 
   static void primitives(PrimitiveKind kind, Renderer& renderer, Framebuffer& target, const S& shader,

@@ -119,6 +119,9 @@ struct Mesh {
   std::vector<glm::vec4> tangents;
   std::vector<glm::vec4> colors;
   std::vector<std::uint32_t> indices;        // 3 per triangle, counter-clockwise seen from the front
+  // Vertices drawn as points (Renderer::draw_points), one index each: a point cloud's vertices, glTF POINTS
+  // primitives. A mesh may have triangles, points or both.
+  std::vector<std::uint32_t> points;
   std::vector<glm::vec4> face_colors;        // empty or one per triangle
   std::vector<std::int32_t> face_materials;  // empty or one per triangle; -1 = no material, else into materials
   std::vector<Material> materials;
@@ -130,6 +133,7 @@ struct Mesh {
 
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return indices.size() / 3; }
+  std::size_t point_count() const { return points.size(); }
   std::uint32_t face_id(std::size_t triangle) const {
     return face_ids.empty() ? static_cast<std::uint32_t>(triangle) : face_ids[triangle];
   }
@@ -137,7 +141,7 @@ struct Mesh {
 };
 
 // Throws InputError(source, problem) for the first inconsistency found: an attribute or per-triangle array of the
-// wrong size, an index count that is not a multiple of 3, an index out of range (naming its position and value), a
+// wrong size, an index count that is not a multiple of 3, an index or point out of range (naming its position and value), a
 // face material out of range, a face or instance id of kNoSurface, or a non-finite position.
 void validate(const Mesh& mesh, const std::string& source);
 

@@ -51,6 +51,8 @@ struct LookSpec {
   std::optional<glm::vec3> ambient{};
   bool shadows = false;          // the physically based look: directional and spot lights cast shadows
   bool ambient_occlusion = false;  // the physically based look: screen-space ambient occlusion
+  float point_size = 2.0f;         // points (a point cloud's): pixels, above 0 and at most kMaxPointSize
+  PointShape point_shape = PointShape::square;
 };
 
 // The files a render writes; empty paths are not written.

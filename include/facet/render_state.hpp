@@ -11,6 +11,10 @@ enum class DepthFunc { never, less, equal, lequal, greater, notequal, gequal, al
 // glBlendFuncSeparate(SRC_ALPHA, ONE_MINUS_SRC_ALPHA, ONE, ONE_MINUS_SRC_ALPHA)), so coverage accumulates.
 enum class BlendMode { none, alpha };
 
+// How draw_points draws a point: a screen-aligned square of point_size pixels a side, or a disc of that diameter.
+enum class PointShape { square, disc };
+inline constexpr float kMaxPointSize = 256.0f;  // pixels; what the scene and job layers accept
+
 enum class DrawOrder {
   as_given,       // index order, as OpenGL draws
   back_to_front,  // the painter's algorithm: triangles sorted by depth, farthest first (use with depth_test off)
@@ -26,6 +30,8 @@ struct RenderState {
   DrawOrder order = DrawOrder::as_given;
   float depth_offset = 0.0f;  // added to window depth before the test, e.g. -1e-4 pulls outlines onto a surface
   float line_width = 1.0f;    // pixels, for draw_lines
+  float point_size = 1.0f;    // pixels, for draw_points: a square's side or a disc's diameter
+  PointShape point_shape = PointShape::square;
   // Shade each pixel once, after the depth test has seen all of a draw's triangles (tile-based deferred shading).
   // Applies when the shader cannot discard and colour is written without blending; the image is identical either
   // way, only overdraw gets cheaper. false shades every passing fragment as its triangle is drawn.

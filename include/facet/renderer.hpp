@@ -64,6 +64,15 @@ class Renderer {
   void draw_lines(Framebuffer& target, const S& shader, std::span<const typename S::Vertex> vertices,
                   std::span<const std::uint32_t> indices, const RenderState& state = {});
 
+  // Draws indexed points (1 index each), as OpenGL's GL_POINTS: each point whose position lies inside the view
+  // volume covers the pixel centres within a screen-aligned square of state.point_size pixels a side centred on it
+  // (PointShape::square), or within a disc of that diameter (PointShape::disc, drawn as a polygon whose edges stay
+  // within a tenth of a pixel of the circle), at the point's depth; every pixel takes the vertex's varyings. Never
+  // culled; the painter's order does not apply.
+  template <Shader S>
+  void draw_points(Framebuffer& target, const S& shader, std::span<const typename S::Vertex> vertices,
+                   std::span<const std::uint32_t> indices, const RenderState& state = {});
+
   // Applies clears no draw has touched. Call before reading the framebuffer.
   void finish(Framebuffer& target);
 
@@ -95,6 +104,12 @@ void Renderer::draw_lines(Framebuffer& target, const S& shader, std::span<const 
   detail::DrawWith<S>::lines(*this, target, shader, vertices, indices, state);
 }
 
+template <Shader S>
+void Renderer::draw_points(Framebuffer& target, const S& shader, std::span<const typename S::Vertex> vertices,
+                           std::span<const std::uint32_t> indices, const RenderState& state) {
+  detail::DrawWith<S>::points(*this, target, shader, vertices, indices, state);
+}
+
 }  // namespace facet
 
 // Compiling the pipeline for a shader is the costly part of building a program that draws: its per-tile loop is
@@ -106,6 +121,8 @@ void Renderer::draw_lines(Framebuffer& target, const S& shader, std::span<const 
   prefix void ::facet::Renderer::draw<S>(::facet::Framebuffer&, const S&, std::span<const S::Vertex>,       \
                                          std::span<const std::uint32_t>, const ::facet::RenderState&);      \
   prefix void ::facet::Renderer::draw_lines<S>(::facet::Framebuffer&, const S&, std::span<const S::Vertex>, \
-                                               std::span<const std::uint32_t>, const ::facet::RenderState&)
+                                               std::span<const std::uint32_t>, const ::facet::RenderState&);    \
+  prefix void ::facet::Renderer::draw_points<S>(::facet::Framebuffer&, const S&, std::span<const S::Vertex>, \
+                                                std::span<const std::uint32_t>, const ::facet::RenderState&)
 #define FACET_EXTERN_SHADER(S) FACET_SHADER_DRAWS_(extern template, S)
 #define FACET_INSTANTIATE_SHADER(S) FACET_SHADER_DRAWS_(template, S)

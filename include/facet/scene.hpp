@@ -55,6 +55,10 @@ struct SceneOptions {
   bool edges = false;      // draw the surfaces, then each edge once on top (depth-tested with a small offset)
   glm::vec4 edge_color{0.05f, 0.05f, 0.05f, 1.0f};
   float line_width = 1.0f;
+  // Points (Mesh::points): their size in pixels and shape. A cloud with normals is lit like a surface; one without
+  // is drawn in its colours (vertex colours, or the material's), unlit.
+  float point_size = 2.0f;
+  PointShape point_shape = PointShape::square;
   Sampler sampler{};
   // The physically based look (Shading::automatic): the environment that lights it besides `lights` (none: the
   // ambient colour lights it evenly instead), and how its light becomes displayed colour.

@@ -69,7 +69,8 @@ void Renderer::finish(Framebuffer& target) {
 detail::VertexOutputs Renderer::Work::prepare_vertex_outputs(const detail::DrawRequest& request, std::size_t held,
                                                              std::size_t first, int width, int height) {
   // Triangles need clip positions only to clip the few that cross the frustum, and recompute those (see
-  // ClipPositionFn); lines clip every segment and the painter's sort reads every depth, so those keep them all.
+  // ClipPositionFn); lines and points clip every primitive and the painter's sort reads every depth, so those keep
+  // them all.
   const bool triangles = request.kind == detail::PrimitiveKind::triangles;
   const bool keep_clip = !triangles || request.state->order == DrawOrder::back_to_front;
   if (keep_clip && clip.size() < held) clip.resize(held);
@@ -83,7 +84,7 @@ detail::VertexOutputs Renderer::Work::prepare_vertex_outputs(const detail::DrawR
 detail::VertexRange Renderer::Work::batch_vertex_band(const detail::DrawRequest& request, std::size_t batch_first,
                                                       std::size_t batch_count) {
   using namespace detail;
-  const std::size_t per_primitive = request.kind == PrimitiveKind::triangles ? 3 : 2;
+  const std::size_t per_primitive = indices_per_primitive(request.kind);
   const std::size_t chunk_count = (batch_count + kSetupChunk - 1) / kSetupChunk;
   chunk_bands.resize(chunk_count);
   pool.parallel_for(chunk_count, [&](std::size_t c, int) {
@@ -111,7 +112,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   using namespace detail;
   Work& w = *work_;
   const bool triangles = request.kind == PrimitiveKind::triangles;
-  const std::size_t per_primitive = triangles ? 3 : 2;
+  const std::size_t per_primitive = indices_per_primitive(request.kind);
   const std::size_t count = request.indices.size() / per_primitive;
   const RenderState& state = *request.state;
   const bool painter = triangles && state.order == DrawOrder::back_to_front;
@@ -190,9 +191,12 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
                              .tiles_x = target.tiles_x(),
                              .cull = state.cull,
                              .line_width = state.line_width,
-                             .samples = samples};
+                             .samples = samples,
+                             .point_size = state.point_size,
+                             .point_shape = state.point_shape};
       if (triangles) setup_triangles(input, chunk);
-      else setup_lines(input, chunk);
+      else if (request.kind == PrimitiveKind::lines) setup_lines(input, chunk);
+      else setup_points(input, chunk);
       chunk.sort_by_tile(tiles);
     });
     // Heaviest tiles first, by binned triangles: the pool hands tiles out in this order, so the last ones to start

@@ -19,8 +19,10 @@ void check_resolution(const RenderJob& job) {
     throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
 }
 
-// Whether any triangle spans an area (a model of collinear or coincident corners draws no pixel).
-bool has_area(const Mesh& mesh) {
+// Whether the mesh has points, or a triangle that spans an area (a model of collinear or coincident corners draws
+// no pixel).
+bool drawable(const Mesh& mesh) {
+  if (!mesh.points.empty()) return true;
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     const glm::vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]];
     const glm::vec3 c = mesh.positions[mesh.indices[t + 2]];
@@ -35,7 +37,7 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
   check_resolution(job);
   Stopwatch clock;
   auto mesh = std::make_shared<Mesh>(load_model(job.model, job.load));
-  if (!has_area(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
+  if (!drawable(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
   apply_look_color(*mesh, job.look);
   if (timings) timings->load = clock.lap();
   const Framing framing = framing_of(*mesh, job.model.string());

@@ -66,6 +66,11 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
   options.painter = look.painter;
   options.wireframe = look.wireframe;
   options.edges = look.edges;
+  if (!(look.point_size > 0.0f && look.point_size <= kMaxPointSize))
+    throw std::invalid_argument("point size: must be above 0 and at most " +
+                                std::to_string(static_cast<int>(kMaxPointSize)) + " pixels");
+  options.point_size = look.point_size;
+  options.point_shape = look.point_shape;
   // Wireframe lines take the colour asked for, else white; on a light background white lines would vanish.
   const float luminance = glm::dot(background, glm::vec3(0.2126f, 0.7152f, 0.0722f));
   if (look.wireframe && !options.color && luminance > 0.5f) options.color = glm::vec4(0.1f, 0.1f, 0.1f, 1.0f);

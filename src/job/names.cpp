@@ -25,6 +25,11 @@ std::span<const Named<ToneMapping>> tone_mapping_names() {
   return kNames;
 }
 
+std::span<const Named<PointShape>> point_shape_names() {
+  static constexpr Named<PointShape> kNames[] = {{"square", PointShape::square}, {"disc", PointShape::disc}};
+  return kNames;
+}
+
 std::span<const Named<Projection>> projection_names() {
   static constexpr Named<Projection> kNames[] = {
       {"perspective", Projection::perspective}, {"orthographic", Projection::orthographic},

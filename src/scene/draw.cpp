@@ -15,10 +15,12 @@ struct GroupDraw {
   std::span<const MeshVertex> vertices;
   std::span<const std::uint32_t> indices;
   const RenderState& state;
+  bool points = false;  // the indices name points, not triangles
 
   template <class S>
   void operator()(const S& shader) const {
-    renderer.draw(target, shader, vertices, indices, state);
+    if (points) renderer.draw_points(target, shader, vertices, indices, state);
+    else renderer.draw(target, shader, vertices, indices, state);
   }
 };
 
@@ -243,6 +245,32 @@ void draw_environment_background(Renderer& renderer, Framebuffer& target, const 
   renderer.draw(target, shader, std::span<const EnvironmentBackgroundShader::Vertex>(kCover), kIndices, state);
 }
 
+namespace {
+
+// The mesh's points, in the shading the options give surfaces; a cloud without normals in its colours, unlit.
+void draw_points(Renderer& renderer, Framebuffer& target, const FrameContext& frame, const Instance& instance,
+                 const ObjectTransforms& transforms, const PreparedMesh& prepared) {
+  const SceneOptions& options = *frame.options;
+  RenderState state = surface_state(options, material_of(*instance.mesh, prepared.points), transforms.mirrored);
+  state.point_size = options.point_size;
+  state.point_shape = options.point_shape;
+  const bool lit = options.shading != Shading::normals && options.shading != Shading::depth &&
+                   options.shading != Shading::unlit;
+  const std::span<const MeshVertex> vertices(prepared.vertices);
+  const GroupDraw draw{renderer, target, vertices, prepared.points.indices, state, true};
+  if (!lit || prepared.point_normals) {
+    draw_group(draw, frame, instance, transforms, prepared, prepared.points);
+    return;
+  }
+  SceneOptions unlit = options;
+  unlit.shading = Shading::unlit;
+  FrameContext unlit_frame = frame;
+  unlit_frame.options = &unlit;
+  draw_group(draw, unlit_frame, instance, transforms, prepared, prepared.points);
+}
+
+}  // namespace
+
 void draw_instance(Renderer& renderer, Framebuffer& target, const FrameContext& frame, const Instance& instance,
                    const PreparedMesh& prepared, DrawPass pass) {
   const SceneOptions& options = *frame.options;
@@ -256,6 +284,7 @@ void draw_instance(Renderer& renderer, Framebuffer& target, const FrameContext& 
       draw_group({renderer, target, vertices, group.indices, state}, frame, instance, transforms, prepared, group);
     }
   }
+  if (pass == DrawPass::opaque && !prepared.points.indices.empty()) draw_points(renderer, target, frame, instance, transforms, prepared);
   if (pass == DrawPass::blended || !(options.wireframe || options.edges) || prepared.edge_indices.empty()) return;
 
   RenderState lines;

@@ -28,6 +28,9 @@ struct TriangleGroup {
 struct PreparedMesh {
   std::vector<MeshVertex> vertices;
   std::vector<TriangleGroup> groups;
+  // The mesh's points (Mesh::points) as one draw, indices into `vertices`; material -1 (the default material).
+  TriangleGroup points;
+  bool point_normals = false;  // the mesh has normals of its own, so its points are lit
   // 2 per unique edge, listed by prepare_edges the first time a frame draws edges or a wireframe: sorting a large
   // mesh's edges costs more than drawing it.
   std::vector<std::uint32_t> edge_indices;

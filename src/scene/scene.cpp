@@ -112,7 +112,7 @@ std::vector<std::size_t> Scene::Impl::visible(const detail::FrameContext& frame)
   std::vector<std::pair<float, std::size_t>> found;
   for (std::size_t i = 0; i < instances.size(); ++i) {
     const detail::PreparedMesh& mesh = prepared_of(instances[i]);
-    if (mesh.vertices.empty() || mesh.groups.empty()) continue;
+    if (mesh.vertices.empty() || (mesh.groups.empty() && mesh.points.indices.empty())) continue;
     const glm::vec4 center = instances[i].world_from_object * glm::vec4(mesh.center, 1.0f);
     const float radius = mesh.radius * detail::max_scale(instances[i].world_from_object);
     if (!sphere_in_frustum(frame.clip_from_world, glm::vec3(center), radius)) continue;

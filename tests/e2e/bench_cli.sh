@@ -216,8 +216,8 @@ run_bad "--samples 3" --sphere 16 --samples 3
 run_bad "--samples 16" --sphere 16 --samples 16
 run_bad "missing value" --sphere
 run_bad "missing mesh file" --mesh "$scratch/no-such-mesh.obj"
-printf 'v 0 0 0\nv 1 0 0\n' >"$scratch/no-faces.obj"
-run_bad "mesh without triangles" --mesh "$scratch/no-faces.obj"
+printf '# nothing\nvn 0 0 1\n' >"$scratch/no-faces.obj"
+run_bad "mesh without triangles or points" --mesh "$scratch/no-faces.obj"
 printf 'v 1 2 3\nv 1 2 3\nv 1 2 3\nf 1 2 3\n' >"$scratch/coincident.obj"
 run_bad "mesh whose vertices all coincide" --mesh "$scratch/coincident.obj"
 

@@ -129,6 +129,27 @@ run default_size image 1024 768 inside -- render "$models/box.obj"
 run model_ply image 320 240 inside -- render "$ply_models/Wuson.ply" --resolution 320,240
 run model_stl image 320 240 inside -- render "$stl_models/Spider_binary.stl" --resolution 320,240
 
+# Point clouds, drawn as points: a real PLY of coloured points with normals, and text clouds, squares and discs.
+run cloud_ply image 320 240 -- render "$ply_models/points.ply" --resolution 320,240 --point-size 40
+python3 -c 'import math
+for i in range(2000):
+    t = i * 0.01
+    print(f"{math.cos(t * 7):.4f} {math.sin(t * 7):.4f} {t / 20 - 0.5:.4f} {i % 256} 128 {255 - i % 256}")' \
+  >"$scratch/helix.xyz"
+run cloud_xyz image 320 240 inside -- render "$scratch/helix.xyz" --resolution 320,240
+run cloud_discs image 320 240 inside -- render "$scratch/helix.xyz" --resolution 320,240 --point-shape disc \
+  --point-size 5
+for bad_points in "--point-size 0" "--point-size 300" "--point-shape star"; do
+  # shellcheck disable=SC2086  # the flags are meant to split
+  if "$facet" render "$scratch/helix.xyz" $bad_points --output "$scratch/bad_points.png" 2>"$scratch/bad_points.log"; then
+    bad "$bad_points" "accepted"
+  elif [ "$(wc -l <"$scratch/bad_points.log")" = 1 ] && [ ! -e "$scratch/bad_points.png" ]; then
+    ok "$bad_points: $(cat "$scratch/bad_points.log")"
+  else
+    bad "$bad_points" "$(head -n 2 "$scratch/bad_points.log")"
+  fi
+done
+
 # Every projection and shading renders with the model in view.
 for p in perspective orthographic frustum oblique isometric dimetric trimetric front top side; do
   run "projection_$p" image 160 120 inside -- render "$models/WusonOBJ.obj" --projection "$p" --resolution 160,120

@@ -204,14 +204,30 @@ TEST_F(ObjLoader, VertexColoursOnlyWhenEveryVertexHasThem) {
   EXPECT_TRUE(some.colors.empty());
 }
 
+// A file of vertices and no faces is a point cloud: every `v` a point, with its colour where every `v` has one;
+// `p` and `l` statements do not change that.
+TEST_F(ObjLoader, VerticesWithoutFacesArePoints) {
+  const Mesh cloud = load_model(write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\nl 1 2\n"));
+  EXPECT_EQ(cloud.triangle_count(), 0u);
+  EXPECT_EQ(cloud.points, (std::vector<std::uint32_t>{0, 1, 2}));
+  EXPECT_EQ(cloud.positions[1], glm::vec3(1, 0, 0));
+  EXPECT_TRUE(cloud.colors.empty());
+  const Mesh colored = load_model(write("noext", "v 0 0 0 1 0 0\nv 1 2 3 0 0.5 1\n"));
+  ASSERT_EQ(colored.points.size(), 2u);
+  ASSERT_EQ(colored.colors.size(), 2u);
+  EXPECT_EQ(colored.colors[1], glm::vec4(0, 0.5f, 1, 1));
+  // A mesh keeps its faces and has no points.
+  EXPECT_TRUE(load_model(write("tri.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")).points.empty());
+}
+
 TEST_F(ObjLoader, BadFilesThrowInputErrorNamingThePath) {
   EXPECT_EQ(problem(dir_ / "missing.obj"), "no such file");
   EXPECT_EQ(problem(write("empty.obj", "")), "file is empty");
   fs::create_directories(dir_ / "folder.obj");
   EXPECT_EQ(problem(dir_ / "folder.obj"), "not a regular file");
   // Without a known extension the content decides: these read as OBJ, which then has nothing to draw.
-  EXPECT_EQ(problem(write("model.xyz", "v 0 0 0\n")), "no triangles found");
-  EXPECT_EQ(problem(write("noext", "v 0 0 0\n")), "no triangles found");
+  EXPECT_EQ(problem(write("model.dat", "# nothing but a comment\n")), "nothing to draw (no faces and no vertices)");
+  EXPECT_EQ(problem(write("noext", "vn 0 0 1\n")), "nothing to draw (no faces and no vertices)");
 
   std::string garbage;
   std::uint32_t x = 12345;
@@ -220,9 +236,8 @@ TEST_F(ObjLoader, BadFilesThrowInputErrorNamingThePath) {
     garbage.push_back(static_cast<char>(x >> 24));
   }
   const std::string g = problem(write("garbage.obj", garbage));
-  EXPECT_TRUE(g == "no triangles found" || starts_with(g, "malformed ")) << g;
-  EXPECT_EQ(problem(write("points.obj", "v 0 0 0\nv 1 0 0\nv 0 1 0\np 1 2 3\nl 1 2\n")), "no triangles found");
-  EXPECT_EQ(problem(write("blank.obj", "\n\n  # nothing\n")), "no triangles found");
+  EXPECT_TRUE(g == "no triangles found" || g.starts_with("nothing to draw") || starts_with(g, "malformed ")) << g;
+  EXPECT_EQ(problem(write("blank.obj", "\n\n  # nothing\n")), "nothing to draw (no faces and no vertices)");
 
   const std::string eight = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nv 0 0 1\nv 1 0 1\nv 1 1 1\nv 0 1 1\n";
   EXPECT_EQ(problem(write("range.obj", eight + "f 1 2 3\nf 1 2 99\n")),
@@ -307,7 +322,7 @@ void load_or_input_error(const fs::path& p, int& loaded, int& refused) {
   try {
     const Mesh m = load_model(p);
     EXPECT_NO_THROW(validate(m, p.string())) << p;
-    EXPECT_GT(m.triangle_count(), 0u) << p;
+    EXPECT_GT(m.triangle_count() + m.point_count(), 0u) << p;
     ++loaded;
   } catch (const InputError& e) {
     EXPECT_TRUE(starts_with(e.what(), p.string() + ": ")) << e.what();

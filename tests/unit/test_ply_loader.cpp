@@ -235,22 +235,31 @@ TEST_F(PlyLoader, ChosenByContentWhenTheExtensionSaysNothing) {
   EXPECT_EQ(
       load_model(write("model.txt", "# an OBJ by another name\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")).triangle_count(),
       1u);
-  const std::string supported = "supported: .obj, .ply, .stl, .gltf, .glb and the formats Assimp reads)";
-  EXPECT_EQ(problem(write("model.xyz", "hello\n")), "unsupported model format '.xyz' (" + supported);
+  const std::string supported = "supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts and the formats Assimp reads)";
+  EXPECT_EQ(problem(write("model.dat", "hello\n")), "unsupported model format '.dat' (" + supported);
   EXPECT_EQ(problem(write("noext", "hello\n")), "unsupported model format (no file extension; " + supported);
 }
 
-TEST_F(PlyLoader, PointCloudsAndEmptyMeshesAreRefused) {
+// A PLY without faces (no face element, or one of no entries) is a point cloud: every vertex a point, with its
+// colour and normal. One of no vertices has nothing to draw.
+TEST_F(PlyLoader, PointCloudsLoadAsPointsAndEmptyMeshesAreRefused) {
   PlyWriter w("binary_little_endian");
   w.header("element vertex 2").header("property float x").header("property float y").header("property float z");
-  for (int i = 0; i < 6; ++i) w.put("float", i);
-  EXPECT_EQ(problem(write("cloud.ply", w.str())), "point cloud (2 vertices, no faces): nothing to render as surfaces");
-  w.header("element face 0").header("property list uchar int vertex_indices");
-  EXPECT_EQ(problem(write("cloud0.ply", w.str())), "point cloud (2 vertices, no faces): nothing to render as surfaces");
+  w.header("property uchar red").header("property uchar green").header("property uchar blue");
+  for (int i = 0; i < 2; ++i) w.put("float", 3 * i).put("float", 3 * i + 1).put("float", 3 * i + 2).put("uchar", 255 * i).put("uchar", 0).put("uchar", 255);
+  for (const char* name : {"cloud.ply", "cloud0.ply"}) {
+    const Mesh cloud = load_model(write(name, w.str()));
+    EXPECT_EQ(cloud.triangle_count(), 0u) << name;
+    EXPECT_EQ(cloud.points, (std::vector<std::uint32_t>{0, 1})) << name;
+    EXPECT_EQ(cloud.positions[1], glm::vec3(3, 4, 5)) << name;
+    ASSERT_EQ(cloud.colors.size(), 2u) << name;
+    EXPECT_EQ(cloud.colors[1], glm::vec4(1, 0, 1, 1)) << name;
+    w.header("element face 0").header("property list uchar int vertex_indices");
+  }
   EXPECT_EQ(problem(write("nothing.ply",
                           "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
                           "property float y\nproperty float z\nend_header\n")),
-            "no triangles found (no vertices and no faces)");
+            "nothing to draw (no vertices and no faces)");
   EXPECT_EQ(problem(write("strips.ply",
                           "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
                           "element tristrips 0\nproperty list int int vertex_indices\nend_header\n")),
@@ -470,10 +479,16 @@ TEST_F(PlyLoader, AssimpModelsLoadWithTheirKnownCounts) {
   }
   testing::internal::GetCapturedStderr();
   EXPECT_EQ(load_model(kAssimpPly / "float-color.ply").colors[0], glm::vec4(0, 0, 1, 1));
-  EXPECT_EQ(problem(kAssimpPly / "points.ply"), "point cloud (4 vertices, no faces): nothing to render as surfaces");
-  // pond.0.ply has no faces (and is cut short: 70,051 vertices of 31 bytes do not fit in what follows its header).
+  // points.ply is a point cloud: four vertices with colours and normals, each a point.
+  const Mesh points = load_model(kAssimpPly / "points.ply");
+  EXPECT_EQ(points.points, (std::vector<std::uint32_t>{0, 1, 2, 3}));
+  EXPECT_EQ(points.colors.size(), 4u);
+  EXPECT_EQ(points.normals.size(), 4u);
+  EXPECT_EQ(points.colors[1], glm::vec4(1, 0, 1, 1));
+  // pond.0.ply has no faces, and is cut short: 70,051 vertices of 31 bytes do not fit in what follows its header.
   EXPECT_EQ(problem(kAssimpPly / "pond.0.ply"),
-            "point cloud (70051 vertices, no faces): nothing to render as surfaces");
+            "PLY element 'vertex' claims 70051 entries of at least 31 bytes each, but only 2171512 bytes follow the "
+            "header (truncated?)");
 }
 
 TEST_F(PlyLoader, EveryPlyFileOfTheAssimpModelsLoadsOrThrowsInputError) {
@@ -488,7 +503,7 @@ TEST_F(PlyLoader, EveryPlyFileOfTheAssimpModelsLoadsOrThrowsInputError) {
     try {
       const Mesh m = load_model(entry.path());
       EXPECT_NO_THROW(validate(m, entry.path().string())) << entry.path();
-      EXPECT_GT(m.triangle_count(), 0u) << entry.path();
+      EXPECT_GT(m.triangle_count() + m.point_count(), 0u) << entry.path();
       ++loaded;
     } catch (const InputError& e) {
       EXPECT_EQ(e.source(), entry.path().string());
@@ -496,8 +511,8 @@ TEST_F(PlyLoader, EveryPlyFileOfTheAssimpModelsLoadsOrThrowsInputError) {
     }
   }
   testing::internal::GetCapturedStderr();
-  EXPECT_GE(loaded, 5);
-  EXPECT_GE(refused, 4);  // points.ply, issue623.ply, pond.0.ply, invalid/empty.ply
+  EXPECT_GE(loaded, 6);   // points.ply among them, as a point cloud
+  EXPECT_GE(refused, 3);  // issue623.ply, pond.0.ply, invalid/empty.ply
 }
 
 }  // namespace

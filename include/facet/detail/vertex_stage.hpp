@@ -21,7 +21,12 @@
 
 namespace facet::detail {
 
-enum class PrimitiveKind { triangles, lines };
+enum class PrimitiveKind { triangles, lines, points };
+
+// Indices per primitive of each kind.
+inline std::size_t indices_per_primitive(PrimitiveKind kind) {
+  return kind == PrimitiveKind::triangles ? 3 : (kind == PrimitiveKind::lines ? 2 : 1);
+}
 
 // Where the vertex stage writes. The buffers hold the range of vertices [first, first + held): vertex i of the draw
 // lands at index i - first, so a batch of primitives that references a narrow band of a large mesh needs post-transform

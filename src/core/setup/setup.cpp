@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <bit>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include "core/clip/clip.hpp"
@@ -423,6 +424,60 @@ void setup_lines(const SetupInput& in, SetupChunk& out) {
       SnappedVertex snapped[3] = {snap(quad_half[0], in.width, in.height), snap(quad_half[1], in.width, in.height),
                                   snap(quad_half[2], in.width, in.height)};
       binner.triangle(snapped, vertex, primitive, 0, false);
+    }
+  }
+}
+
+int disc_sides(float diameter) {
+  // A side of a regular n-gon inscribed in a circle of radius r lies r (1 - cos(pi / n)) inside the circle at most.
+  const float r = diameter * 0.5f;
+  if (!(r > 0.1f)) return 8;
+  const float sides = std::ceil(std::numbers::pi_v<float> / std::acos(1.0f - 0.1f / r));
+  return static_cast<int>(std::clamp(sides, 8.0f, static_cast<float>(kMaxDiscSides)));
+}
+
+void setup_points(const SetupInput& in, SetupChunk& out) {
+  Binner binner(in, out);
+  const float half = std::max(in.point_size, 0.01f) * 0.5f;
+  // The disc's corners around its centre, counter-clockwise on screen (y down), the same for every point.
+  const int sides = in.point_shape == PointShape::disc ? disc_sides(in.point_size) : 4;
+  float corner_x[kMaxDiscSides], corner_y[kMaxDiscSides];
+  for (int k = 0; k < sides; ++k) {
+    if (in.point_shape == PointShape::disc) {
+      const float angle = 2.0f * std::numbers::pi_v<float> * static_cast<float>(k) / static_cast<float>(sides);
+      corner_x[k] = half * std::cos(angle);
+      corner_y[k] = -half * std::sin(angle);
+    } else {
+      corner_x[k] = k == 0 || k == 3 ? -half : half;
+      corner_y[k] = k < 2 ? -half : half;
+    }
+  }
+  for (std::size_t p = in.first; p < in.first + in.count; ++p) {
+    const std::uint32_t v = in.indices[p];
+    if (v >= in.vertex_count) {
+      ++out.invalid;
+      continue;
+    }
+    // As OpenGL clips a point: by its position alone, so a point partly off screen keeps its pixels on screen.
+    const glm::vec4 clip = in.clip[v - in.vertex_first];
+    if (outcode(clip) != 0) {
+      ++out.culled;
+      continue;
+    }
+    const ScreenVertex centre = to_screen(clip, glm::vec3(1.0f, 0.0f, 0.0f), in.width, in.height);
+    const auto corner = [&](int k) {
+      ScreenVertex s = centre;
+      s.x += corner_x[k];
+      s.y += corner_y[k];
+      return snap(s, in.width, in.height);
+    };
+    const auto slot = static_cast<std::uint32_t>(v - in.vertex_first);
+    const std::uint32_t vertex[3] = {slot, slot, slot};
+    const auto primitive = static_cast<std::uint32_t>(p);
+    // A fan from corner 0: neighbouring triangles share their edges, so the fill rule covers each pixel once.
+    for (int k = 1; k + 1 < sides; ++k) {
+      SnappedVertex fan[3] = {corner(0), corner(k), corner(k + 1)};
+      binner.triangle(fan, vertex, primitive, 0, false);
     }
   }
 }

@@ -25,7 +25,7 @@ struct SetupInput {
   ClipPositionFn clip_position;
   const void* clip_source;                 // what clip_position reads
   std::size_t vertex_count;                // of the whole draw: indices at or above it are invalid
-  std::span<const std::uint32_t> indices;  // 3 per triangle or 2 per line
+  std::span<const std::uint32_t> indices;  // 3 per triangle, 2 per line or 1 per point
   const std::uint32_t* order;              // primitive permutation (painter's algorithm) or nullptr
   std::size_t first, count;                // primitives of this chunk, in draw order
   int width, height, tiles_x;
@@ -35,6 +35,8 @@ struct SetupInput {
   // may be inside, and a triangle whose bounds hold at most four pixels is culled when it covers none of their
   // samples (without multisampling, their centres).
   int samples = 1;
+  float point_size = 1.0f;  // pixels: a point's square side or disc diameter
+  PointShape point_shape = PointShape::square;
   bool multisample() const { return samples > 1; }
 };
 
@@ -121,6 +123,13 @@ struct alignas(64) SetupLanes {
 void setup_accepted_lanes(const SetupInput& input, std::size_t first, const CullLanes& cull, SetupLanes& out);
 
 void setup_lines(const SetupInput& input, SetupChunk& out);
+// Each point inside the view volume becomes a screen-aligned square or a disc (a polygon) of input.point_size
+// pixels, as triangles whose corners all carry the point's vertex (see Renderer::draw_points).
+void setup_points(const SetupInput& input, SetupChunk& out);
+// The number of sides of the polygon that stands for a disc of `diameter` pixels: enough that each side stays
+// within a tenth of a pixel of the circle, from 8 to kMaxDiscSides.
+inline constexpr int kMaxDiscSides = 64;
+int disc_sides(float diameter);
 
 // Depth key of every triangle for the painter's algorithm: the mean NDC depth of its corners (larger is farther).
 void setup_depth_keys(const glm::vec4* clip, std::size_t vertex_count, std::span<const std::uint32_t> indices,

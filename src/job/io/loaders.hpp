@@ -18,7 +18,7 @@ namespace facet {
 
 // Each reader gets the model's path (OBJ resolves its MTL and texture files against it), the whole file read once
 // by read_model (non-empty, at most kMaxModelFileBytes) and the source name for its InputErrors. Each returns a
-// validated mesh (or model, each of its meshes validated) with at least one triangle placed, or throws
+// validated mesh (or model, each of its meshes validated) with at least one triangle or point placed, or throws
 // InputError(source, one-line problem).
 // The readers of formats that name other files read them as options allow (references.hpp).
 Mesh load_obj(const std::filesystem::path& path, std::string_view bytes, const std::string& source,
@@ -30,6 +30,11 @@ constexpr std::size_t kPlyTwoThreadsFrom = std::size_t{1} << 20;
 Mesh load_ply(std::string_view bytes, const std::string& source, int threads = 1,
               std::size_t two_from = kPlyTwoThreadsFrom, bool* in_two = nullptr);
 Mesh load_stl(std::string_view bytes, const std::string& source);
+// A point cloud as text, one point per line: x y z, then optionally r g b (0..255 or 0..1) or nx ny nz (told apart
+// by whether every row's three are unit vectors), intensity r g b (Leica's .pts), or both colours and normals.
+// Numbers are separated by spaces, tabs, commas or semicolons; blank lines and lines starting with # or // are
+// skipped, and a first line of one number (a point count) too.
+Mesh load_xyz(std::string_view bytes, const std::string& source);
 // glTF resolves external buffers and images against the path's folder; its meshes and node instances.
 Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source,
                 const LoadOptions& options);

@@ -28,13 +28,14 @@ void warn(const std::string& source, const std::string& message) { warn(source +
 
 namespace {
 
-enum class Format { kObj, kPly, kStl, kGltf, kAssimp, kUnknown };
+enum class Format { kObj, kPly, kStl, kGltf, kXyz, kAssimp, kUnknown };
 
 // A build without Assimp (the browser page's, FACET_NO_ASSIMP) reads facet's own four formats alone.
 #ifndef FACET_NO_ASSIMP
-constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf, .glb and the formats Assimp reads";
+constexpr const char* kSupported =
+    "supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts and the formats Assimp reads";
 #else
-constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf and .glb";
+constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf, .glb, .xyz and .pts";
 #endif
 
 Format format_of_extension(const std::string& extension) {
@@ -42,6 +43,7 @@ Format format_of_extension(const std::string& extension) {
   if (extension == ".ply") return Format::kPly;
   if (extension == ".stl") return Format::kStl;
   if (extension == ".gltf" || extension == ".glb") return Format::kGltf;
+  if (extension == ".xyz" || extension == ".pts") return Format::kXyz;
 #ifndef FACET_NO_ASSIMP
   if (assimp_reads(extension)) return Format::kAssimp;
 #endif
@@ -104,7 +106,7 @@ Model read_any_model(const fs::path& path, std::string& format_name, const LoadO
   Format format = format_of_extension(lower_extension(path));
   FileBytes bytes = read_regular_file(path, kMaxModelFileBytes, source);
   if (format == Format::kUnknown) format = format_of_content(bytes);
-  constexpr const char* kNames[] = {"OBJ", "PLY", "STL", "glTF", "Assimp", ""};
+  constexpr const char* kNames[] = {"OBJ", "PLY", "STL", "glTF", "XYZ", "Assimp", ""};
   format_name = kNames[static_cast<int>(format)];
   if (format == Format::kGltf && is_gltf_binary(bytes)) format_name = "GLB";
   if (format == Format::kAssimp) format_name += " (" + printable(extension.substr(1)) + ")";
@@ -114,6 +116,7 @@ Model read_any_model(const fs::path& path, std::string& format_name, const LoadO
       case Format::kPly: return one_mesh(load_ply(bytes, source, options.threads));
       case Format::kStl: return one_mesh(load_stl(bytes, source));
       case Format::kGltf: return load_gltf(path, bytes, source, options);
+      case Format::kXyz: return one_mesh(load_xyz(bytes, source));
 #ifndef FACET_NO_ASSIMP
       case Format::kAssimp: return load_with_assimp(path, bytes, source, options);
 #else

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <istream>
 #include <map>
+#include <numeric>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -76,6 +77,24 @@ struct CornerKeyHash {
     return static_cast<std::size_t>(h ^ (h >> 32));
   }
 };
+
+// A file of `v` lines and no faces is a point cloud: each position a point, with its colour where every `v` line has
+// one (`vn` lines name no vertex, so a cloud has no normals).
+Mesh point_cloud(const ObjData& obj) {
+  Mesh mesh;
+  const std::size_t n = obj.positions.size() / 3;
+  mesh.positions.resize(n);
+  for (std::size_t i = 0; i < n; ++i)
+    mesh.positions[i] = {obj.positions[3 * i], obj.positions[3 * i + 1], obj.positions[3 * i + 2]};
+  if (!obj.colors.empty() && obj.colors.size() == obj.positions.size()) {
+    mesh.colors.resize(n);
+    for (std::size_t i = 0; i < n; ++i)
+      mesh.colors[i] = {obj.colors[3 * i], obj.colors[3 * i + 1], obj.colors[3 * i + 2], 1.0f};
+  }
+  mesh.points.resize(n);
+  std::iota(mesh.points.begin(), mesh.points.end(), 0u);
+  return mesh;
+}
 
 // Builds the indexed mesh from the parsed polygons: one vertex per distinct (v, vt, vn) corner.
 class MeshBuilder {
@@ -220,16 +239,19 @@ Mesh load_obj(const fs::path& path, std::string_view text, const std::string& so
   const ReferencePolicy policy{path.parent_path(), options.allow_external_files};
   MtlReader mtl(policy, source);
   Mesh mesh;
+  bool cloud = false;
   try {
     const ObjData obj = parse_obj(
         text, [&](const std::string& name, std::map<std::string, int>& names) { return mtl(name, names); }, source);
     if (obj.dropped_faces > 0)
       warn(source, "dropped " + std::to_string(obj.dropped_faces) + " face(s) with fewer than 3 corners");
-    mesh = MeshBuilder(obj, mtl.materials.size(), source).build();
+    cloud = obj.face_ends.empty();
+    mesh = cloud ? point_cloud(obj) : MeshBuilder(obj, mtl.materials.size(), source).build();
   } catch (const std::bad_alloc&) {
     throw InputError(source, "out of memory while loading");
   }
-  if (mesh.indices.empty()) throw InputError(source, "no triangles found");
+  if (mesh.indices.empty() && mesh.points.empty())
+    throw InputError(source, cloud ? "nothing to draw (no faces and no vertices)" : "no triangles found");
   mesh.materials = convert_materials(mtl.materials, policy, options, source);
   validate(mesh, source);
   return mesh;

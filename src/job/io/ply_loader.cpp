@@ -3,6 +3,7 @@
 #include <array>
 #include <cmath>
 #include <cstring>
+#include <numeric>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -573,11 +574,14 @@ Mesh load_ply(std::string_view bytes, const std::string& source, int threads, st
   const Element* vertex = find(header, "vertex");
   const Element* face = find(header, "face");
   if (!vertex) throw InputError(source, "PLY file has no 'vertex' element");
-  if (!face || face->count == 0) {
+  // Without faces the file is a point cloud: every vertex is a point. Its body is read against a face element of
+  // no entries, which takes no bytes.
+  const Element no_faces{"face", 0, {ply::Property{"vertex_indices", ply::Type::kInt32, true, ply::Type::kUInt8}}};
+  const bool cloud = !face || face->count == 0;
+  if (cloud) {
     if (find(header, "tristrips")) throw InputError(source, "PLY triangle strips ('tristrips') are not supported");
-    if (vertex->count == 0) throw InputError(source, "no triangles found (no vertices and no faces)");
-    throw InputError(source, "point cloud (" + std::to_string(vertex->count) +
-                                 " vertices, no faces): nothing to render as surfaces");
+    if (vertex->count == 0) throw InputError(source, "nothing to draw (no vertices and no faces)");
+    if (!face) face = &no_faces;
   }
   if (vertex->count > std::uint64_t{UINT32_MAX})
     throw InputError(source, "too many vertices for 32-bit indices (" + std::to_string(vertex->count) + ")");
@@ -598,7 +602,12 @@ Mesh load_ply(std::string_view bytes, const std::string& source, int threads, st
   } else {
     mesh = read_body(header, *vertex, *face, bytes.size(), BinaryReader<true>(begin, body, end), source);
   }
-  if (mesh.indices.empty()) throw InputError(source, "no triangles found");
+  if (cloud) {
+    mesh.points.resize(mesh.positions.size());
+    std::iota(mesh.points.begin(), mesh.points.end(), 0u);
+  } else if (mesh.indices.empty()) {
+    throw InputError(source, "no triangles found");
+  }
   validate(mesh, source);
   return mesh;
 }

@@ -53,6 +53,10 @@ void validate(const Mesh& mesh, const std::string& source) {
       if ((*ids)[t] == kNoSurface)
         throw InputError(source,
                          "triangle " + std::to_string(t) + " has the reserved id " + std::to_string(kNoSurface));
+  for (std::size_t i = 0; i < mesh.points.size(); ++i)
+    if (mesh.points[i] >= n)
+      throw InputError(source, "point " + std::to_string(i) + " is vertex " + std::to_string(mesh.points[i]) +
+                                   " but there are only " + std::to_string(n) + " vertices");
   for (std::size_t i = 0; i < mesh.indices.size(); ++i)
     if (mesh.indices[i] >= n)
       throw InputError(source, "index " + std::to_string(i) + " (triangle " + std::to_string(i / 3) + ") is " +

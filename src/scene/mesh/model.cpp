@@ -40,7 +40,7 @@ bool is_identity(const glm::mat4& m) { return m == glm::mat4(1.0f); }
 }  // namespace
 
 Mesh flatten(Model model, const std::string& source) {
-  std::size_t vertices = 0, triangles = 0;
+  std::size_t vertices = 0, triangles = 0, points = 0;
   bool all_normals = true, any_uvs = false, any_uvs1 = false, any_tangents = false, any_colors = false;
   bool any_face_colors = false;
   bool any_ids = false;
@@ -53,6 +53,7 @@ Mesh flatten(Model model, const std::string& source) {
       throw InputError(source, "the model expands to more than 2^27 vertices");
     vertices += mesh.vertex_count();
     triangles += mesh.triangle_count();
+    points += mesh.point_count();
     all_normals = all_normals && !mesh.normals.empty();
     any_uvs = any_uvs || !mesh.uvs.empty();
     any_uvs1 = any_uvs1 || !mesh.uvs1.empty();
@@ -61,7 +62,7 @@ Mesh flatten(Model model, const std::string& source) {
     any_face_colors = any_face_colors || !mesh.face_colors.empty();
     any_ids = any_ids || instance.id != 0;
   }
-  if (triangles == 0) throw InputError(source, "the model places no triangles");
+  if (triangles == 0 && points == 0) throw InputError(source, "the model places no triangles and no points");
 
   // One mesh placed once, as it is: the common case of every single-mesh format, moved rather than copied.
   if (model.instances.size() == 1 && is_identity(model.instances[0].world_from_object) && !any_ids) {
@@ -81,6 +82,7 @@ Mesh flatten(Model model, const std::string& source) {
   if (any_tangents) out.tangents.reserve(vertices);
   if (any_colors) out.colors.reserve(vertices);
   out.indices.reserve(3 * triangles);
+  out.points.reserve(points);
   out.face_ids.reserve(triangles);
   if (any_ids) out.instance_ids.reserve(triangles);
   bool any_materials = false;
@@ -135,6 +137,7 @@ Mesh flatten(Model model, const std::string& source) {
         out.face_colors.resize(out.face_colors.size() + mesh.triangle_count(), glm::vec4(1.0f));
       else out.face_colors.insert(out.face_colors.end(), mesh.face_colors.begin(), mesh.face_colors.end());
     }
+    for (const std::uint32_t v : mesh.points) out.points.push_back(base + v);
     // A mirroring transform turns counter-clockwise triangles clockwise; swapping two corners restores the front.
     const bool mirrored = glm::determinant(glm::mat3(world)) < 0.0f;
     for (std::size_t t = 0; t < mesh.triangle_count(); ++t) {
