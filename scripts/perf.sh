@@ -17,6 +17,12 @@ for s in "${scenes[@]}"; do
   ROUNDS=$rounds bench/compare_gl.sh build/tools/facet build/bench/glref build/compare_gl $s --threads 2
 done
 
+echo "## every CPU level (FACET_CPU) against llvmpipe, 2 threads each"
+bash bench/cpu_levels.sh build/tools/facet build/bench/glref "$rounds"
+
+echo "## a 1M-point cloud against sphere:707, 2 threads"
+bash bench/points.sh build/tools/facet "$rounds"
+
 echo "## 4x multisampling against llvmpipe's, 2 threads each"
 for s in "--sphere 224" "--sphere 707" "--quads 64 --order f2b" "--mesh /usr/share/assimp/models/OBJ/WusonOBJ.obj"; do
   # shellcheck disable=SC2086

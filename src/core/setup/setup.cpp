@@ -77,23 +77,9 @@ class Binner {
       ++out_.culled;
       return false;
     }
-    // Pixels whose centres (i + 0.5) * 256 (or, multisampled, any of whose samples) lie within the snapped bounds.
-    const std::int32_t min_x = std::min({x[0], x[1], x[2]}), max_x = std::max({x[0], x[1], x[2]});
-    const std::int32_t min_y = std::min({y[0], y[1], y[2]}), max_y = std::max({y[0], y[1], y[2]});
     const SamplePattern& pattern = sample_pattern(in_.samples);
-    const int lo = pattern.lo, hi = pattern.hi;
-    const auto first = static_cast<int>(floor_div_subpixel(min_x - hi + kSubpixelScale - 1));
-    const auto top = static_cast<int>(floor_div_subpixel(min_y - hi + kSubpixelScale - 1));
-    const auto last = static_cast<int>(floor_div_subpixel(max_x - lo));
-    const auto bottom = static_cast<int>(floor_div_subpixel(max_y - lo));
-    s.px0 = std::max(0, first);
-    s.py0 = std::max(0, top);
-    s.px1 = std::min(in_.width - 1, last);
-    s.py1 = std::min(in_.height - 1, bottom);
-    if (in_.multisample())
-      s.bounds_fraction =
-          bounds_fractions(min_x, min_y, max_x, max_y, first, top, last, bottom, in_.width - 1, in_.height - 1);
-    if (s.px0 > s.px1 || s.py0 > s.py1) {
+    if (!pixel_bounds(std::min({x[0], x[1], x[2]}), std::min({y[0], y[1], y[2]}), std::max({x[0], x[1], x[2]}),
+                      std::max({y[0], y[1], y[2]}), s)) {
       ++out_.culled;
       return false;
     }
@@ -110,6 +96,60 @@ class Binner {
       return false;
     }
     return true;
+  }
+
+  // The pixels whose centres (i + 0.5) * 256 (or, multisampled, any of whose samples) lie within the snapped extremes
+  // [min_x, max_x] x [min_y, max_y], clamped to the target, into s.px0 .. s.py1 (and s.bounds_fraction); false when
+  // none does.
+  [[gnu::always_inline]] bool pixel_bounds(std::int32_t min_x, std::int32_t min_y, std::int32_t max_x,
+                                           std::int32_t max_y, Shape& s) const {
+    const SamplePattern& pattern = sample_pattern(in_.samples);
+    const int lo = pattern.lo, hi = pattern.hi;
+    const auto first = static_cast<int>(floor_div_subpixel(min_x - hi + kSubpixelScale - 1));
+    const auto top = static_cast<int>(floor_div_subpixel(min_y - hi + kSubpixelScale - 1));
+    const auto last = static_cast<int>(floor_div_subpixel(max_x - lo));
+    const auto bottom = static_cast<int>(floor_div_subpixel(max_y - lo));
+    s.px0 = std::max(0, first);
+    s.py0 = std::max(0, top);
+    s.px1 = std::min(in_.width - 1, last);
+    s.py1 = std::min(in_.height - 1, bottom);
+    if (in_.multisample())
+      s.bounds_fraction =
+          bounds_fractions(min_x, min_y, max_x, max_y, first, top, last, bottom, in_.width - 1, in_.height - 1);
+    return s.px0 <= s.px1 && s.py0 <= s.py1;
+  }
+
+  // A screen-aligned rectangle [x0, x1) x [y0, y1) (1/256 pixel) at one depth and 1/w, each corner carrying vertex
+  // `slot`, set up as one primitive whose edges pass everywhere: its pixel bounds are then exactly its coverage, and
+  // with multisampling each sample's bounds are (at_sample). A centre on the left or top side is inside, one on the
+  // right or bottom side outside, as the fill rule treats a rectangle split into two triangles.
+  void rectangle(std::int32_t x0, std::int32_t y0, std::int32_t x1, std::int32_t y1, float z, float inv_w,
+                 std::uint32_t slot, std::uint32_t primitive) {
+    Shape s{};
+    if (x1 <= x0 || y1 <= y0 || !pixel_bounds(x0, y0, x1 - 1, y1 - 1, s)) {
+      ++out_.culled;
+      return;
+    }
+    const auto index = static_cast<std::uint32_t>(out_.triangles.size());
+    TriangleSetup& t = out_.triangles.emplace_back();
+    for (int k = 0; k < 3; ++k) {
+      t.edge[k] = {0, 0, 0};
+      t.edge_fraction[k] = 0;
+    }
+    t.min_x = static_cast<std::int16_t>(s.px0);
+    t.min_y = static_cast<std::int16_t>(s.py0);
+    t.max_x = static_cast<std::int16_t>(s.px1);
+    t.max_y = static_cast<std::int16_t>(s.py1);
+    if (in_.multisample()) t.bounds_fraction = s.bounds_fraction;
+    t.origin_x = static_cast<float>(x0) / kSubpixelScale;
+    t.origin_y = static_cast<float>(y0) / kSubpixelScale;
+    t.depth = {z, 0.0f, 0.0f};
+    t.inv_w = {inv_w, 0.0f, 0.0f};
+    t.b1_over_w = t.b2_over_w = {0.0f, 0.0f, 0.0f};  // every pixel takes vertex 0's varyings
+    for (std::uint32_t& v : t.vertex) v = slot;
+    t.primitive = primitive;
+    t.front_facing = true;
+    bin(t, index);
   }
 
   // Sets up one screen triangle given in the source winding.
@@ -472,8 +512,13 @@ void setup_points(const SetupInput& in, SetupChunk& out) {
       return snap(s, in.width, in.height);
     };
     const auto slot = static_cast<std::uint32_t>(v - in.vertex_first);
-    const std::uint32_t vertex[3] = {slot, slot, slot};
     const auto primitive = static_cast<std::uint32_t>(p);
+    if (in.point_shape == PointShape::square) {
+      const SnappedVertex top_left = corner(0), bottom_right = corner(2);
+      binner.rectangle(top_left.x, top_left.y, bottom_right.x, bottom_right.y, centre.z, centre.inv_w, slot, primitive);
+      continue;
+    }
+    const std::uint32_t vertex[3] = {slot, slot, slot};
     // A fan from corner 0: neighbouring triangles share their edges, so the fill rule covers each pixel once.
     for (int k = 1; k + 1 < sides; ++k) {
       SnappedVertex fan[3] = {corner(0), corner(k), corner(k + 1)};
