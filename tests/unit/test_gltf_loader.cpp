@@ -65,6 +65,37 @@ TEST(GltfLoader, ContentDecidesWhereTheExtensionIsWrong) {
   EXPECT_EQ(load_model(dir / "box.txt").triangle_count(), 12u);
 }
 
+// A POINTS primitive (mode 0) gives points, indexed or not, with its vertex colours; LINES are skipped with a
+// warning.
+TEST(GltfLoader, PointsPrimitivesArePointsAndLinesAreSkipped) {
+  const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  const std::uint32_t indices[] = {0, 2};
+  std::string buffer(sizeof positions + sizeof indices, '\0');
+  std::memcpy(buffer.data(), positions, sizeof positions);
+  std::memcpy(buffer.data() + sizeof positions, indices, sizeof indices);
+  const auto file = [&](const std::string& primitives) {
+    return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0]}],"nodes":[{"mesh":0}],)"
+           R"("meshes":[{"primitives":[)" + primitives + R"(]}],)"
+           R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],)"
+           R"("max":[1,1,0]},{"bufferView":1,"componentType":5125,"count":2,"type":"SCALAR"}],)"
+           R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":8}],)"
+           R"("buffers":[{"byteLength":56,"uri":"data:application/octet-stream;base64,)" + test::base64(buffer) +
+           R"("}]})";
+  };
+  const fs::path dir = test::scratch_dir("gltf_points");
+  const auto write = [&](const std::string& name, const std::string& text) { return test::write_file(dir, name, text); };
+  const Mesh all = load_model(write("all.gltf", file(R"({"attributes":{"POSITION":0},"mode":0})")));
+  EXPECT_EQ(all.triangle_count(), 0u);
+  EXPECT_EQ(all.points, (std::vector<std::uint32_t>{0, 1, 2, 3}));
+  EXPECT_EQ(all.positions[2], glm::vec3(1, 1, 0));
+  const Mesh two = load_model(write("two.gltf", file(R"({"attributes":{"POSITION":0},"indices":1,"mode":0})")));
+  EXPECT_EQ(two.points, (std::vector<std::uint32_t>{0, 2}));
+  testing::internal::CaptureStderr();
+  EXPECT_EQ(test::load_problem(write("lines.gltf", file(R"({"attributes":{"POSITION":0},"indices":1,"mode":1})"))),
+            "the default scene has no triangles and no points");
+  EXPECT_NE(testing::internal::GetCapturedStderr().find("lines are not drawn"), std::string::npos);
+}
+
 TEST(GltfLoader, MalformedFilesAreRefusedWithTheirProblem) {
   expect_input_error(kGltf / "IndexOutOfRange/IndexOutOfRange.gltf", "out of range");
   expect_input_error(kGltf / "BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb", "finite");
@@ -502,7 +533,8 @@ TEST(GltfLoader, TexturesFacetCannotDecodeAreNamedInAWarning) {
   }
 }
 
-// Every glTF file Debian ships either loads (at least one triangle, validated) or is refused with InputError.
+// Every glTF file Debian ships either loads (at least one triangle or point, validated) or is refused with
+// InputError.
 TEST(GltfLoader, EveryAssimpModelLoadsOrThrowsInputError) {
   int loaded = 0, refused = 0;
   for (const auto& entry : fs::recursive_directory_iterator(kGltf)) {
@@ -510,7 +542,7 @@ TEST(GltfLoader, EveryAssimpModelLoadsOrThrowsInputError) {
     if (ext != ".gltf" && ext != ".glb") continue;
     try {
       const Mesh m = load_model(entry.path());
-      EXPECT_GT(m.triangle_count(), 0u) << entry.path();
+      EXPECT_GT(m.triangle_count() + m.point_count(), 0u) << entry.path();
       ++loaded;
     } catch (const InputError& e) {
       EXPECT_EQ(e.source(), entry.path().string());

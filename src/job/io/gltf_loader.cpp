@@ -243,7 +243,7 @@ class SceneReader {
   }
 
   Model finish() {
-    if (out_.instances.empty()) reader_.fail("the default scene has no triangles");
+    if (out_.instances.empty()) reader_.fail("the default scene has no triangles and no points");
     return std::move(out_);
   }
 
@@ -272,7 +272,7 @@ class SceneReader {
     any_uvs_ = any_uvs1_ = any_tangents_ = any_colors_ = false;
     std::uint32_t face = 0;
     for (const tinygltf::Primitive& p : model_.meshes[static_cast<std::size_t>(index)].primitives) primitive(p, face);
-    if (mesh_.indices.empty()) return kNoTriangles;
+    if (mesh_.indices.empty() && mesh_.points.empty()) return kNoTriangles;
     if (!all_normals_) mesh_.normals.clear();
     if (!any_uvs_) mesh_.uvs.clear();
     if (!any_uvs1_) mesh_.uvs1.clear();
@@ -339,10 +339,11 @@ class SceneReader {
 
   void primitive(const tinygltf::Primitive& p, std::uint32_t& face) {
     const bool draco = p.extensions.count("KHR_draco_mesh_compression") > 0;
-    if (!draco && p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
+    const bool points = !draco && p.mode == TINYGLTF_MODE_POINTS;
+    if (!draco && !points && p.mode != TINYGLTF_MODE_TRIANGLES && p.mode != TINYGLTF_MODE_TRIANGLE_STRIP &&
         p.mode != TINYGLTF_MODE_TRIANGLE_FAN) {
-      if (!warned_points_) warn(reader_.source, "points and lines are not drawn; skipping those primitives");
-      warned_points_ = true;
+      if (!warned_lines_) warn(reader_.source, "lines are not drawn; skipping those primitives");
+      warned_lines_ = true;
       return;
     }
     const std::size_t base = mesh_.positions.size();
@@ -372,7 +373,7 @@ class SceneReader {
         reader_.fail("index " + std::to_string(c) + " is out of range (" + std::to_string(count) + " vertices)");
     if (!draco && p.mode == TINYGLTF_MODE_TRIANGLE_STRIP) corners = triangles_from_strip(corners);
     if (!draco && p.mode == TINYGLTF_MODE_TRIANGLE_FAN) corners = triangles_from_fan(corners);
-    corners.resize(corners.size() / 3 * 3);
+    if (!points) corners.resize(corners.size() / 3 * 3);
 
     const std::vector<float>& positions = data.positions;
     for (std::size_t i = 0; i < count; ++i)
@@ -389,6 +390,11 @@ class SceneReader {
     append_uvs(mesh_.uvs1, any_uvs1_, data.uvs1, count, base_on_set1 ? transform : glm::mat3(1.0f));
     append_colors(data.colors, data.color_components, count);
 
+    // A POINTS primitive's corners are points; they take the mesh's default material (and their vertex colours).
+    if (points) {
+      for (const std::uint32_t c : corners) mesh_.points.push_back(static_cast<std::uint32_t>(base) + c);
+      return;
+    }
     const std::int32_t local = local_material(material);
     for (std::size_t t = 0; t < corners.size(); t += 3) {
       const auto b = static_cast<std::uint32_t>(base);
@@ -479,7 +485,7 @@ class SceneReader {
   Mesh mesh_;
   std::vector<std::int32_t> local_materials_;  // per file material: its index in mesh_.materials, or -1
   bool all_normals_ = true, any_uvs_ = false, any_uvs1_ = false, any_tangents_ = false, any_colors_ = false;
-  bool warned_points_ = false;
+  bool warned_lines_ = false;
   std::set<int> warned_lights_;
 };
 
