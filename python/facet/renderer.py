@@ -42,6 +42,7 @@ class OffscreenRenderer:
     time; renderers in different Python threads render in parallel (the GIL is released while drawing).
     samples: multisample anti-aliasing, 1, 2, 4 or 8 samples per pixel (4 as pyrender draws); depth, ids and the
     mask are taken from sample 0 of each pixel, never blended.
+    point_size: the side in pixels of the square each point of a point cloud (Mesh.from_points) covers.
     """
 
     def __init__(self, viewport_width, viewport_height, point_size=1.0, threads=0, samples=4):
@@ -92,7 +93,7 @@ class OffscreenRenderer:
         return self._core.render(scene._core, view["view"], view["projection"], view["near"], view["far"], shading,
                                  not flags & RenderFlags.SKIP_CULL_FACES, bool(flags & RenderFlags.ALL_WIREFRAME),
                                  lights, scene.ambient_light, scene.bg_color, bool(flags & RenderFlags.RGBA),
-                                 buffers)
+                                 float(self.point_size), buffers)
 
     def camera_json(self, scene):
         """The main camera as `facet render --output-camera` writes it: width, height, near, far, projection,

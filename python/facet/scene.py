@@ -65,6 +65,16 @@ class Mesh:
         return mesh
 
     @classmethod
+    def from_points(cls, points, colors=None, normals=None, material=None):
+        """A point cloud: positions N x 3, each drawn as a point of the renderer's point_size pixels, with optional
+        per-point colours (as for a mesh) and normals. With normals the points are lit like a surface; without, they
+        are drawn in their colours (or the material's base colour), unlit."""
+        mesh = cls.__new__(cls)
+        mesh.material = material
+        mesh._core = _facet.MeshCore(points, None, normals, None, colors, None, _material_description(material))
+        return mesh
+
+    @classmethod
     def from_trimesh(cls, mesh, material=None, smooth=True):
         """From a trimesh.Trimesh: its vertices, faces and vertex normals, with `material`, or else with its vertex
         colours (as pyrender takes them). smooth=False draws each face flat, with its face normal."""
@@ -97,6 +107,11 @@ class Mesh:
     @property
     def triangle_count(self):
         return self._core.triangle_count
+
+    @property
+    def point_count(self):
+        """The points it draws (a point cloud's positions); 0 for a triangle mesh."""
+        return self._core.point_count
 
 
 class PerspectiveCamera:

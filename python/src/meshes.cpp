@@ -1,6 +1,7 @@
 // meshes.cpp - the Python module's meshes (from arrays or files) and scenes of placed meshes.
 #include "meshes.hpp"
 
+#include <numeric>
 #include <string>
 #include <utility>
 
@@ -17,16 +18,22 @@ MeshCore MeshCore::from_arrays(py::handle positions, py::handle faces, py::handl
   mesh.positions = finite_rows<3>(positions, "positions");
   if (mesh.positions.empty()) value_error("positions: the mesh has no vertices");
   if (mesh.positions.size() > kMaxModelVertices) value_error("positions: more than 2^27 vertices");
-  const auto f = checked_array<std::int64_t>(faces, "faces", "iu", 2, {3});
-  if (f.shape(0) == 0) value_error("faces: the mesh has no triangles");
-  const auto n = static_cast<std::int64_t>(mesh.positions.size());
-  mesh.indices.reserve(static_cast<std::size_t>(f.size()));
-  for (py::ssize_t i = 0; i < f.size(); ++i) {
-    const std::int64_t index = f.data()[i];
-    if (index < 0 || index >= n)
-      value_error("faces: row " + std::to_string(i / 3) + " refers to vertex " + std::to_string(index) + " of " +
-                  std::to_string(n));
-    mesh.indices.push_back(static_cast<std::uint32_t>(index));
+  if (faces.is_none()) {
+    // A point cloud: every position a point.
+    mesh.points.resize(mesh.positions.size());
+    std::iota(mesh.points.begin(), mesh.points.end(), 0u);
+  } else {
+    const auto f = checked_array<std::int64_t>(faces, "faces", "iu", 2, {3});
+    if (f.shape(0) == 0) value_error("faces: the mesh has no triangles");
+    const auto n = static_cast<std::int64_t>(mesh.positions.size());
+    mesh.indices.reserve(static_cast<std::size_t>(f.size()));
+    for (py::ssize_t i = 0; i < f.size(); ++i) {
+      const std::int64_t index = f.data()[i];
+      if (index < 0 || index >= n)
+        value_error("faces: row " + std::to_string(i / 3) + " refers to vertex " + std::to_string(index) + " of " +
+                    std::to_string(n));
+      mesh.indices.push_back(static_cast<std::uint32_t>(index));
+    }
   }
   const auto per_vertex = [&](std::size_t size, const char* name) {
     if (size != mesh.positions.size())

@@ -125,7 +125,7 @@ class RendererCore {
   // Draws scene through the view and returns the buffers named, with the GIL released while drawing.
   py::dict render(SceneCore& scene, py::handle view_from_world, py::handle clip_from_view, float near, float far,
                   const std::string& shading, bool cull_back, bool wireframe, py::list lights, py::handle ambient,
-                  py::handle background, bool rgba, const std::vector<std::string>& buffers) {
+                  py::handle background, bool rgba, float point_size, const std::vector<std::string>& buffers) {
     const View view = view_of(view_from_world, clip_from_view, near, far);
     // pyrender's lighting in the job layer's terms: the scene's lights and ambient colour, no environment.
     LookSpec look;
@@ -141,6 +141,7 @@ class RendererCore {
     look.ambient = finite_rows<3>(py::array::ensure(ambient).reshape({1, 3}), "ambient_light")[0];
     const glm::vec4 clear = finite_rows<4>(py::array::ensure(background).reshape({1, 4}), "bg_color")[0];
     look.model_lights = false;
+    look.point_size = point_size;
     const SceneOptions options = scene_options(look, view.view_from_world, Shading::automatic, glm::vec3(clear));
     const BufferRequest request = request_of(buffers);
     FrameBuffers frame;
@@ -254,6 +255,7 @@ PYBIND11_MODULE(_facet, m) {
           py::arg("path"), py::arg("allow_external_files"), py::arg("max_triangles"), py::arg("max_texture_size"))
       .def_property_readonly("vertex_count", [](const MeshCore& c) { return c.mesh->vertex_count(); })
       .def_property_readonly("triangle_count", [](const MeshCore& c) { return c.mesh->triangle_count(); })
+      .def_property_readonly("point_count", [](const MeshCore& c) { return c.mesh->point_count(); })
       .def_property_readonly("bounds", &MeshCore::bounds);
 
   py::class_<SceneCore>(m, "SceneCore")

@@ -234,3 +234,42 @@ def test_the_one_liner_matches_the_cli(tmp_path):
     image = rows.reshape(60, 80, 3).astype(np.uint8)
     out = facet.render(f"{MODELS}/OBJ/WusonOBJ.obj", width=80, height=60)
     np.testing.assert_array_equal(out["color"], image)
+
+
+def test_a_point_cloud_covers_a_square_of_point_size_around_each_projected_point():
+    width, height = 120, 90
+    fx, fy, cx, cy = 100.0, 100.0, 60.0, 45.0
+    camera = facet.IntrinsicsCamera(fx, fy, cx, cy, znear=0.1, zfar=10.0)
+    # Points in front of the camera (OpenGL axes: -z forward), projected at non-integer pixel positions.
+    points = np.array([[-0.503, 0.2, -2.0], [0.307, -0.111, -2.0], [0.0, 0.0, -3.0]])
+    colors = np.array([[255, 0, 0], [0, 255, 0], [0, 0, 255]], dtype=np.uint8)
+    cloud = facet.Mesh.from_points(points, colors=colors)
+    assert cloud.point_count == 3 and cloud.triangle_count == 0
+    scene = facet.Scene(bg_color=[0, 0, 0])
+    scene.add(cloud)
+    scene.add(camera, pose=np.eye(4))
+    for size in (1.0, 3.0, 5.5):
+        renderer = facet.OffscreenRenderer(width, height, point_size=size, threads=1, samples=1)
+        out = renderer.render_buffers(scene, ["color", "mask", "depth"])
+        rows, cols = np.mgrid[0:height, 0:width]
+        predicted = np.zeros((height, width), dtype=bool)
+        for (x, y, z), color in zip(points, colors):
+            u, v = fx * x / -z + cx, fy * -y / -z + cy  # OpenCV: pixel (0, 0)'s centre at u = v = 0
+            square = (np.abs(cols - u) < size / 2) & (np.abs(rows - v) < size / 2)
+            predicted |= square
+            # Drawn unlit (no normals) in its own colour, at its distance.
+            np.testing.assert_array_equal(out["color"][square], np.broadcast_to(color, (square.sum(), 3)))
+            np.testing.assert_allclose(out["depth"][square], -z, rtol=1e-5)
+        np.testing.assert_array_equal(out["mask"] == 255, predicted)
+
+
+def test_bad_point_clouds_and_point_sizes_raise_value_error():
+    with pytest.raises(ValueError, match="positions"):
+        facet.Mesh.from_points(np.array([[0.0, np.nan, 0.0]]))
+    with pytest.raises(ValueError, match="colors"):
+        facet.Mesh.from_points(np.zeros((3, 3)), colors=np.zeros((2, 3)))
+    scene = facet.Scene()
+    scene.add(facet.Mesh.from_points(np.zeros((1, 3))))
+    scene.add(facet.PerspectiveCamera(yfov=1.0), pose=look_at((0, 0, 3)))
+    with pytest.raises(ValueError, match="point size"):
+        facet.OffscreenRenderer(16, 12, point_size=0.0, threads=1).render(scene)
