@@ -13,8 +13,8 @@
 
 namespace facet::detail {
 
-// Renderer::draw, draw_lines and draw_points for shader S: the typed halves of the vertex stage and of the tile loop, handed to
-// the shader-independent rest of the pipeline (Renderer::execute) as plain function pointers.
+// Renderer::draw, draw_lines and draw_points for shader S: the typed halves of the vertex stage and of the tile loop,
+// handed to the shader-independent rest of the pipeline (Renderer::execute) as plain function pointers.
 template <class S>
 struct DrawWith {
   using Vertex = typename S::Vertex;

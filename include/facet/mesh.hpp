@@ -141,8 +141,8 @@ struct Mesh {
 };
 
 // Throws InputError(source, problem) for the first inconsistency found: an attribute or per-triangle array of the
-// wrong size, an index count that is not a multiple of 3, an index or point out of range (naming its position and value), a
-// face material out of range, a face or instance id of kNoSurface, or a non-finite position.
+// wrong size, an index count that is not a multiple of 3, an index or point out of range (naming its position and
+// value), a face material out of range, a face or instance id of kNoSurface, or a non-finite position.
 void validate(const Mesh& mesh, const std::string& source);
 
 // Axis-aligned box. A default-constructed Bounds is empty (min = +inf, max = -inf).

@@ -12,11 +12,12 @@
 #endif
 
 // The lane types wrap GCC/Clang vector extensions rather than intrinsics: the compiler lowers each operation for
-// the instruction set of the function it ends up in, so the same shader code becomes one AVX-512 instruction in
-// the x86-64-v4 copy of the tile loop (detail/dispatch.hpp), two AVX2 instructions in the v3 copy, four SSE2 instructions in the
-// baseline (see detail/dispatch.hpp) and four WebAssembly SIMD instructions in the browser build. GCC 12 lowers a
-// few idioms element by element when they are inlined from the baseline into a level's copy; docs/ARCHITECTURE.md
-// ("Lane shaders") lists them and what the pipeline uses instead.
+// the instruction set of the function it ends up in (each CPU level's copy, detail/dispatch.hpp), so the same shader
+// code becomes one AVX-512 instruction in the x86-64-v4 copy of the tile loop, two AVX2 or four SSE instructions
+// below it and four WebAssembly SIMD instructions in the browser build. Below AVX-512, GCC 12 has no mode for a
+// 64-byte vector and keeps each value in memory between operations (docs/PERFORMANCE.md, "Every CPU level").
+// GCC 12 lowers a few idioms element by element when they are inlined from the baseline into a level's copy;
+// docs/ARCHITECTURE.md ("Lane shaders") lists them and what the pipeline uses instead.
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 

@@ -24,10 +24,10 @@ CpuLevel best_level() {
                   __builtin_cpu_supports("ssse3");
   const bool v3 = v2 && __builtin_cpu_supports("avx2") && __builtin_cpu_supports("fma") &&
                   __builtin_cpu_supports("bmi2") && __builtin_cpu_supports("bmi");
+#if !defined(FACET_DISPATCH_NO_V4)
   const bool v4 = v3 && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512bw") &&
                   __builtin_cpu_supports("avx512dq") && __builtin_cpu_supports("avx512vl") &&
                   __builtin_cpu_supports("avx512cd");
-#if !defined(FACET_DISPATCH_NO_V4)
   if (v4) return CpuLevel::avx512;
 #endif
   if (v3) return CpuLevel::avx2;

@@ -247,26 +247,33 @@ void draw_environment_background(Renderer& renderer, Framebuffer& target, const 
 
 namespace {
 
-// The mesh's points, in the shading the options give surfaces; a cloud without normals in its colours, unlit.
+// The shading points are drawn with: the options' for surfaces, but unlit for a cloud without normals (there is no
+// surface to light) and Gouraud for flat shading (a point has no face; lit once per point, as flat lights a face).
+Shading point_shading(Shading shading, bool normals) {
+  if (shading == Shading::normals || shading == Shading::depth || shading == Shading::unlit) return shading;
+  if (!normals) return Shading::unlit;
+  return shading == Shading::flat ? Shading::gouraud : shading;
+}
+
+// The mesh's points, in point_shading.
 void draw_points(Renderer& renderer, Framebuffer& target, const FrameContext& frame, const Instance& instance,
                  const ObjectTransforms& transforms, const PreparedMesh& prepared) {
   const SceneOptions& options = *frame.options;
   RenderState state = surface_state(options, material_of(*instance.mesh, prepared.points), transforms.mirrored);
   state.point_size = options.point_size;
   state.point_shape = options.point_shape;
-  const bool lit = options.shading != Shading::normals && options.shading != Shading::depth &&
-                   options.shading != Shading::unlit;
   const std::span<const MeshVertex> vertices(prepared.vertices);
   const GroupDraw draw{renderer, target, vertices, prepared.points.indices, state, true};
-  if (!lit || prepared.point_normals) {
+  const Shading shading = point_shading(options.shading, prepared.point_normals);
+  if (shading == options.shading) {
     draw_group(draw, frame, instance, transforms, prepared, prepared.points);
     return;
   }
-  SceneOptions unlit = options;
-  unlit.shading = Shading::unlit;
-  FrameContext unlit_frame = frame;
-  unlit_frame.options = &unlit;
-  draw_group(draw, unlit_frame, instance, transforms, prepared, prepared.points);
+  SceneOptions changed = options;
+  changed.shading = shading;
+  FrameContext changed_frame = frame;
+  changed_frame.options = &changed;
+  draw_group(draw, changed_frame, instance, transforms, prepared, prepared.points);
 }
 
 }  // namespace
@@ -284,7 +291,8 @@ void draw_instance(Renderer& renderer, Framebuffer& target, const FrameContext& 
       draw_group({renderer, target, vertices, group.indices, state}, frame, instance, transforms, prepared, group);
     }
   }
-  if (pass == DrawPass::opaque && !prepared.points.indices.empty()) draw_points(renderer, target, frame, instance, transforms, prepared);
+  if (pass == DrawPass::opaque && !prepared.points.indices.empty())
+    draw_points(renderer, target, frame, instance, transforms, prepared);
   if (pass == DrawPass::blended || !(options.wireframe || options.edges) || prepared.edge_indices.empty()) return;
 
   RenderState lines;

@@ -167,7 +167,8 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
 
   // Points name the mesh's vertices; where the groups' vertices were laid out apart, each takes its first copy.
   out.points.indices.reserve(mesh.points.size());
-  for (const std::uint32_t v : mesh.points) out.points.indices.push_back(out.first_copy.empty() ? v : out.first_copy[v]);
+  for (const std::uint32_t v : mesh.points)
+    out.points.indices.push_back(out.first_copy.empty() ? v : out.first_copy[v]);
   out.point_normals = mesh.normals.size() == mesh.positions.size();
 
   // Only materials some triangle uses are loaded, so unused ones cannot cost time or warnings.

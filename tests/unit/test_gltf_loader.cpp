@@ -83,7 +83,9 @@ TEST(GltfLoader, PointsPrimitivesArePointsAndLinesAreSkipped) {
            R"("}]})";
   };
   const fs::path dir = test::scratch_dir("gltf_points");
-  const auto write = [&](const std::string& name, const std::string& text) { return test::write_file(dir, name, text); };
+  const auto write = [&](const std::string& name, const std::string& text) {
+    return test::write_file(dir, name, text);
+  };
   const Mesh all = load_model(write("all.gltf", file(R"({"attributes":{"POSITION":0},"mode":0})")));
   EXPECT_EQ(all.triangle_count(), 0u);
   EXPECT_EQ(all.points, (std::vector<std::uint32_t>{0, 1, 2, 3}));

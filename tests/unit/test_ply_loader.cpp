@@ -246,7 +246,10 @@ TEST_F(PlyLoader, PointCloudsLoadAsPointsAndEmptyMeshesAreRefused) {
   PlyWriter w("binary_little_endian");
   w.header("element vertex 2").header("property float x").header("property float y").header("property float z");
   w.header("property uchar red").header("property uchar green").header("property uchar blue");
-  for (int i = 0; i < 2; ++i) w.put("float", 3 * i).put("float", 3 * i + 1).put("float", 3 * i + 2).put("uchar", 255 * i).put("uchar", 0).put("uchar", 255);
+  for (int i = 0; i < 2; ++i) {
+    w.put("float", 3 * i).put("float", 3 * i + 1).put("float", 3 * i + 2);
+    w.put("uchar", 255 * i).put("uchar", 0).put("uchar", 255);
+  }
   for (const char* name : {"cloud.ply", "cloud0.ply"}) {
     const Mesh cloud = load_model(write(name, w.str()));
     EXPECT_EQ(cloud.triangle_count(), 0u) << name;

@@ -419,3 +419,60 @@ TEST(SceneDepth, LinearDepthOfARenderedQuad) {
 
 }  // namespace
 }  // namespace facet
+
+namespace facet {
+namespace {
+
+// A small cloud on a sphere of radius 0.5, with or without outward normals, and a red quad behind it.
+Mesh cloud_and_quad(bool normals) {
+  Mesh m;
+  for (int i = 0; i < 400; ++i) {
+    const float z = 1.0f - 2.0f * (static_cast<float>(i) + 0.5f) / 400.0f, r = std::sqrt(1.0f - z * z);
+    const float t = 2.39996f * static_cast<float>(i);
+    const glm::vec3 p(r * std::cos(t), r * std::sin(t), z);
+    m.positions.push_back(0.5f * p);
+    if (normals) m.normals.push_back(p);
+    m.colors.emplace_back(0.2f, 1.0f, 0.2f, 1.0f);
+    m.points.push_back(static_cast<std::uint32_t>(i));
+  }
+  const auto base = static_cast<std::uint32_t>(m.positions.size());
+  for (const glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+    m.positions.emplace_back(c.x, c.y, -1.0f);
+    if (normals) m.normals.emplace_back(0, 0, 1);
+    m.colors.emplace_back(1.0f, 0.0f, 0.0f, 1.0f);
+  }
+  m.indices = {base, base + 1, base + 2, base, base + 2, base + 3};
+  return m;
+}
+
+// Every shading draws a mesh's points over its triangles, with or without normals (a point has no face: flat
+// shading lights each point once, and a cloud without normals is drawn unlit).
+TEST(ScenePoints, EveryShadingDrawsThePointsInFrontOfTheSurface) {
+  const View view = make_view({0, 0, 3});
+  for (const bool normals : {false, true})
+    for (const Shading shading : {Shading::automatic, Shading::unlit, Shading::flat, Shading::gouraud, Shading::phong,
+                                  Shading::blinn_phong, Shading::normals, Shading::depth}) {
+      SCOPED_TRACE(std::string(normals ? "with" : "without") + " normals, shading " +
+                   std::to_string(static_cast<int>(shading)));
+      Scene scene;
+      scene.add(instance(cloud_and_quad(normals)));
+      SceneOptions options;
+      options.shading = shading;
+      options.point_size = 3.0f;
+      const Frame frame = render(scene, view, options);
+      // The cloud's centre pixel shows a point, nearer than the quad: its depth is below the quad's.
+      const float centre_depth = frame.fb.depth_at(kSize / 2, kSize / 2);
+      const float quad_depth = frame.fb.depth_at(2, 2);
+      EXPECT_LT(centre_depth, quad_depth);
+      if (shading == Shading::unlit || (!normals && shading != Shading::normals && shading != Shading::depth)) {
+        // In their own colour, unlit.
+        int green = 0;
+        for (int y = 16; y < 48; ++y)
+          for (int x = 16; x < 48; ++x) green += frame.fb.pixel(x, y) == pack_rgba8({0.2f, 1.0f, 0.2f, 1.0f});
+        EXPECT_GT(green, 100);
+      }
+    }
+}
+
+}  // namespace
+}  // namespace facet

@@ -39,7 +39,8 @@ int find_cpu_level();                 // src/core/cpu_level.cpp
 
 namespace facet::detail {
 
-template <class Body>
+// kSse4Copy false leaves out the SSE4.2 copy: that level then runs the baseline's (see at_shader_level).
+template <bool kSse4Copy = true, class Body>
 [[gnu::always_inline]] inline decltype(auto) at_cpu_level(Body&& body) {
 #if defined(FACET_DISPATCH_X86)
   switch (active_cpu_level()) {
@@ -52,7 +53,8 @@ template <class Body>
     case CpuLevel::avx2:
       return [&]() __attribute__((target("arch=x86-64-v3"), noinline)) { return body(); }();
     case CpuLevel::sse4:
-      return [&]() __attribute__((target("arch=x86-64-v2"), noinline)) { return body(); }();
+      if constexpr (kSse4Copy) return [&]() __attribute__((target("arch=x86-64-v2"), noinline)) { return body(); }();
+      break;
     case CpuLevel::baseline:
       break;
   }
@@ -60,6 +62,16 @@ template <class Body>
 #else
   return std::forward<Body>(body)();
 #endif
+}
+
+// at_cpu_level for the stages compiled once per shader (the tile loops, shade_lanes, the vertex stage), without an
+// SSE4.2 copy: the SSE4.2 level runs their baseline copy, and its own copies of everything else (set-up,
+// visibility, clears). Below AVX-512 their 16-lane values live in memory, where SSE4.2's instructions gained 2-4% a
+// frame over the baseline's (docs/PERFORMANCE.md, "Every CPU level"): not worth a fourth copy of every shader's
+// pipeline, a quarter of its compile time.
+template <class Body>
+[[gnu::always_inline]] inline decltype(auto) at_shader_level(Body&& body) {
+  return at_cpu_level<false>(std::forward<Body>(body));
 }
 
 }  // namespace facet::detail

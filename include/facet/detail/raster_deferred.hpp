@@ -184,7 +184,7 @@ template <LaneShader S>
 template <LaneShader S>
 __attribute__((noinline)) void shade_lanes(const S& shader, const FragmentLanes<typename S::Varyings>& fragment,
                                            std::uint32_t* colors) {
-  at_cpu_level([&]() __attribute__((always_inline)) {
+  at_shader_level([&]() __attribute__((always_inline)) {
     simd::store(colors, simd::pack_rgba8(shader.fragment_lanes(fragment)));
   });
 }

@@ -61,7 +61,7 @@ struct VertexSource {
   // The shader runs on 16 vertices per call if it has vertex_lanes, else on one; each block's clip positions are
   // then projected together (see ClipBlock). Compiled per CPU level like raster_tile, for the lane types.
   static void shade(const void* source, std::size_t begin, std::size_t end, const VertexOutputs& out) {
-    at_cpu_level([&]() __attribute__((always_inline)) {
+    at_shader_level([&]() __attribute__((always_inline)) {
       using Varyings = typename S::Varyings;
       constexpr std::size_t kFloats = float_count_v<Varyings>;
       const auto& self = *static_cast<const VertexSource*>(source);
@@ -81,7 +81,8 @@ struct VertexSource {
         }
         for (; k < count; ++k) {
           const VertexOut<Varyings> shaded = self.shader->vertex(self.vertices[first + k]);
-          block.x[k] = shaded.clip.x, block.y[k] = shaded.clip.y, block.z[k] = shaded.clip.z, block.w[k] = shaded.clip.w;
+          block.x[k] = shaded.clip.x, block.y[k] = shaded.clip.y;
+          block.z[k] = shaded.clip.z, block.w[k] = shaded.clip.w;
           const FloatArray<Varyings> f = to_floats(shaded.varyings);
           std::copy(f.begin(), f.end(), out.varyings + (first + k - out.first) * kFloats);
         }
