@@ -108,24 +108,18 @@ BenchGeometry load_mesh_scene(const std::string& path) {
   std::vector<std::uint32_t> remap(mesh.positions.size(), kUnused);
   std::vector<std::uint32_t> source;
   BenchGeometry g;
+  const auto use = [&](std::uint32_t index) {
+    if (remap[index] == kUnused) {
+      remap[index] = static_cast<std::uint32_t>(source.size());
+      source.push_back(index);
+    }
+    g.indices.push_back(remap[index]);
+  };
   g.indices.reserve(mesh.indices.size() - mesh.indices.size() % 3);
   for (std::size_t i = 0; i + 2 < mesh.indices.size(); i += 3)
-    for (std::size_t c = 0; c < 3; ++c) {
-      const std::uint32_t index = mesh.indices[i + c];
-      if (remap[index] == kUnused) {
-        remap[index] = static_cast<std::uint32_t>(source.size());
-        source.push_back(index);
-      }
-      g.indices.push_back(remap[index]);
-    }
+    for (std::size_t c = 0; c < 3; ++c) use(mesh.indices[i + c]);
   if (points)
-    for (const std::uint32_t index : mesh.points) {
-      if (remap[index] == kUnused) {
-        remap[index] = static_cast<std::uint32_t>(source.size());
-        source.push_back(index);
-      }
-      g.indices.push_back(remap[index]);
-    }
+    for (const std::uint32_t index : mesh.points) use(index);
   g.points = points;
 
   bool file_normals = mesh.normals.size() == mesh.positions.size();

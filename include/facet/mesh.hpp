@@ -134,6 +134,11 @@ struct Mesh {
   std::size_t vertex_count() const { return positions.size(); }
   std::size_t triangle_count() const { return indices.size() / 3; }
   std::size_t point_count() const { return points.size(); }
+  // Makes every vertex a point, in order: what a point cloud's readers give.
+  void points_at_every_vertex() {
+    points.resize(positions.size());
+    for (std::size_t i = 0; i < points.size(); ++i) points[i] = static_cast<std::uint32_t>(i);
+  }
   std::uint32_t face_id(std::size_t triangle) const {
     return face_ids.empty() ? static_cast<std::uint32_t>(triangle) : face_ids[triangle];
   }

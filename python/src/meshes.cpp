@@ -1,7 +1,6 @@
 // meshes.cpp - the Python module's meshes (from arrays or files) and scenes of placed meshes.
 #include "meshes.hpp"
 
-#include <numeric>
 #include <string>
 #include <utility>
 
@@ -20,8 +19,7 @@ MeshCore MeshCore::from_arrays(py::handle positions, py::handle faces, py::handl
   if (mesh.positions.size() > kMaxModelVertices) value_error("positions: more than 2^27 vertices");
   if (faces.is_none()) {
     // A point cloud: every position a point.
-    mesh.points.resize(mesh.positions.size());
-    std::iota(mesh.points.begin(), mesh.points.end(), 0u);
+    mesh.points_at_every_vertex();
   } else {
     const auto f = checked_array<std::int64_t>(faces, "faces", "iu", 2, {3});
     if (f.shape(0) == 0) value_error("faces: the mesh has no triangles");

@@ -5,7 +5,6 @@
 #include <cmath>
 #include <istream>
 #include <map>
-#include <numeric>
 #include <string>
 #include <string_view>
 #include <unordered_map>
@@ -91,8 +90,7 @@ Mesh point_cloud(const ObjData& obj) {
     for (std::size_t i = 0; i < n; ++i)
       mesh.colors[i] = {obj.colors[3 * i], obj.colors[3 * i + 1], obj.colors[3 * i + 2], 1.0f};
   }
-  mesh.points.resize(n);
-  std::iota(mesh.points.begin(), mesh.points.end(), 0u);
+  mesh.points_at_every_vertex();
   return mesh;
 }
 

@@ -3,7 +3,6 @@
 #include <array>
 #include <cmath>
 #include <cstring>
-#include <numeric>
 #include <optional>
 #include <string>
 #include <system_error>
@@ -603,8 +602,7 @@ Mesh load_ply(std::string_view bytes, const std::string& source, int threads, st
     mesh = read_body(header, *vertex, *face, bytes.size(), BinaryReader<true>(begin, body, end), source);
   }
   if (cloud) {
-    mesh.points.resize(mesh.positions.size());
-    std::iota(mesh.points.begin(), mesh.points.end(), 0u);
+    mesh.points_at_every_vertex();
   } else if (mesh.indices.empty()) {
     throw InputError(source, "no triangles found");
   }

@@ -1,7 +1,6 @@
 // xyz_loader.cpp - load_xyz(): point clouds as text, one point per line (.xyz, and Leica's .pts).
 #include <algorithm>
 #include <cmath>
-#include <numeric>
 #include <string>
 #include <string_view>
 #include <vector>
@@ -127,8 +126,7 @@ Mesh load_xyz(std::string_view text, const std::string& source) {
     warn(source, "ignored " + std::to_string(extra) + " column(s) after x y z (" + std::to_string(columns) +
                      " numbers per point: 3, 6, 7 or 9 are understood)");
   }
-  mesh.points.resize(mesh.positions.size());
-  std::iota(mesh.points.begin(), mesh.points.end(), 0u);
+  mesh.points_at_every_vertex();
   validate(mesh, source);
   return mesh;
 }
