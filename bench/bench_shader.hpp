@@ -61,14 +61,15 @@ struct BenchShader {
 
   // vertex() for 16 vertices at once, in glm's order: M * v is (m0 x + m1 y) + (m2 z + m3 w) per row, a mat3
   // product m0 x + m1 y + m2 z; w = 1 makes m3 w exactly m3.
-  FACET_LANES_INLINE VertexOutLanes<Varyings> vertex_lanes(const VertexLanes<Vertex>& v) const {
-    using simd::Float;
-    const simd::Vec3 pos = v.get(&Vertex::pos), normal = v.get(&Vertex::normal);
+  template <class L>
+  FACET_LANES_INLINE VertexOutLanes<Varyings, L> vertex_lanes(const VertexLanes<Vertex, L>& v) const {
+    FACET_LANE_TYPES(L);
+    const Vec3 pos = v.get(&Vertex::pos), normal = v.get(&Vertex::normal);
     const auto transform =
         [](const glm::mat4& m, int row, Float x, Float y, Float z, Float w) __attribute__((always_inline)) {
       return (m[0][row] * x + m[1][row] * y) + (m[2][row] * z + m[3][row] * w);
     };
-    const Float one = simd::splat(1.0f);
+    const Float one = simd::splat<L>(1.0f);
     Float world[4], clip[4];
     for (int row = 0; row < 4; ++row) world[row] = transform(world_from_object, row, pos.x, pos.y, pos.z, one);
     for (int row = 0; row < 4; ++row)
@@ -76,10 +77,10 @@ struct BenchShader {
     const auto rotate = [&](int row) __attribute__((always_inline)) {
       return normal_matrix[0][row] * normal.x + normal_matrix[1][row] * normal.y + normal_matrix[2][row] * normal.z;
     };
-    VertexOutLanes<Varyings> out;
+    VertexOutLanes<Varyings, L> out;
     out.clip_x = clip[0], out.clip_y = clip[1], out.clip_z = clip[2], out.clip_w = clip[3];
-    out.set(&Varyings::world_pos, simd::Vec3{world[0], world[1], world[2]});
-    out.set(&Varyings::world_normal, simd::Vec3{rotate(0), rotate(1), rotate(2)});
+    out.set(&Varyings::world_pos, Vec3{world[0], world[1], world[2]});
+    out.set(&Varyings::world_normal, Vec3{rotate(0), rotate(1), rotate(2)});
     out.set(&Varyings::uv, v.get(&Vertex::uv));
     return out;
   }
@@ -106,16 +107,18 @@ struct BenchShader {
   }
 
   // fragment() for 16 pixels at once: the same operations in the same order, so both give identical images.
-  FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> fragment_lanes(const FragmentLanes<Varyings, L>& f) const {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     const Vec3 n = normalize(f.get(&Varyings::world_normal));
     const Vec3 v = normalize(eye - f.get(&Varyings::world_pos));
     const Float n_dot_l = dot(n, light_dir);
     const Vec3 r = (2.0f * n_dot_l) * n - light_dir;
     const Color albedo = texture->sample_lanes(f.get(&Varyings::uv), sampler);
-    const Float diffuse = select(n_dot_l > 0.0f, n_dot_l, splat(0.0f));
+    const Float diffuse = select(n_dot_l > 0.0f, n_dot_l, splat<L>(0.0f));
     Float spec = dot(r, v);
-    spec = select(spec > 0.0f, spec, splat(0.0f));
+    spec = select(spec > 0.0f, spec, splat<L>(0.0f));
     spec *= spec;
     spec *= spec;
     spec *= spec;
@@ -123,7 +126,7 @@ struct BenchShader {
     spec *= spec;
     const Float highlight = 0.4f * spec;
     return {0.15f * albedo.r + diffuse * albedo.r + highlight, 0.15f * albedo.g + diffuse * albedo.g + highlight,
-            0.15f * albedo.b + diffuse * albedo.b + highlight, splat(1.0f)};
+            0.15f * albedo.b + diffuse * albedo.b + highlight, splat<L>(1.0f)};
   }
 };
 
@@ -131,6 +134,7 @@ struct BenchShader {
 // (measured: sphere:224, WusonOBJ and the quads 3-8% faster without, sphere:707 and 1414 2-3% slower).
 static_assert(!PrefetchingLaneShader<BenchShader>);
 static_assert(LaneVertexShader<BenchShader>);
+static_assert(ShaderTraits<BenchShader>::fragment_lanes_per_level && ShaderTraits<BenchShader>::vertex_lanes_per_level);
 
 }  // namespace facet::bench
 

@@ -47,15 +47,19 @@ struct CubeShader {
     return {f.varyings.color * light, 1.0f};
   }
 
-  // The same on an 8x2 strip of pixels at once: the pipeline then shades 16 fragments per call. Lane functions
-  // are always inlined (FACET_LANES_INLINE), since the pipeline compiles them into each CPU level's tile loop.
-  // No guard is needed: a fragment_lanes of the wrong shape, or on a shader that may discard, does not compile.
-  FACET_LANES_INLINE facet::simd::Color fragment_lanes(const facet::FragmentLanes<Varyings>& f) const {
+  // The same on an 8x2 strip of pixels at once: the pipeline then shades 16 fragments per call. A template on the
+  // lane layout L, so that each CPU level's copy of the pipeline holds the lanes in its own registers (one 512-bit,
+  // two 256-bit or four 128-bit vectors per value); FACET_LANE_TYPES names that layout's Float, Vec3, Color, ...
+  // Lane functions are always inlined (FACET_LANES_INLINE), since the pipeline compiles them into each level's tile
+  // loop. No guard is needed: a fragment_lanes of the wrong shape, or on a shader that may discard, does not compile.
+  template <class L>
+  FACET_LANES_INLINE facet::simd::ColorT<L> fragment_lanes(const facet::FragmentLanes<Varyings, L>& f) const {
     using namespace facet::simd;
+    FACET_LANE_TYPES(L);
     const Vec3 n = normalize(f.get(&Varyings::normal));
     const Float light = 0.5f + 0.5f * dot(n, to_light);
     const Vec3 color = f.get(&Varyings::color);
-    return {color.x * light, color.y * light, color.z * light, splat(1.0f)};
+    return {color.x * light, color.y * light, color.z * light, splat<L>(1.0f)};
   }
 };
 

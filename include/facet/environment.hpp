@@ -54,7 +54,7 @@ class Environment {
     const std::array<float, 3> e = irradiance(n.x, n.y, n.z);
     return {e[0], e[1], e[2]};
   }
-  // The same for F = float or simd::Float (16 normals at once), with the same operations in the same order.
+  // The same for F = float or simd::FloatT (16 normals at once), with the same operations in the same order.
   template <class F>
   std::array<F, 3> irradiance(const F& x, const F& y, const F& z) const {
     const auto& c = irradiance_sh_;
@@ -82,12 +82,14 @@ class Environment {
   }
 
   // radiance() for 16 directions and roughnesses: the same operations lane for lane, the texels gathered per lane.
-  FACET_LANES_INLINE simd::Vec3 radiance(const simd::Vec3& d, const simd::Float& roughness) const {
+  template <class L>
+  FACET_LANES_INLINE simd::Vec3T<L> radiance(const simd::Vec3T<L>& d, const simd::FloatT<L>& roughness) const {
     using namespace simd;
-    const Float x = select(roughness > 0.0f, select(roughness < 1.0f, roughness, splat(1.0f)), splat(0.0f)) *
+    FACET_LANE_TYPES(L);
+    const Float x = select(roughness > 0.0f, select(roughness < 1.0f, roughness, splat<L>(1.0f)), splat<L>(0.0f)) *
                     static_cast<float>(kRoughnessLevels - 1);
     Int i = truncate(x);
-    i = blend(i < kRoughnessLevels - 1, i, splat(kRoughnessLevels - 1));
+    i = blend(i < kRoughnessLevels - 1, i, splat<L>(kRoughnessLevels - 1));
     const Float f = x - to_float(i);
     const Vec2 uv = octahedral_lanes(d);
     const auto blend_levels = [&f](const Vec3& a, const Vec3& b) -> Vec3 {
@@ -108,12 +110,14 @@ class Environment {
 
   // The split sum's second factor at NdotV and roughness (brdf_table), from the table this environment holds.
   // ... and for 16 lanes: the same operations, the four table entries gathered per lane.
-  FACET_LANES_INLINE simd::Vec2 split_sum(const simd::Float& n_dot_v, const simd::Float& roughness) const {
+  template <class L>
+  FACET_LANES_INLINE simd::Vec2T<L> split_sum(const simd::FloatT<L>& n_dot_v, const simd::FloatT<L>& roughness) const {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     constexpr float n = kBrdfTableSize;
     const auto coordinate = [](const Float& v) {
       const Float c = v * n - 0.5f;
-      return select(c > 0.0f, select(c < n - 1.0f, c, splat(n - 1.0f)), splat(0.0f));
+      return select(c > 0.0f, select(c < n - 1.0f, c, splat<L>(n - 1.0f)), splat<L>(0.0f));
     };
     const Float s = coordinate(n_dot_v), r = coordinate(roughness);
     const Int i = truncate(s), j = truncate(r);
@@ -138,29 +142,33 @@ class Environment {
  private:
   // detail::octahedral_from_direction for 16 directions (the absolute value as std::abs takes it: the sign bit
   // cleared).
-  FACET_LANES_INLINE static simd::Vec2 octahedral_lanes(const simd::Vec3& d) {
+  template <class L>
+  FACET_LANES_INLINE static simd::Vec2T<L> octahedral_lanes(const simd::Vec3T<L>& d) {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     const auto abs = [](const Float& v) { return bit_cast<Float>(bit_cast<Int>(v) & 0x7fffffff); };
     const Float s = abs(d.x) + abs(d.y) + abs(d.z);
     const Float px = d.x / s, pz = d.z / s;
-    const Float fx = (1.0f - abs(pz)) * select(px < 0.0f, splat(-1.0f), splat(1.0f));
-    const Float fz = (1.0f - abs(px)) * select(pz < 0.0f, splat(-1.0f), splat(1.0f));
+    const Float fx = (1.0f - abs(pz)) * select(px < 0.0f, splat<L>(-1.0f), splat<L>(1.0f));
+    const Float fz = (1.0f - abs(px)) * select(pz < 0.0f, splat<L>(-1.0f), splat<L>(1.0f));
     const Mask lower = d.y < 0.0f;
     return {select(lower, fx, px) * 0.5f + 0.5f, select(lower, fz, pz) * 0.5f + 0.5f};
   }
   // detail::OctahedralMap::sample for 16 lanes from one level.
-  FACET_LANES_INLINE static simd::Vec3 sample_lanes(const detail::OctahedralMap& map, const simd::Vec2& uv) {
+  template <class L>
+  FACET_LANES_INLINE static simd::Vec3T<L> sample_lanes(const detail::OctahedralMap& map, const simd::Vec2T<L>& uv) {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     const int size = map.size();
     const float n = static_cast<float>(size), hi = n - 1.0f;
     const auto coordinate = [&](const Float& v) {
       const Float c = v * n - 0.5f;
-      return select(c > 0.0f, select(c < hi, c, splat(hi)), splat(0.0f));  // as OctahedralMap::sample clamps
+      return select(c > 0.0f, select(c < hi, c, splat<L>(hi)), splat<L>(0.0f));  // as OctahedralMap::sample clamps
     };
     const Float s = coordinate(uv.x), t = coordinate(uv.y);
     const Int i = truncate(s), j = truncate(t);
     const Float a = s - to_float(i), b = t - to_float(j);
-    const Int i1 = blend(i + 1 < size, i + 1, splat(size - 1)), j1 = blend(j + 1 < size, j + 1, splat(size - 1));
+    const Int i1 = blend(i + 1 < size, i + 1, splat<L>(size - 1)), j1 = blend(j + 1 < size, j + 1, splat<L>(size - 1));
     const Int row0 = j * size, row1 = j1 * size;
     const glm::vec4* texels = map.texels();
     Vec3 t00, t10, t01, t11;
@@ -176,23 +184,27 @@ class Environment {
   }
   // The bilinear blend of four corners' texels at fractions a (along a row) and b (down), as OctahedralMap::sample
   // takes it.
-  FACET_LANES_INLINE static simd::Vec3 bilinear(const simd::Vec3& t00, const simd::Vec3& t10, const simd::Vec3& t01,
-                                                const simd::Vec3& t11, const simd::Float& a, const simd::Float& b) {
-    using simd::Float;
+  template <class L>
+  FACET_LANES_INLINE static simd::Vec3T<L> bilinear(const simd::Vec3T<L>& t00, const simd::Vec3T<L>& t10,
+                                                    const simd::Vec3T<L>& t01, const simd::Vec3T<L>& t11,
+                                                    const simd::FloatT<L>& a, const simd::FloatT<L>& b) {
+    using Float = simd::FloatT<L>;
     const auto lerp = [](const Float& p, const Float& q, const Float& w) { return p + (q - p) * w; };
-    const simd::Vec3 bottom{lerp(t00.x, t10.x, a), lerp(t00.y, t10.y, a), lerp(t00.z, t10.z, a)};
-    const simd::Vec3 top{lerp(t01.x, t11.x, a), lerp(t01.y, t11.y, a), lerp(t01.z, t11.z, a)};
+    const simd::Vec3T<L> bottom{lerp(t00.x, t10.x, a), lerp(t00.y, t10.y, a), lerp(t00.z, t10.z, a)};
+    const simd::Vec3T<L> top{lerp(t01.x, t11.x, a), lerp(t01.y, t11.y, a), lerp(t01.z, t11.z, a)};
     return {lerp(bottom.x, top.x, b), lerp(bottom.y, top.y, b), lerp(bottom.z, top.z, b)};
   }
   // detail::OctahedralMap::sample for 16 lanes, each from its own level.
-  FACET_LANES_INLINE simd::Vec3 sample_lanes(const simd::Int& level, const simd::Vec2& uv) const {
+  template <class L>
+  FACET_LANES_INLINE simd::Vec3T<L> sample_lanes(const simd::IntT<L>& level, const simd::Vec2T<L>& uv) const {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     Float n;
     for (int k = 0; k < kLanes; ++k) n[k] = static_cast<float>(levels_[static_cast<std::size_t>(level[k])].size());
     const Float hi = n - 1.0f;
     const auto coordinate = [&](const Float& v) {
       const Float c = v * n - 0.5f;
-      return select(c > 0.0f, select(c < hi, c, hi), splat(0.0f));  // as OctahedralMap::sample clamps
+      return select(c > 0.0f, select(c < hi, c, hi), splat<L>(0.0f));  // as OctahedralMap::sample clamps
     };
     const Float s = coordinate(uv.x), t = coordinate(uv.y);
     const Int i = truncate(s), j = truncate(t);

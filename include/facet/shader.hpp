@@ -12,6 +12,7 @@
 
 #include "facet/detail/bits.hpp"
 #include "facet/detail/float_fields.hpp"
+#include "facet/simd.hpp"
 
 namespace facet {
 
@@ -56,15 +57,13 @@ struct Fragment {
 };
 
 // The lane types of the optional lane hooks, declared here so that ShaderTraits can check those hooks' shapes. A
-// shader with such a hook includes facet/fragment_lanes.hpp or facet/vertex_lanes.hpp, which define them.
-namespace simd {
-struct Color;
-}
-template <Interpolatable V>
+// shader with such a hook includes facet/fragment_lanes.hpp or facet/vertex_lanes.hpp, which define them. L is the
+// lane layout (simd.hpp): a hook that is a template on it runs each CPU level's layout.
+template <Interpolatable V, class L = simd::Whole>
 struct FragmentLanes;
-template <Interpolatable V>
+template <Interpolatable V, class L = simd::Whole>
 struct VertexOutLanes;
-template <class Vertex>
+template <class Vertex, class L = simd::Whole>
 struct VertexLanes;
 
 // A shader is a plain struct: uniforms are its data members, and the pipeline is instantiated on its type, so
@@ -81,10 +80,11 @@ struct VertexLanes;
 //
 // Optional hooks, a closed list (ShaderTraits<S> is the pipeline's one reader of them and of may_discard):
 //   static constexpr bool needs_derivatives = true;      fills Fragment::ddx/ddy (texture level of detail)
-//   simd::Color fragment_lanes(const FragmentLanes<Varyings>&) const;    16 pixels a call, when !may_discard
+//   simd::ColorT<L> fragment_lanes(const FragmentLanes<Varyings, L>&) const;  16 pixels a call, when !may_discard
 //   static constexpr bool lanes_read_primitive = false;  fragment_lanes reads neither primitive nor front_facing
-//   void prefetch_lanes(const FragmentLanes<Varyings>&) const;           with fragment_lanes
-//   VertexOutLanes<Varyings> vertex_lanes(const VertexLanes<Vertex>&) const;   16 vertices a call
+//   void prefetch_lanes(const FragmentLanes<Varyings, L>&) const;           with fragment_lanes
+//   VertexOutLanes<Varyings, L> vertex_lanes(const VertexLanes<Vertex, L>&) const;   16 vertices a call
+// each best a template on the lane layout L (template <class L>), or taking the whole layout's types only.
 // (fragment_lanes.hpp and vertex_lanes.hpp say what each does.)
 
 namespace detail {
@@ -153,18 +153,28 @@ template <class S, class Self, class Result>
 concept fragment_on = requires(Self& shader, const Fragment<typename S::Varyings>& fragment) {
   { shader.fragment(fragment) } -> std::same_as<Result>;
 };
-template <class S, class Self>
-concept fragment_lanes_on = requires(Self& shader, const FragmentLanes<typename S::Varyings>& fragment) {
-  { shader.fragment_lanes(fragment) } -> std::same_as<simd::Color>;
+template <class S, class Self, class L = simd::Whole>
+concept fragment_lanes_on = requires(Self& shader, const FragmentLanes<typename S::Varyings, L>& fragment) {
+  { shader.fragment_lanes(fragment) } -> std::same_as<simd::ColorT<L>>;
 };
-template <class S, class Self>
-concept prefetch_lanes_on = requires(Self& shader, const FragmentLanes<typename S::Varyings>& fragment) {
+template <class S, class Self, class L = simd::Whole>
+concept prefetch_lanes_on = requires(Self& shader, const FragmentLanes<typename S::Varyings, L>& fragment) {
   { shader.prefetch_lanes(fragment) } -> std::same_as<void>;
 };
-template <class S, class Self>
-concept vertex_lanes_on = requires(Self& shader, const VertexLanes<typename S::Vertex>& vertices) {
-  { shader.vertex_lanes(vertices) } -> std::same_as<VertexOutLanes<typename S::Varyings>>;
+template <class S, class Self, class L = simd::Whole>
+concept vertex_lanes_on = requires(Self& shader, const VertexLanes<typename S::Vertex, L>& vertices) {
+  { shader.vertex_lanes(vertices) } -> std::same_as<VertexOutLanes<typename S::Varyings, L>>;
 };
+// Whether a hook takes every lane layout: a template on it.
+template <class S>
+concept fragment_lanes_per_level =
+    fragment_lanes_on<S, const S, simd::Halves> && fragment_lanes_on<S, const S, simd::Quarters>;
+template <class S>
+concept prefetch_lanes_per_level =
+    prefetch_lanes_on<S, const S, simd::Halves> && prefetch_lanes_on<S, const S, simd::Quarters>;
+template <class S>
+concept vertex_lanes_per_level =
+    vertex_lanes_on<S, const S, simd::Halves> && vertex_lanes_on<S, const S, simd::Quarters>;
 
 }  // namespace detail
 
@@ -197,7 +207,9 @@ struct ShaderTraits {
   static constexpr bool kLanes = kVaryings && detail::declares_fragment_lanes<S>;
   static constexpr bool kLanesShape = !kLanes || detail::fragment_lanes_on<S, const S>;
   static constexpr bool kPrefetch = kVaryings && detail::declares_prefetch_lanes<S>;
-  static constexpr bool kPrefetchShape = !kPrefetch || detail::prefetch_lanes_on<S, const S>;
+  static constexpr bool kLanesPerLevel = kLanes && detail::fragment_lanes_per_level<S>;
+  static constexpr bool kPrefetchShape =
+      !kPrefetch || (detail::prefetch_lanes_on<S, const S> && (!kLanesPerLevel || detail::prefetch_lanes_per_level<S>));
   static constexpr bool kVertexLanes = kVaryings && detail::declares_vertex_lanes<S>;
   static constexpr bool kVertexLanesShape = !kVertexLanes || detail::vertex_lanes_on<S, const S>;
 
@@ -220,20 +232,21 @@ struct ShaderTraits {
   static_assert(kLanesShape || !detail::fragment_lanes_on<S, S>,
                 "facet shader rule: fragment_lanes() is a const member function");
   static_assert(kLanesShape || detail::fragment_lanes_on<S, S>,
-                "facet shader rule: fragment_lanes() is simd::Color fragment_lanes(const FragmentLanes<Varyings>&) "
+                "facet shader rule: fragment_lanes() is template <class L> simd::ColorT<L> fragment_lanes(const "
+                "FragmentLanes<Varyings, L>&) const, or simd::Color fragment_lanes(const FragmentLanes<Varyings>&) "
                 "const");
   static_assert(!kLanes || !may_discard,
                 "facet shader rule: fragment_lanes() needs may_discard = false (lane shading cannot discard)");
   static_assert(!detail::declares_lanes_read_primitive<S> || kLanes,
                 "facet shader rule: lanes_read_primitive is declared only with fragment_lanes(), which it describes");
   static_assert(kPrefetchShape, "facet shader rule: prefetch_lanes() is void prefetch_lanes(const "
-                                "FragmentLanes<Varyings>&) const");
+                                "FragmentLanes<Varyings, L>&) const, for the layouts fragment_lanes() takes");
   static_assert(!kPrefetch || kLanes, "facet shader rule: prefetch_lanes() is declared only with fragment_lanes()");
   static_assert(kVertexLanesShape || !detail::vertex_lanes_on<S, S>,
                 "facet shader rule: vertex_lanes() is a const member function");
   static_assert(kVertexLanesShape || detail::vertex_lanes_on<S, S>,
-                "facet shader rule: vertex_lanes() is VertexOutLanes<Varyings> vertex_lanes(const "
-                "VertexLanes<Vertex>&) const");
+                "facet shader rule: vertex_lanes() is template <class L> VertexOutLanes<Varyings, L> "
+                "vertex_lanes(const VertexLanes<Vertex, L>&) const, or the same with the whole layout only");
 #define FACET_NOT_NEAR_NAME_(wrong, right)     \
   static_assert(!detail::declares_##wrong<S>, \
                 "facet shader rule: " #wrong " is not a shader hook; did you mean " #right "?");
@@ -245,6 +258,10 @@ struct ShaderTraits {
   static constexpr bool fragment_lanes = kLanes && kLanesShape && !may_discard;
   static constexpr bool prefetch_lanes = fragment_lanes && kPrefetch && kPrefetchShape;
   static constexpr bool vertex_lanes = kVertexLanes && kVertexLanesShape;
+  // Whether fragment_lanes (and prefetch_lanes) and vertex_lanes are templates on the lane layout, compiled into
+  // each CPU level with its own layout (detail/dispatch.hpp), rather than run with the whole layout everywhere.
+  static constexpr bool fragment_lanes_per_level = fragment_lanes && kLanesPerLevel;
+  static constexpr bool vertex_lanes_per_level = vertex_lanes && detail::vertex_lanes_per_level<S>;
   // Every rule holds (when one does not, its static_assert has already stopped the build).
   static constexpr bool valid = detail::bool_flag_may_discard<S> && kVaryings && kVertex && kFragment && kLanesShape;
 };

@@ -5,17 +5,21 @@
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
+#include <type_traits>
+#include <utility>
 
 #include <glm/vec3.hpp>
 #if defined(__wasm_simd128__)
 #include <wasm_simd128.h>
 #endif
 
-// The lane types wrap GCC/Clang vector extensions rather than intrinsics: the compiler lowers each operation for
-// the instruction set of the function it ends up in (each CPU level's copy, detail/dispatch.hpp), so the same shader
-// code becomes one AVX-512 instruction in the x86-64-v4 copy of the tile loop, two AVX2 or four SSE instructions
-// below it and four WebAssembly SIMD instructions in the browser build. Below AVX-512, GCC 12 has no mode for a
-// 64-byte vector and keeps each value in memory between operations (docs/PERFORMANCE.md, "Every CPU level").
+// The lane types wrap GCC/Clang vector extensions rather than intrinsics: the compiler lowers each operation for the
+// instruction set of the function it ends up in (each CPU level's copy, detail/dispatch.hpp). Sixteen lanes are
+// held as one, two or four native vectors, a layout per CPU level (Layout below): one 512-bit register with
+// AVX-512, two 256-bit ones with AVX2, four 128-bit ones with SSE, NEON and WebAssembly SIMD. A layout wider than
+// the level's registers would have no machine mode there, and GCC 12 keeps such values in memory between
+// operations (docs/PERFORMANCE.md, "Every CPU level"). Lane code is a template on the layout, so one source
+// compiles to each level's registers; the names without a layout (Float, Vec3, ...) are the whole 16-lane layout.
 // GCC 12 lowers a few idioms element by element when they are inlined from the baseline into a level's copy;
 // docs/ARCHITECTURE.md ("Lane shaders") lists them and what the pipeline uses instead.
 #pragma GCC diagnostic push
@@ -30,30 +34,61 @@ namespace facet::simd {
 inline constexpr int kLanes = 16;
 inline constexpr std::size_t kLaneAlign = kLanes * sizeof(float);
 
+// How the 16 lanes are held: as kParts native vectors of kLanes / kParts lanes each, lanes in order, so every
+// layout has the same bytes in memory.
+template <int kParts>
+struct Layout {
+  static_assert(kParts == 1 || kParts == 2 || kParts == 4);
+  static constexpr int parts = kParts;
+  static constexpr int width = kLanes / kParts;
+};
+using Whole = Layout<1>;     // one 512-bit vector: AVX-512
+using Halves = Layout<2>;    // two 256-bit vectors, one per row of the strip: AVX2
+using Quarters = Layout<4>;  // four 128-bit vectors: SSE, NEON, WebAssembly SIMD
+
 // The bare vector types the lane types hold, for the pipeline's own use of compiler builtins on them.
 namespace native {
-using Float = float __attribute__((vector_size(kLanes * sizeof(float))));
-using Int = std::int32_t __attribute__((vector_size(kLanes * sizeof(std::int32_t))));
-using UInt = std::uint32_t __attribute__((vector_size(kLanes * sizeof(std::uint32_t))));
+template <class Scalar, int kWidth>
+struct VectorOf;
+// Spelled out per type and width: GCC 12 ignores vector_size on a dependent type.
+#define FACET_NATIVE_VECTOR_(Scalar, kWidth)                               \
+  template <>                                                              \
+  struct VectorOf<Scalar, kWidth> {                                        \
+    using type = Scalar __attribute__((vector_size(kWidth * sizeof(Scalar)))); \
+  };
+#define FACET_NATIVE_VECTORS_(Scalar) \
+  FACET_NATIVE_VECTOR_(Scalar, 16) FACET_NATIVE_VECTOR_(Scalar, 8) FACET_NATIVE_VECTOR_(Scalar, 4)
+FACET_NATIVE_VECTORS_(float)
+FACET_NATIVE_VECTORS_(std::int32_t)
+FACET_NATIVE_VECTORS_(std::uint32_t)
+#undef FACET_NATIVE_VECTORS_
+#undef FACET_NATIVE_VECTOR_
+template <class Scalar, int kWidth>
+using Vector = typename VectorOf<Scalar, kWidth>::type;
+using Float = Vector<float, kLanes>;
+using Int = Vector<std::int32_t, kLanes>;
+using UInt = Vector<std::uint32_t, kLanes>;
 }  // namespace native
 
 // Sixteen lanes of one scalar type, with the vector's operators, element-wise, and with a scalar on either side.
 // Two things make a lane type safe wherever a shader author puts it:
 // - its destructor is user-provided, so the type is not trivially copyable and every ABI passes and returns it
-//   through memory by reference. A bare 64-byte vector travels in a zmm register between functions compiled for
-//   AVX-512 and in memory between baseline ones, so a helper left out of line (compiled for the baseline) and
-//   called from the AVX-512 copy of the tile loop would read garbage. Inlined, the difference vanishes.
-// - it is alignas(64) in every ISA. GCC aligns a bare 64-byte vector to the widest vector of the code that names
-//   it (16 bytes in the baseline), so lane values allocated by baseline code would be under-aligned for the
-//   aligned loads of the AVX-512 copy.
-template <class Native, class Scalar>
+//   through memory by reference. A bare vector travels in registers between functions compiled for a level that has
+//   them and in memory between baseline ones, so a helper left out of line (compiled for the baseline) and called
+//   from a level's copy of the tile loop would read garbage. Inlined, the difference vanishes.
+// - it is alignas(64) in every ISA and layout, so that lane values allocated by baseline code suit the aligned
+//   loads of every level's copy.
+template <class Scalar, class L>
 class alignas(kLaneAlign) Lanes {
  public:
   using scalar_type = Scalar;
-  Native native;
+  using layout = L;
+  static constexpr int kParts = L::parts, kWidth = L::width;
+  using Part = native::Vector<Scalar, kWidth>;
+  Part part[kParts];
 
   Lanes() = default;
-  FACET_LANES_INLINE constexpr Lanes(Native v) : native(v) {}
+  FACET_LANES_INLINE constexpr Lanes(Part v) requires(kParts == 1) : part{v} {}
   Lanes(const Lanes&) = default;
   Lanes& operator=(const Lanes&) = default;
   // User-provided, so that the type is not trivially copyable (see above). A destructor rather than a copy
@@ -61,31 +96,43 @@ class alignas(kLaneAlign) Lanes {
   // sphere:224 a third slower); with this destructor, frames take the time bare vectors take.
   FACET_LANES_INLINE constexpr ~Lanes() {}
 
-  FACET_LANES_INLINE constexpr Scalar operator[](int k) const { return native[k]; }
+  // The lanes whose part i is op(i): each operation is one native operation per part.
+  template <class R = Lanes, class Op>
+  FACET_LANES_INLINE static constexpr R by_part(Op op) {
+    R r;
+    r.part[0] = op(0);
+    if constexpr (kParts > 1) r.part[1] = op(1);
+    if constexpr (kParts > 2) r.part[2] = op(2), r.part[3] = op(3);
+    return r;
+  }
+
+  FACET_LANES_INLINE constexpr Scalar operator[](int k) const { return part[k / kWidth][k % kWidth]; }
 #if defined(__clang__)
   // Clang binds no reference to a vector element; the element type may alias the vector.
-  FACET_LANES_INLINE Scalar& operator[](int k) { return reinterpret_cast<Scalar*>(&native)[k]; }
+  FACET_LANES_INLINE Scalar& operator[](int k) { return reinterpret_cast<Scalar*>(part)[k]; }
 #else
-  FACET_LANES_INLINE Scalar& operator[](int k) { return native[k]; }
+  FACET_LANES_INLINE Scalar& operator[](int k) { return part[k / kWidth][k % kWidth]; }
 #endif
 
-  FACET_LANES_INLINE friend constexpr Lanes operator-(const Lanes& a) { return -a.native; }
-  FACET_LANES_INLINE friend constexpr Lanes operator~(const Lanes& a) { return ~a.native; }
-
-#define FACET_LANES_OPERATOR(op)                                                                                  \
-  FACET_LANES_INLINE friend constexpr Lanes operator op(const Lanes& a, const Lanes& b) {                          \
-    return a.native op b.native;                                                                                   \
-  }                                                                                                                \
-  FACET_LANES_INLINE friend constexpr Lanes operator op(const Lanes& a, Scalar b) { return a.native op b; }        \
-  FACET_LANES_INLINE friend constexpr Lanes operator op(Scalar a, const Lanes& b) { return a op b.native; }        \
-  FACET_LANES_INLINE constexpr Lanes& operator op##=(const Lanes& b) {                                             \
-    native = native op b.native;                                                                                   \
-    return *this;                                                                                                  \
-  }                                                                                                                \
-  FACET_LANES_INLINE constexpr Lanes& operator op##=(Scalar b) {                                                   \
-    native = native op b;                                                                                          \
-    return *this;                                                                                                  \
+  FACET_LANES_INLINE friend constexpr Lanes operator-(const Lanes& a) {
+    return by_part([&](int i) __attribute__((always_inline)) { return -a.part[i]; });
   }
+  FACET_LANES_INLINE friend constexpr Lanes operator~(const Lanes& a) {
+    return by_part([&](int i) __attribute__((always_inline)) { return ~a.part[i]; });
+  }
+
+#define FACET_LANES_OPERATOR(op)                                                                           \
+  FACET_LANES_INLINE friend constexpr Lanes operator op(const Lanes& a, const Lanes& b) {                   \
+    return by_part([&](int i) __attribute__((always_inline)) { return a.part[i] op b.part[i]; });           \
+  }                                                                                                         \
+  FACET_LANES_INLINE friend constexpr Lanes operator op(const Lanes& a, Scalar b) {                         \
+    return by_part([&](int i) __attribute__((always_inline)) { return a.part[i] op b; });                   \
+  }                                                                                                         \
+  FACET_LANES_INLINE friend constexpr Lanes operator op(Scalar a, const Lanes& b) {                         \
+    return by_part([&](int i) __attribute__((always_inline)) { return a op b.part[i]; });                   \
+  }                                                                                                         \
+  FACET_LANES_INLINE constexpr Lanes& operator op##=(const Lanes& b) { return *this = *this op b; }         \
+  FACET_LANES_INLINE constexpr Lanes& operator op##=(Scalar b) { return *this = *this op b; }
   FACET_LANES_OPERATOR(+)
   FACET_LANES_OPERATOR(-)
   FACET_LANES_OPERATOR(*)
@@ -99,13 +146,17 @@ class alignas(kLaneAlign) Lanes {
 #undef FACET_LANES_OPERATOR
 
   // Comparisons give a mask per lane: -1 where true, 0 where false.
-  using MaskType = Lanes<native::Int, std::int32_t>;
-#define FACET_LANES_COMPARISON(op)                                                                                \
-  FACET_LANES_INLINE friend constexpr MaskType operator op(const Lanes& a, const Lanes& b) {                       \
-    return a.native op b.native;                                                                                   \
-  }                                                                                                                \
-  FACET_LANES_INLINE friend constexpr MaskType operator op(const Lanes& a, Scalar b) { return a.native op b; }     \
-  FACET_LANES_INLINE friend constexpr MaskType operator op(Scalar a, const Lanes& b) { return a op b.native; }
+  using MaskType = Lanes<std::int32_t, L>;
+#define FACET_LANES_COMPARISON(op)                                                                              \
+  FACET_LANES_INLINE friend constexpr MaskType operator op(const Lanes& a, const Lanes& b) {                     \
+    return MaskType::by_part([&](int i) __attribute__((always_inline)) { return a.part[i] op b.part[i]; });      \
+  }                                                                                                              \
+  FACET_LANES_INLINE friend constexpr MaskType operator op(const Lanes& a, Scalar b) {                           \
+    return MaskType::by_part([&](int i) __attribute__((always_inline)) { return a.part[i] op b; });              \
+  }                                                                                                              \
+  FACET_LANES_INLINE friend constexpr MaskType operator op(Scalar a, const Lanes& b) {                           \
+    return MaskType::by_part([&](int i) __attribute__((always_inline)) { return a op b.part[i]; });              \
+  }
   FACET_LANES_COMPARISON(==)
   FACET_LANES_COMPARISON(!=)
   FACET_LANES_COMPARISON(<)
@@ -115,189 +166,175 @@ class alignas(kLaneAlign) Lanes {
 #undef FACET_LANES_COMPARISON
 };
 
-using Float = Lanes<native::Float, float>;
-using Int = Lanes<native::Int, std::int32_t>;
-using UInt = Lanes<native::UInt, std::uint32_t>;
-// Comparisons of Float or Int give an Int mask per lane: -1 where true, 0 where false.
+// The lane types of a layout. Comparisons of FloatT or IntT give an IntT mask per lane: -1 where true, 0 where false.
+template <class L>
+using FloatT = Lanes<float, L>;
+template <class L>
+using IntT = Lanes<std::int32_t, L>;
+template <class L>
+using UIntT = Lanes<std::uint32_t, L>;
+template <class L>
+using MaskT = IntT<L>;
+
+using Float = FloatT<Whole>;
+using Int = IntT<Whole>;
+using UInt = UIntT<Whole>;
 using Mask = Int;
 
-inline constexpr Int kLaneIndex = native::Int{0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14, 15};
-inline constexpr Int kLaneX = kLaneIndex & 7;
-inline constexpr Int kLaneY = kLaneIndex >> 3;
+// The lane numbers 0..15, as lane values of a layout.
+template <class L>
+inline constexpr IntT<L> kLaneIndexT = IntT<L>::by_part([](int i) {
+  return [&]<int... k>(std::integer_sequence<int, k...>) {
+    return typename IntT<L>::Part{(i * L::width + k)...};
+  }(std::make_integer_sequence<int, L::width>{});
+});
+template <class L>
+inline constexpr IntT<L> kLaneXT = kLaneIndexT<L> & 7;
+template <class L>
+inline constexpr IntT<L> kLaneYT = kLaneIndexT<L> >> 3;
+inline constexpr Int kLaneIndex = kLaneIndexT<Whole>;
+inline constexpr Int kLaneX = kLaneXT<Whole>;
+inline constexpr Int kLaneY = kLaneYT<Whole>;
 
 // v - 0 rather than 0 + v: subtracting +0 leaves every value as it is (-0 included), so GCC folds it into a plain
 // broadcast (or a broadcast memory operand); adding +0 turns -0 into +0, so it cannot, and each splat of a
 // run-time value would cost an addition and a separate broadcast. Meant for constants: a run-time value is better
-// left a scalar operand (`a * v`, `uniform - v`, see Vec3 below), since its splat, once a struct member, is built
+// left a scalar operand (`a * v`, `uniform - v`, see Vec3T below), since its splat, once a struct member, is built
 // lane by lane in the AVX-512 copy.
-FACET_LANES_INLINE Float splat(float v) { return v - native::Float{}; }
-FACET_LANES_INLINE Int splat(std::int32_t v) { return native::Int{} + v; }
+template <class L = Whole>
+FACET_LANES_INLINE FloatT<L> splat(float v) {
+  return FloatT<L>::by_part([&](int) __attribute__((always_inline)) { return v - typename FloatT<L>::Part{}; });
+}
+template <class L = Whole>
+FACET_LANES_INLINE IntT<L> splat(std::int32_t v) {
+  return IntT<L>::by_part([&](int) __attribute__((always_inline)) { return typename IntT<L>::Part{} + v; });
+}
 
-FACET_LANES_INLINE Float select(const Mask& m, const Float& a, const Float& b) { return m.native ? a.native : b.native; }
+template <class L>
+FACET_LANES_INLINE FloatT<L> select(const MaskT<L>& m, const FloatT<L>& a, const FloatT<L>& b) {
+  return FloatT<L>::by_part([&](int i) __attribute__((always_inline)) { return m.part[i] ? a.part[i] : b.part[i]; });
+}
+// The same bits read as another lane type of the same layout (std::bit_cast for lanes).
+template <class To, class Scalar, class L>
+FACET_LANES_INLINE To bit_cast(const Lanes<Scalar, L>& v) {
+  static_assert(std::is_same_v<typename To::layout, L>);
+  return To::by_part([&](int i) __attribute__((always_inline)) {
+    return reinterpret_cast<typename To::Part>(v.part[i]);
+  });
+}
 // Lanes of a where m is -1, of b where it is 0, by bitwise operations: exact for any bit pattern, and immune to
 // GCC 12 scalarising `m ? a : b` for a mask that was not itself a comparison.
-template <class V>
-FACET_LANES_INLINE V blend(const Mask& m, const V& a, const V& b) {
-  using N = decltype(V::native);
-  return reinterpret_cast<N>((reinterpret_cast<native::Int>(a.native) & m.native) |
-                             (reinterpret_cast<native::Int>(b.native) & ~m.native));
-}
-// The same bits read as another lane type (std::bit_cast for lanes).
-template <class To, class From>
-FACET_LANES_INLINE To bit_cast(const From& v) {
-  return reinterpret_cast<decltype(To::native)>(v.native);
+template <class Scalar, class L>
+FACET_LANES_INLINE Lanes<Scalar, L> blend(const MaskT<L>& m, const Lanes<Scalar, L>& a, const Lanes<Scalar, L>& b) {
+  return bit_cast<Lanes<Scalar, L>>((bit_cast<IntT<L>>(a) & m) | (bit_cast<IntT<L>>(b) & ~m));
 }
 // std::clamp's comparisons, so NaN and the bounds behave exactly as in the scalar paths.
-FACET_LANES_INLINE Float clamp(Float v, float lo, float hi) {
-  return select(v < lo, splat(lo), select(hi < v, splat(hi), v));
+template <class L>
+FACET_LANES_INLINE FloatT<L> clamp(const FloatT<L>& v, float lo, float hi) {
+  return select(v < lo, splat<L>(lo), select(hi < v, splat<L>(hi), v));
+}
+
+// op on each 128-bit quarter of the lanes, in memory order.
+template <class Scalar, class L, class Op>
+FACET_LANES_INLINE Lanes<Scalar, L> by_quarter(Lanes<Scalar, L> v, Op op) {
+  using Quarter = native::Vector<Scalar, 4>;
+  Quarter quarters[kLanes / 4];
+  std::memcpy(quarters, v.part, sizeof quarters);
+  for (Quarter& q : quarters) q = op(q);
+  std::memcpy(v.part, quarters, sizeof quarters);
+  return v;
 }
 
 #if defined(__wasm_simd128__)
-// WebAssembly: Clang leaves the plain loops below scalar there, so each quarter of the lanes takes one instruction.
-template <class Op>
-FACET_LANES_INLINE Float by_quarter(Float v, Op op) {
-  v128_t quarters[kLanes / 4];
-  std::memcpy(quarters, &v.native, sizeof v.native);
-  for (v128_t& q : quarters) q = op(q);
-  std::memcpy(&v.native, quarters, sizeof v.native);
-  return v;
+// WebAssembly: Clang leaves plain loops over the lanes scalar there, so each quarter takes one instruction.
+template <class L>
+FACET_LANES_INLINE FloatT<L> sqrt(const FloatT<L>& v) {
+  return by_quarter(v, [](auto q) { return reinterpret_cast<decltype(q)>(wasm_f32x4_sqrt(q)); });
 }
-FACET_LANES_INLINE Float sqrt(Float v) {
-  return by_quarter(v, [](v128_t q) { return wasm_f32x4_sqrt(q); });
-}
-FACET_LANES_INLINE Float floor(Float v) {
-  return by_quarter(v, [](v128_t q) { return wasm_f32x4_floor(q); });
+template <class L>
+FACET_LANES_INLINE FloatT<L> floor(const FloatT<L>& v) {
+  return by_quarter(v, [](auto q) { return reinterpret_cast<decltype(q)>(wasm_f32x4_floor(q)); });
 }
 #else
-// A plain loop over the lanes: with -fno-math-errno (set for every facet user) it compiles to one vector sqrt.
-FACET_LANES_INLINE Float sqrt(Float v) {
-  native::Float r;
-  for (int k = 0; k < kLanes; ++k) r[k] = std::sqrt(v.native[k]);
-  return r;
+// A plain loop over each part's lanes: with -fno-math-errno (set for every facet user) it compiles to one vector
+// sqrt per part.
+template <class L>
+FACET_LANES_INLINE FloatT<L> sqrt(const FloatT<L>& v) {
+  return FloatT<L>::by_part([&](int i) __attribute__((always_inline)) {
+    typename FloatT<L>::Part r;
+    for (int k = 0; k < L::width; ++k) r[k] = std::sqrt(v.part[i][k]);
+    return r;
+  });
 }
-
-// A plain loop over the lanes, like sqrt: one rounding instruction where the level has one (SSE4.1 and later).
-FACET_LANES_INLINE Float floor(Float v) {
-  native::Float r;
-  for (int k = 0; k < kLanes; ++k) r[k] = std::floor(v.native[k]);
-  return r;
+// Like sqrt: one rounding instruction per part where the level has one (SSE4.1 and later).
+template <class L>
+FACET_LANES_INLINE FloatT<L> floor(const FloatT<L>& v) {
+  return FloatT<L>::by_part([&](int i) __attribute__((always_inline)) {
+    typename FloatT<L>::Part r;
+    for (int k = 0; k < L::width; ++k) r[k] = std::floor(v.part[i][k]);
+    return r;
+  });
 }
 #endif
 
 // The value at base[index[k]] in each lane k, loaded lane by lane: facet builds without gather instructions
 // (docs/ARCHITECTURE.md, "Physically based shading", says why), so tables and texels are read this way.
-FACET_LANES_INLINE Float gather(const float* base, const Int& index) {
-  Float out;
+template <class L>
+FACET_LANES_INLINE FloatT<L> gather(const float* base, const IntT<L>& index) {
+  FloatT<L> out;
   for (int k = 0; k < kLanes; ++k) out[k] = base[index[k]];
   return out;
 }
 
-FACET_LANES_INLINE Float to_float(const Int& v) { return __builtin_convertvector(v.native, native::Float); }
-FACET_LANES_INLINE Int truncate(const Float& v) { return __builtin_convertvector(v.native, native::Int); }
-// Value conversions between the integer lane types, as static_cast does them.
-FACET_LANES_INLINE Int to_int(const UInt& v) { return __builtin_convertvector(v.native, native::Int); }
-FACET_LANES_INLINE UInt to_uint(const Int& v) { return __builtin_convertvector(v.native, native::UInt); }
+// Value conversions between the lane types, as static_cast does them.
+template <class To, class Scalar, class L>
+FACET_LANES_INLINE To convert(const Lanes<Scalar, L>& v) {
+  return To::by_part([&](int i) __attribute__((always_inline)) {
+    return __builtin_convertvector(v.part[i], typename To::Part);
+  });
+}
+template <class L>
+FACET_LANES_INLINE FloatT<L> to_float(const IntT<L>& v) { return convert<FloatT<L>>(v); }
+template <class L>
+FACET_LANES_INLINE IntT<L> truncate(const FloatT<L>& v) { return convert<IntT<L>>(v); }
+template <class L>
+FACET_LANES_INLINE IntT<L> to_int(const UIntT<L>& v) { return convert<IntT<L>>(v); }
+template <class L>
+FACET_LANES_INLINE UIntT<L> to_uint(const IntT<L>& v) { return convert<UIntT<L>>(v); }
 
 template <class V>
 FACET_LANES_INLINE V load(const void* p) {
   V v;
-  std::memcpy(&v.native, p, sizeof v.native);
+  std::memcpy(v.part, p, sizeof v.part);
   return v;
 }
 template <class V>
 FACET_LANES_INLINE void store(void* p, const V& v) {
-  std::memcpy(p, &v.native, sizeof v.native);
+  std::memcpy(p, v.part, sizeof v.part);
 }
-
-// Lane k of the result is lane pattern[k] of v, or of the lanes of a followed by those of b. GCC spells this
-// __builtin_shuffle; Clang has only __builtin_shufflevector with literal indices, so its build uses a loop, which
-// it folds into one shuffle for the constant patterns facet passes.
-#if defined(__clang__)
-template <class V>
-FACET_LANES_INLINE V shuffle(const V& v, const Int& pattern) {
-  decltype(V::native) r;
-  for (int k = 0; k < kLanes; ++k) r[k] = v.native[pattern.native[k] & (kLanes - 1)];
-  return r;
-}
-template <class V>
-FACET_LANES_INLINE V shuffle(const V& a, const V& b, const Int& pattern) {
-  decltype(V::native) r;
-  for (int k = 0; k < kLanes; ++k) {
-    const int i = pattern.native[k] & (2 * kLanes - 1);
-    r[k] = i < kLanes ? a.native[i] : b.native[i - kLanes];
-  }
-  return r;
-}
-#else
-template <class V>
-FACET_LANES_INLINE V shuffle(const V& v, const Int& pattern) {
-  return __builtin_shuffle(v.native, pattern.native);
-}
-template <class V>
-FACET_LANES_INLINE V shuffle(const V& a, const V& b, const Int& pattern) {
-  return __builtin_shuffle(a.native, b.native, pattern.native);
-}
-#endif
 
 // Bit k set where lane k of m is -1 (true).
-FACET_LANES_INLINE unsigned lane_bits(const Mask& m) {
+template <class L>
+FACET_LANES_INLINE unsigned lane_bits(const MaskT<L>& m) {
 #if defined(__wasm_simd128__)
   v128_t quarters[kLanes / 4];
-  std::memcpy(quarters, &m.native, sizeof m.native);
+  std::memcpy(quarters, m.part, sizeof quarters);
   unsigned bits = 0;
   for (int q = 0; q < kLanes / 4; ++q) bits |= static_cast<unsigned>(wasm_i32x4_bitmask(quarters[q])) << (4 * q);
   return bits;
 #else
   unsigned bits = 0;
+  for (int i = 0; i < L::parts; ++i) {
 #pragma GCC unroll 1  // a loop for the vectoriser: one mask extraction at each level
-  for (int k = 0; k < kLanes; ++k) bits |= static_cast<unsigned>(m.native[k] & 1) << k;
+    for (int k = 0; k < L::width; ++k) bits |= static_cast<unsigned>(m.part[i][k] & 1) << (i * L::width + k);
+  }
   return bits;
 #endif
 }
 
-// Swaps lanes within each 2x2 quad: coarse derivatives are differences between a quad's pixels.
-FACET_LANES_INLINE Float quad_broadcast(Float v, Int pattern) { return shuffle(v, pattern); }
-inline constexpr Int kQuadTopLeft = (kLaneIndex & ~9);         // lane of each quad's (0, 0) pixel
-inline constexpr Int kQuadTopRight = (kLaneIndex & ~9) | 1;    // ... (1, 0)
-inline constexpr Int kQuadBottomLeft = (kLaneIndex & ~9) | 8;  // ... (0, 1)
-
-struct alignas(kLaneAlign) Vec2 {
-  Float x, y;
-};
-
-struct alignas(kLaneAlign) Vec3 {
-  Float x, y, z;
-  FACET_LANES_INLINE friend Vec3 operator+(const Vec3& a, const Vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-  FACET_LANES_INLINE friend Vec3 operator-(const Vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-  FACET_LANES_INLINE friend Vec3 operator*(const Vec3& a, Float s) { return {a.x * s, a.y * s, a.z * s}; }
-  FACET_LANES_INLINE friend Vec3 operator*(Float s, const Vec3& a) { return {s * a.x, s * a.y, s * a.z}; }
-};
-
-// A uniform vector with a lane vector: the uniform's components stay scalar operands of each operation. A Vec3 of
-// splats of run-time values would be built lane by lane in the AVX-512 copy (16 masked inserts per member: GCC 12
-// lowers the splat for the baseline before the level's copy exists); a scalar operand becomes one broadcast.
-FACET_LANES_INLINE Vec3 operator-(const glm::vec3& a, const Vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-FACET_LANES_INLINE Vec3 operator-(const Vec3& a, const glm::vec3& b) { return {a.x - b.x, a.y - b.y, a.z - b.z}; }
-FACET_LANES_INLINE Vec3 operator+(const Vec3& a, const glm::vec3& b) { return {a.x + b.x, a.y + b.y, a.z + b.z}; }
-// In glm's order, (x*x + y*y) + z*z, so lane and scalar shaders round alike.
-FACET_LANES_INLINE Float dot(const Vec3& a, const Vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-FACET_LANES_INLINE Float dot(const Vec3& a, const glm::vec3& b) { return a.x * b.x + a.y * b.y + a.z * b.z; }
-FACET_LANES_INLINE Vec3 normalize(const Vec3& v) { return v * (1.0f / sqrt(dot(v, v))); }
-
-// What a lane fragment shader returns: straight (not premultiplied) RGBA in [0, 1].
-struct alignas(kLaneAlign) Color {
-  Float r, g, b, a;
-};
-
-// pack_rgba8 per lane: clamp to [0, 1] (NaN to 0), scale to 255 and round to nearest.
-FACET_LANES_INLINE UInt pack_channel(Float c) {
-  const Float clamped = select(c > 0.0f, select(c < 1.0f, c, splat(1.0f)), splat(0.0f));
-  return to_uint(truncate(clamped * 255.0f + 0.5f));
-}
-FACET_LANES_INLINE UInt pack_rgba8(const Color& c) {
-  return pack_channel(c.r) | pack_channel(c.g) << 8 | pack_channel(c.b) << 16 | pack_channel(c.a) << 24;
-}
-
 }  // namespace facet::simd
+
+#include "facet/simd_shuffles.hpp"
+#include "facet/simd_vectors.hpp"
 
 #pragma GCC diagnostic pop

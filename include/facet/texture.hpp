@@ -70,14 +70,16 @@ class Texture {
   // rather than encoded again (a linear texture's as sample() gives it), for shading in linear light.
   glm::vec4 sample_linear(glm::vec2 uv, glm::vec2 duv_dx, glm::vec2 duv_dy, const Sampler& sampler) const;
 
-  // sample(uv, sampler) for 16 lanes. The benchmark's case (bilinear, repeat, power-of-two) runs in lanes with the
-  // same IEEE operations as the scalar path, so both give identical results, for both encodings; other samplers
-  // sample lane by lane.
-  FACET_LANES_INLINE simd::Color sample_lanes(const simd::Vec2& uv, const Sampler& sampler) const;
+  // sample(uv, sampler) for 16 lanes of any layout. The benchmark's case (bilinear, repeat, power-of-two) runs in
+  // lanes with the same IEEE operations as the scalar path, so both give identical results, for both encodings;
+  // other samplers sample lane by lane.
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> sample_lanes(const simd::Vec2T<L>& uv, const Sampler& sampler) const;
 
   // Starts loading the texels sample_lanes(uv, sampler) will read, without waiting for them: call it early enough
   // and the samples find them in cache. Only the benchmark's case (bilinear, repeat, power-of-two) prefetches.
-  FACET_LANES_INLINE void prefetch_lanes(const simd::Vec2& uv, const Sampler& sampler) const;
+  template <class L>
+  FACET_LANES_INLINE void prefetch_lanes(const simd::Vec2T<L>& uv, const Sampler& sampler) const;
 
  private:
   // Each level is stored with one extra column and one extra row, copies of column 0 and row 0: with repeat
@@ -107,18 +109,20 @@ class Texture {
     return srgb_ ? detail::blend_srgb(bottom, top, p.alpha, p.beta) : detail::blend(bottom, top, p.alpha, p.beta);
   }
 
-  template <bool Srgb>
-  FACET_LANES_INLINE simd::Color bilinear_repeat_pow2_lanes(const simd::Vec2& uv) const;
+  template <bool Srgb, class L>
+  FACET_LANES_INLINE simd::ColorT<L> bilinear_repeat_pow2_lanes(const simd::Vec2T<L>& uv) const;
   bool bilinear_repeat_pow2_applies(const Sampler& sampler) const {
     return pow2_ && sampler.filter != Filter::nearest && sampler.wrap_u == Wrap::repeat &&
            sampler.wrap_v == Wrap::repeat;
   }
   // Per lane, the offset of the bottom-left texel of the bilinear footprint and the weights (split_floor's).
-  FACET_LANES_INLINE simd::Int bilinear_repeat_pow2_first(const simd::Vec2& uv, simd::Float& alpha,
-                                                          simd::Float& beta) const;
+  template <class L>
+  FACET_LANES_INLINE simd::IntT<L> bilinear_repeat_pow2_first(const simd::Vec2T<L>& uv, simd::FloatT<L>& alpha,
+                                                              simd::FloatT<L>& beta) const;
   // Texel coordinates limited to +-2^30, NaN to the lower limit (as maxps does in split_floor), so that their
   // conversion to integers is defined for any uv.
-  FACET_LANES_INLINE static simd::Float clamp_texel_coordinate(simd::Float v);
+  template <class L>
+  FACET_LANES_INLINE static simd::FloatT<L> clamp_texel_coordinate(simd::FloatT<L> v);
 
   void pad_level(int level);  // fills the extra column and row of a level from column 0 and row 0
   glm::vec4 sample_level0(glm::vec2 uv, const Sampler& sampler) const;
@@ -139,10 +143,11 @@ class Texture {
 #pragma GCC diagnostic push
 #pragma GCC diagnostic ignored "-Wpsabi"
 
-inline simd::Color Texture::sample_lanes(const simd::Vec2& uv, const Sampler& sampler) const {
+template <class L>
+inline simd::ColorT<L> Texture::sample_lanes(const simd::Vec2T<L>& uv, const Sampler& sampler) const {
   if (bilinear_repeat_pow2_applies(sampler))
     return srgb_ ? bilinear_repeat_pow2_lanes<true>(uv) : bilinear_repeat_pow2_lanes<false>(uv);
-  simd::Color c;
+  simd::ColorT<L> c;
   for (int k = 0; k < simd::kLanes; ++k) {
     const glm::vec4 s = sample(glm::vec2(uv.x[k], uv.y[k]), sampler);
     c.r[k] = s.r;
@@ -153,16 +158,20 @@ inline simd::Color Texture::sample_lanes(const simd::Vec2& uv, const Sampler& sa
   return c;
 }
 
-inline simd::Float Texture::clamp_texel_coordinate(simd::Float v) {
+template <class L>
+inline simd::FloatT<L> Texture::clamp_texel_coordinate(simd::FloatT<L> v) {
   using namespace simd;
   constexpr float lo = -detail::kTexelCoordinateLimit, hi = detail::kTexelCoordinateLimit;
-  v = select(v > lo, v, splat(lo));
-  return select(v < hi, v, splat(hi));
+  v = select(v > lo, v, splat<L>(lo));
+  return select(v < hi, v, splat<L>(hi));
 }
 
-inline simd::Int Texture::bilinear_repeat_pow2_first(const simd::Vec2& uv, simd::Float& alpha,
-                                                     simd::Float& beta) const {
+template <class L>
+inline simd::IntT<L> Texture::bilinear_repeat_pow2_first(const simd::Vec2T<L>& uv, simd::FloatT<L>& alpha,
+                                                         simd::FloatT<L>& beta) const {
   using namespace simd;
+  using Float = FloatT<L>;
+  using Int = IntT<L>;
   const Level& l = levels_[0];
   // Lambdas over lane types are forced inline, like every lane function: one left out of line would be compiled
   // for the baseline ISA only.
@@ -180,8 +189,11 @@ inline simd::Int Texture::bilinear_repeat_pow2_first(const simd::Vec2& uv, simd:
   return (j & (l.height - 1)) * l.stride + (i & (l.width - 1));
 }
 
-inline void Texture::prefetch_lanes(const simd::Vec2& uv, const Sampler& sampler) const {
+template <class L>
+inline void Texture::prefetch_lanes(const simd::Vec2T<L>& uv, const Sampler& sampler) const {
   using namespace simd;
+  using Float = FloatT<L>;
+  using Int = IntT<L>;
   if (!bilinear_repeat_pow2_applies(sampler)) return;
   // A prefetch needs the line, not the texel: truncation instead of split_floor's floor and weights, which is the
   // same index for s >= 0 and one texel off below it.
@@ -199,9 +211,12 @@ inline void Texture::prefetch_lanes(const simd::Vec2& uv, const Sampler& sampler
 
 // bilinear_repeat_pow2 lane by lane: split_floor, the padded 8-byte pair loads and blend (or blend_srgb), in the
 // same order.
-template <bool Srgb>
-inline simd::Color Texture::bilinear_repeat_pow2_lanes(const simd::Vec2& uv) const {
+template <bool Srgb, class L>
+inline simd::ColorT<L> Texture::bilinear_repeat_pow2_lanes(const simd::Vec2T<L>& uv) const {
   using namespace simd;
+  using Float = FloatT<L>;
+  using Int = IntT<L>;
+  using UInt = UIntT<L>;
   const Level& l = levels_[0];
   Float alpha, beta;
   const Int first = bilinear_repeat_pow2_first(uv, alpha, beta);
@@ -216,10 +231,9 @@ inline simd::Color Texture::bilinear_repeat_pow2_lanes(const simd::Vec2& uv) con
   const UInt b0 = load<UInt>(bottom), b1 = load<UInt>(bottom + kLanes / 2);
   const UInt u0 = load<UInt>(top), u1 = load<UInt>(top + kLanes / 2);
   // On a little-endian machine the left texel of each pair is the lower 32 bits, i.e. the even lane.
-  constexpr bool little = detail::kLittleEndian;
-  const Int even = kLaneIndex * 2 + (little ? 0 : 1), odd = kLaneIndex * 2 + (little ? 1 : 0);
-  const UInt t00 = shuffle(b0, b1, even), t10 = shuffle(b0, b1, odd);
-  const UInt t01 = shuffle(u0, u1, even), t11 = shuffle(u0, u1, odd);
+  constexpr int kLeft = detail::kLittleEndian ? 0 : 1, kRight = 1 - kLeft;
+  const UInt t00 = deinterleave<kLeft>(b0, b1), t10 = deinterleave<kRight>(b0, b1);
+  const UInt t01 = deinterleave<kLeft>(u0, u1), t11 = deinterleave<kRight>(u0, u1);
   auto channel = [&](int shift) __attribute__((always_inline)) {
     auto bytes = [&](UInt t) __attribute__((always_inline)) {
       return to_float(to_int((t >> shift) & 0xffu));

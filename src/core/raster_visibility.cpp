@@ -45,16 +45,16 @@ template <DepthFunc kFunc>
 }
 
 // depth_test_passes for 16 lanes: -1 where the test passes, 0 where it fails.
-template <DepthFunc kFunc>
-[[gnu::always_inline]] inline simd::Mask depth_test_passes(simd::Float z, simd::Float stored) {
+template <DepthFunc kFunc, class L>
+[[gnu::always_inline]] inline simd::MaskT<L> depth_test_passes(const simd::FloatT<L>& z, const simd::FloatT<L>& stored) {
   if constexpr (kFunc == DepthFunc::less) return z < stored;
   else if constexpr (kFunc == DepthFunc::equal) return z == stored;
   else if constexpr (kFunc == DepthFunc::lequal) return z <= stored;
   else if constexpr (kFunc == DepthFunc::greater) return z > stored;
   else if constexpr (kFunc == DepthFunc::notequal) return z != stored;
   else if constexpr (kFunc == DepthFunc::gequal) return z >= stored;
-  else if constexpr (kFunc == DepthFunc::always) return simd::splat(-1);
-  return simd::Mask{};
+  else if constexpr (kFunc == DepthFunc::always) return simd::splat<L>(-1);
+  return simd::MaskT<L>{};
 }
 
 // An edge value the strip loop treats as "inside everywhere": far above any offset within a block (|a|, |b| < 2^22,
@@ -67,12 +67,20 @@ inline constexpr std::int32_t kEdgeInside = 1 << 30;
 // depth test and the stores together. Edge values come in 32 bits straight from the triangle's corner for all but
 // huge triangles (kSmallTriangleSpan); a huge one's are classified per block in 64 bits first (exact: outside,
 // inside, or crossing), and an edge that has the whole block inside becomes the constant kEdgeInside.
-// It is written as plain loops, not with the lane types: the loop vectoriser runs after inlining, inside each
-// dispatch clone, and emits that clone's mask instructions, where GCC 12 lowers some lane-type idioms (broadcasts,
-// -1/0 masks) element by element. The coverage is exactly raster_block_coverage's (see Edge for the 32-bit budget).
-template <DepthFunc kFunc, bool kDepthTest>
+// With 256- and 512-bit vectors it is written as plain loops, not with the lane types: the loop vectoriser runs
+// after inlining, inside each dispatch copy, and emits that copy's mask instructions, where GCC 12 lowers some
+// lane-type idioms (broadcasts, -1/0 masks) element by element. With 128-bit vectors GCC 12 leaves those loops
+// scalar (the SSE4.2 copy's pass took 5 times the AVX-512 one's time), and Clang does at every level: there the
+// lane types of the level's layout L do the same tests and arithmetic, in the same order. The coverage is exactly
+// raster_block_coverage's (see Edge for the 32-bit budget).
+template <DepthFunc kFunc, bool kDepthTest, class L>
 [[gnu::always_inline]] inline void raster_triangle_visibility(const TriangleSetup& tri, const RenderState& state,
                                                               const TileWork& work, std::uint32_t ref) {
+#if defined(__clang__)
+  constexpr bool kLanePath = true;
+#else
+  constexpr bool kLanePath = L::parts == 4;
+#endif
   const bool depth_write = kDepthTest && state.depth_write;
   const float offset = state.depth_offset;
   const float origin_x = tri.origin_x, origin_y = tri.origin_y;
@@ -85,9 +93,7 @@ template <DepthFunc kFunc, bool kDepthTest>
     const std::int32_t a0 = step_x[0], b0 = step_y[0], a1 = step_x[1], b1 = step_y[1], a2 = step_x[2], b2 = step_y[2];
     const std::size_t block = scratch_index((bx - work.x0) / kScratchBlock, (by - work.y0) / kScratchBlock);
     unsigned any = 0;
-#if defined(__clang__)
-    simd::Mask passed{};
-#endif
+    [[maybe_unused]] simd::MaskT<L> passed{};
     for (int strip = j0 / 2; strip <= j1 / 2; ++strip) {
       const unsigned bits = static_cast<unsigned>(rect >> (strip * simd::kLanes)) & 0xffffu;
       float* depth = work.scratch->depth + block + static_cast<std::size_t>(strip) * simd::kLanes;
@@ -96,22 +102,21 @@ template <DepthFunc kFunc, bool kDepthTest>
       // Only locals inside the loops: the triangle's fields, read there, might alias the stores through depth[]
       // and triangle[] as far as GCC knows, and that keeps it from vectorising.
       const std::int32_t e0 = base[0] + 2 * strip * b0, e1 = base[1] + 2 * strip * b1, e2 = base[2] + 2 * strip * b2;
-#if defined(__clang__)
-      // Clang keeps the per-lane loops below scalar, and turns the lane types into vector code: the same tests and
-      // arithmetic, in the same order, on 16 lanes at once.
-      {
+      if constexpr (kLanePath) {
         using namespace simd;
-        const Int signs = (e0 + a0 * kLaneX + b0 * kLaneY) | (e1 + a1 * kLaneX + b1 * kLaneY) |
-                          (e2 + a2 * kLaneX + b2 * kLaneY);
-        Mask pass = (((Int{} + static_cast<std::int32_t>(bits)) >> kLaneIndex) & 1) != 0;
+        FACET_LANE_TYPES(L);
+        const Int lane_x = kLaneXT<L>, lane_y = kLaneYT<L>;
+        const Int signs = (e0 + a0 * lane_x + b0 * lane_y) | (e1 + a1 * lane_x + b1 * lane_y) |
+                          (e2 + a2 * lane_x + b2 * lane_y);
+        Mask pass = (((Int{} + static_cast<std::int32_t>(bits)) >> kLaneIndexT<L>) & 1) != 0;
         pass &= signs >= 0;
         Float z{};
         const Float stored = load<Float>(depth);
         if constexpr (kDepthTest) {
-          const Float dx = to_float(kLaneX + bx) + 0.5f - origin_x;
-          const Float dy = to_float(kLaneY + py) + 0.5f - origin_y;
+          const Float dx = to_float(lane_x + bx) + 0.5f - origin_x;
+          const Float dy = to_float(lane_y + py) + 0.5f - origin_y;
           z = plane.at_origin + plane.ddx * dx + plane.ddy * dy + offset;
-          z = select(z < 0.0f, splat(0.0f), select(1.0f < z, splat(1.0f), z));  // as the scalar clamp
+          z = select(z < 0.0f, splat<L>(0.0f), select(1.0f < z, splat<L>(1.0f), z));  // as the scalar clamp
           pass &= depth_test_passes<kFunc>(z, stored);
         }
         if (depth_write) {
@@ -119,8 +124,8 @@ template <DepthFunc kFunc, bool kDepthTest>
           store(depth, simd::blend(pass, z, stored));
         }
         store(triangle, simd::blend(pass, UInt{} + ref, load<UInt>(triangle)));
+        continue;
       }
-#else
       // Branch-free, so that the loops vectorise: bitwise &, selects, and stores of the old value where nothing
       // passes.
       const auto lane_pass = [&](int k, float& z) __attribute__((always_inline)) {
@@ -152,11 +157,8 @@ template <DepthFunc kFunc, bool kDepthTest>
           triangle[k] = lane_pass(k, z) ? ref : triangle[k];
         }
       }
-#endif
     }
-#if defined(__clang__)
-    for (int k = 0; k < simd::kLanes; ++k) any |= static_cast<unsigned>(passed[k]) & 1u;
-#endif
+    if constexpr (kLanePath) any = simd::lane_bits(passed);
     return any;
   };
 
@@ -220,20 +222,20 @@ template <DepthFunc kFunc, bool kDepthTest>
 // Both passes take the depth function as a constant (with_depth_func), so the per-pixel test has no switch inside
 // the loops; the helpers above are inlined into each CPU level's clone.
 void raster_tile_visibility(const RenderState& state, const TileWork& work) {
-  at_cpu_level([&]() __attribute__((always_inline)) {
+  at_cpu_level([&]<class L>(L) __attribute__((always_inline)) {
     with_depth_func(state.depth_test ? state.depth_func : DepthFunc::always,
                     [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
                       for_each_tile_triangle(
                           work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
-                            if (state.depth_test) raster_triangle_visibility<kFunc, true>(tri, state, work, ref);
-                            else raster_triangle_visibility<kFunc, false>(tri, state, work, ref);
+                            if (state.depth_test) raster_triangle_visibility<kFunc, true, L>(tri, state, work, ref);
+                            else raster_triangle_visibility<kFunc, false, L>(tri, state, work, ref);
                           });
                     });
   });
 }
 
 void raster_tile_visibility_multisample(const RenderState& state, const TileWork& work, const TileWork* planes) {
-  at_cpu_level([&]() __attribute__((always_inline)) {
+  at_cpu_level([&]<class L>(L) __attribute__((always_inline)) {
     const int n = work.samples;
     const SamplePattern& pattern = sample_pattern(n);
     with_depth_func(
@@ -241,8 +243,8 @@ void raster_tile_visibility_multisample(const RenderState& state, const TileWork
           for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
             for (int s = 0; s < n; ++s) {
               const TriangleSetup view = at_sample(tri, pattern, s);
-              if (state.depth_test) raster_triangle_visibility<kFunc, true>(view, state, planes[s], ref);
-              else raster_triangle_visibility<kFunc, false>(view, state, planes[s], ref);
+              if (state.depth_test) raster_triangle_visibility<kFunc, true, L>(view, state, planes[s], ref);
+              else raster_triangle_visibility<kFunc, false, L>(view, state, planes[s], ref);
             }
           });
         });

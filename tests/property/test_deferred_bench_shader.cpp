@@ -34,7 +34,8 @@ struct ScalarBenchShader {
 
 // The benchmark shader with prefetch_lanes: strips are prepared kPrefetchDistance strips before they are shaded.
 struct PrefetchingBenchShader : bench::BenchShader {
-  FACET_LANES_INLINE void prefetch_lanes(const FragmentLanes<Varyings>& f) const {
+  template <class L>
+  FACET_LANES_INLINE void prefetch_lanes(const FragmentLanes<Varyings, L>& f) const {
     texture->prefetch_lanes(f.get(&Varyings::uv), sampler);
   }
 };

@@ -17,6 +17,7 @@
 #include "facet/demo_scenes.hpp"
 #include "facet/names.hpp"
 #include "facet/render_job.hpp"
+#include "facet/shaders/stock.hpp"
 #include "job/job_frame.hpp"
 #include "scene/texture/image_decode.hpp"
 #include "support/scratch_dir.hpp"
@@ -145,6 +146,14 @@ int compare_goldens(const std::string& level) {
 }
 
 TEST(Goldens, TheJobLayerDrawsEveryGoldenExactly) { EXPECT_GE(compare_goldens(cpu_level()), 25); }
+
+// Every stock lane shader is a template on the lane layout, so each CPU level's copy runs it in its own registers
+// (and the test below compares what the layouts draw).
+template <class... S>
+constexpr bool per_level_lanes = (ShaderTraits<S>::fragment_lanes_per_level && ...);
+static_assert(per_level_lanes<UnlitShader, FlatShader, GouraudShader, SurfaceShader, UntexturedSurfaceShader,
+                              NormalShader, DepthShader, EnvironmentBackgroundShader, PbrShader, UntexturedPbrShader,
+                              TangentPbrShader>);
 
 // Every CPU level this machine and build can run draws the same bytes: the goldens again at each level below the
 // active one (the best there is, unless FACET_CPU caps it).

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <limits>
 
 #include <glm/glm.hpp>
@@ -76,6 +77,48 @@ TEST(SimdConversions, BitCastKeepsBitsAndConversionsKeepValues) {
     EXPECT_EQ(static_cast<std::uint32_t>(k - 8), wrapped[k]) << "lane " << k;
     EXPECT_EQ(k - 8, again[k]) << "lane " << k;
   }
+}
+
+// Every layout holds the same 16 lanes in the same bytes, and each operation gives, lane for lane, what the whole
+// layout gives: the lane moves (quads, deinterleaving), masks and their bits, conversions and the maths.
+template <class L>
+void expect_layout_matches_whole() {
+  SCOPED_TRACE(L::parts);
+  const simd::Vec3 whole = awkward_lanes();
+  simd::Vec3T<L> v;
+  std::memcpy(v.x.part, whole.x.part, sizeof v.x.part);
+  std::memcpy(v.y.part, whole.y.part, sizeof v.y.part);
+  std::memcpy(v.z.part, whole.z.part, sizeof v.z.part);
+  const auto same = [](const auto& expected, const auto& actual, const char* what) {
+    for (int k = 0; k < simd::kLanes; ++k)
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(expected[k]), std::bit_cast<std::uint32_t>(actual[k]))
+          << what << ", lane " << k;
+  };
+  same(simd::quad_top_left(whole.x), simd::quad_top_left(v.x), "quad_top_left");
+  same(simd::quad_top_right(whole.x), simd::quad_top_right(v.x), "quad_top_right");
+  same(simd::quad_bottom_left(whole.x), simd::quad_bottom_left(v.x), "quad_bottom_left");
+  const simd::UInt a = simd::bit_cast<simd::UInt>(whole.y), b = simd::bit_cast<simd::UInt>(whole.z);
+  const simd::UIntT<L> al = simd::bit_cast<simd::UIntT<L>>(v.y), bl = simd::bit_cast<simd::UIntT<L>>(v.z);
+  same(simd::deinterleave<0>(a, b), simd::deinterleave<0>(al, bl), "even lanes");
+  same(simd::deinterleave<1>(a, b), simd::deinterleave<1>(al, bl), "odd lanes");
+  EXPECT_EQ(simd::lane_bits(whole.x < whole.y), simd::lane_bits(v.x < v.y));
+  EXPECT_EQ(simd::lane_bits(whole.x == whole.x), simd::lane_bits(v.x == v.x));  // NaN lanes clear
+  same(simd::kLaneIndex, simd::kLaneIndexT<L>, "lane index");
+  same(simd::normalize(whole).y, simd::normalize(v).y, "normalize");
+  same(simd::dot(whole, glm::vec3(0.4f, -0.7f, 0.6f)), simd::dot(v, glm::vec3(0.4f, -0.7f, 0.6f)), "dot");
+  same(simd::floor(whole.z), simd::floor(v.z), "floor");
+  same(simd::clamp(whole.x, 0.0f, 1.0f), simd::clamp(v.x, 0.0f, 1.0f), "clamp");
+  same(simd::truncate(simd::clamp(whole.y, -1e6f, 1e6f)), simd::truncate(simd::clamp(v.y, -1e6f, 1e6f)), "truncate");
+  same(simd::blend(whole.x < whole.z, whole.y, whole.z), simd::blend(v.x < v.z, v.y, v.z), "blend");
+  same(simd::pack_rgba8(simd::Color{whole.x, whole.y, whole.z, simd::splat(0.5f)}),
+       simd::pack_rgba8(simd::ColorT<L>{v.x, v.y, v.z, simd::splat<L>(0.5f)}), "pack_rgba8");
+  const float table[simd::kLanes] = {3, 1, 4, 1, 5, 9, 2, 6, 5, 3, 5, 8, 9, 7, 9, 3};
+  same(simd::gather(table, (simd::kLaneIndex * 7) & 15), simd::gather(table, (simd::kLaneIndexT<L> * 7) & 15), "gather");
+}
+
+TEST(SimdLayouts, HalvesAndQuartersMatchTheWholeLayout) {
+  expect_layout_matches_whole<simd::Halves>();
+  expect_layout_matches_whole<simd::Quarters>();
 }
 
 #pragma GCC diagnostic pop

@@ -2,7 +2,10 @@
 #pragma once
 
 #include <atomic>
+#include <type_traits>
 #include <utility>
+
+#include "facet/simd.hpp"
 
 namespace facet::detail {
 
@@ -39,39 +42,105 @@ int find_cpu_level();                 // src/core/cpu_level.cpp
 
 namespace facet::detail {
 
-// kSse4Copy false leaves out the SSE4.2 copy: that level then runs the baseline's (see at_shader_level).
-template <bool kSse4Copy = true, class Body>
+// The lane layout (simd.hpp) of each level's copy of a shader's stages: one 512-bit vector per lane value with
+// AVX-512, two 256-bit ones with AVX2, four 128-bit ones below and off x86-64 (SSE, NEON, WebAssembly SIMD). A
+// shader whose lane hooks are not templates on the layout has the whole layout at every level (kPerLevel false).
+template <bool kPerLevel>
+using Avx512Layout = simd::Whole;
+template <bool kPerLevel>
+using Avx2Layout = std::conditional_t<kPerLevel, simd::Halves, simd::Whole>;
+template <bool kPerLevel>
+using BaselineLayout = std::conditional_t<kPerLevel, simd::Quarters, simd::Whole>;
+
+// body(L{}) if the body takes the lane layout, else body().
+template <class L, class Body>
+[[gnu::always_inline]] inline decltype(auto) call_with_layout(Body& body) {
+  if constexpr (std::is_invocable_v<Body&, L>) return body(L{});
+  else return body();
+}
+
+// body() (or body(layout), with the level's lane layout) compiled for the active level.
+template <class Body>
 [[gnu::always_inline]] inline decltype(auto) at_cpu_level(Body&& body) {
 #if defined(FACET_DISPATCH_X86)
   switch (active_cpu_level()) {
 #if !defined(FACET_DISPATCH_NO_V4)
     case CpuLevel::avx512:
-      return [&]() __attribute__((target("arch=x86-64-v4"), noinline)) { return body(); }();
+      return [&]() __attribute__((target("arch=x86-64-v4"), noinline)) {
+        return call_with_layout<Avx512Layout<true>>(body);
+      }();
 #else
     case CpuLevel::avx512:
 #endif
     case CpuLevel::avx2:
-      return [&]() __attribute__((target("arch=x86-64-v3"), noinline)) { return body(); }();
+      return [&]() __attribute__((target("arch=x86-64-v3"), noinline)) {
+        return call_with_layout<Avx2Layout<true>>(body);
+      }();
     case CpuLevel::sse4:
-      if constexpr (kSse4Copy) return [&]() __attribute__((target("arch=x86-64-v2"), noinline)) { return body(); }();
-      break;
+      return [&]() __attribute__((target("arch=x86-64-v2"), noinline)) {
+        return call_with_layout<BaselineLayout<true>>(body);
+      }();
     case CpuLevel::baseline:
       break;
   }
-  return [&]() __attribute__((noinline)) { return body(); }();
+  return [&]() __attribute__((noinline)) { return call_with_layout<BaselineLayout<true>>(body); }();
 #else
-  return std::forward<Body>(body)();
+  return call_with_layout<BaselineLayout<true>>(body);
 #endif
 }
 
-// at_cpu_level for the stages compiled once per shader (the tile loops, shade_lanes, the vertex stage), without an
-// SSE4.2 copy: the SSE4.2 level runs their baseline copy, and its own copies of everything else (set-up,
-// visibility, clears). Below AVX-512 their 16-lane values live in memory, where SSE4.2's instructions gained 2-4% a
-// frame over the baseline's (docs/PERFORMANCE.md, "Every CPU level"): not worth a fourth copy of every shader's
-// pipeline, a quarter of its compile time.
-template <class Body>
+// at_cpu_level for the stages compiled once per shader (the tile loops, shade_lanes, the vertex stage): body(layout)
+// runs with the active level's lane layout. There is no SSE4.2 copy: the SSE4.2 level runs the baseline copy, and its
+// own copies of everything else (set-up, visibility, clears). SSE4.2's instructions gained 2-4% a frame over the
+// baseline's (docs/PERFORMANCE.md, "Every CPU level"): not worth a fourth copy of every shader's pipeline, a quarter
+// of its compile time.
+template <bool kPerLevel, class Body>
 [[gnu::always_inline]] inline decltype(auto) at_shader_level(Body&& body) {
-  return at_cpu_level<false>(std::forward<Body>(body));
+#if defined(FACET_DISPATCH_X86)
+  switch (active_cpu_level()) {
+#if !defined(FACET_DISPATCH_NO_V4)
+    case CpuLevel::avx512:
+      return [&]() __attribute__((target("arch=x86-64-v4"), noinline)) {
+        return body(Avx512Layout<kPerLevel>{});
+      }();
+#else
+    case CpuLevel::avx512:
+#endif
+    case CpuLevel::avx2:
+      return [&]() __attribute__((target("arch=x86-64-v3"), noinline)) { return body(Avx2Layout<kPerLevel>{}); }();
+    case CpuLevel::sse4:
+    case CpuLevel::baseline:
+      break;
+  }
+  return [&]() __attribute__((noinline)) { return body(BaselineLayout<kPerLevel>{}); }();
+#else
+  return std::forward<Body>(body)(BaselineLayout<kPerLevel>{});
+#endif
+}
+
+// body() in the copy of the level whose layout L is, for a stage that is handed lane values of layout L by a caller
+// already inside that level's copy (shade_lanes). With kPerLevel false every level has the whole layout, and the
+// active level picks the copy.
+template <bool kPerLevel, class L, class Body>
+[[gnu::always_inline]] inline decltype(auto) at_layout_level(Body&& body) {
+  if constexpr (!kPerLevel) {
+    return at_shader_level<false>([&](L) __attribute__((always_inline)) { return body(); });
+  } else {
+#if defined(FACET_DISPATCH_X86)
+#if !defined(FACET_DISPATCH_NO_V4)
+    if constexpr (std::is_same_v<L, Avx512Layout<true>>)
+      return [&]() __attribute__((target("arch=x86-64-v4"), noinline)) { return body(); }();
+    else
+#endif
+    if constexpr (std::is_same_v<L, Avx2Layout<true>>)
+      return [&]() __attribute__((target("arch=x86-64-v3"), noinline)) { return body(); }();
+    else
+#endif
+    {
+      static_assert(std::is_same_v<L, BaselineLayout<true>>);
+      return [&]() __attribute__((noinline)) { return body(); }();
+    }
+  }
 }
 
 }  // namespace facet::detail

@@ -87,7 +87,7 @@ inline unsigned strip_inside(const TileWork& work, int px, int py) {
   using namespace simd;
 #if defined(__clang__)
   // Clang folds shuffle()'s loop into a shuffle only when it sees literal lane numbers.
-  const native::UInt r = refs.native;
+  const native::UInt r = refs.part[0];
   const UInt left = __builtin_shufflevector(r, r, 15, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14);
   const UInt above = __builtin_shufflevector(r, r, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 4, 5, 6, 7);
 #else
@@ -108,39 +108,46 @@ inline const TriangleSetup& triangle_at(const TileWork& work, std::uint32_t ref)
 // prepare_strip_lanes interpolates (the strip has at least one triangle), finish_strip_lanes shades and stores.
 // `depth`, when not null, is the strip's depth as the visibility pass wrote it: each lane's is then already its
 // triangle's window depth, computed by the same operations, and is not interpolated again.
-template <LaneShader S>
+template <LaneShader S, class L>
 [[gnu::always_inline]] inline void prepare_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px, int py,
                                                        const std::uint32_t* refs, const float* depth,
-                                                       FragmentLanes<typename S::Varyings>& fragment) {
+                                                       FragmentLanes<typename S::Varyings, L>& fragment) {
   using namespace simd;
+  using Float = FloatT<L>;
+  using UInt = UIntT<L>;
+  using Mask = MaskT<L>;
   using Varyings = typename S::Varyings;
   constexpr std::size_t kFloats = float_count_v<Varyings>;
-  fragment.screen_x = to_float(kLaneX + px) + 0.5f;
-  fragment.screen_y = to_float(kLaneY + py) + 0.5f;
+  fragment.screen_x = to_float(kLaneXT<L> + px) + 0.5f;
+  fragment.screen_y = to_float(kLaneYT<L> + py) + 0.5f;
   const float offset = ctx.state->depth_offset;
   // kFirst: the strip's first triangle fills every lane, so that none is left unset; later ones blend theirs in.
   const UInt strip_refs = load<UInt>(refs);
+#if defined(__clang__)
+  constexpr bool kBlendLanes = true;
+#else
+  constexpr bool kBlendLanes = L::parts == 4;
+#endif
   const auto interpolate = [&]<bool kFirst>(std::uint32_t ref) __attribute__((always_inline)) {
     const TriangleSetup& tri = triangle_at(work, ref);
-    // The lanes of this triangle take its value. A plain loop over the lanes, for the vectoriser (as
-    // strip_lanes_equal): each level compiles it to one compare per triangle and one masked move or blend per slot,
-    // which the AVX-512 copy folds into the value's last addition. GCC 12 lowers `mask ? a : b` on the lane types
-    // lane by lane here, and a bitwise blend costs two instructions (AVX-512) or three per half (AVX2).
+    // The lanes of this triangle take its value. With 256- and 512-bit vectors, a plain loop over the lanes, for the
+    // vectoriser (as strip_lanes_equal): each level compiles it to one compare per triangle and one masked move or
+    // blend per slot, which the AVX-512 copy folds into the value's last addition (GCC 12 lowers `mask ? a : b` on
+    // the lane types lane by lane here, and a bitwise blend costs two instructions, or three per half). With
+    // 128-bit vectors GCC 12 leaves that loop scalar, and Clang does at every level: there, the lane types' bitwise
+    // blend.
     const auto put = [&](auto& slot, const auto& value) __attribute__((always_inline)) {
       if constexpr (kFirst) {
         slot = value;
-      } else {
-#if defined(__clang__)
-        // Clang keeps the loop below scalar; the lane types' bitwise blend is the same choice, in vector code.
+      } else if constexpr (kBlendLanes) {
         slot = simd::blend(strip_refs == ref, value, slot);
-#else
-        // On the bare vectors: the vectoriser keeps the lane types' element reads in memory.
+      } else {
+        // On the lanes' bytes: the vectoriser keeps the lane types' element reads in memory.
         using Lane = typename std::remove_reference_t<decltype(slot)>::scalar_type;
-        Lane* lanes = reinterpret_cast<Lane*>(&slot.native);
-        const auto values = value.native;
+        Lane* lanes = reinterpret_cast<Lane*>(slot.part);
+        const Lane* values = reinterpret_cast<const Lane*>(value.part);
 #pragma GCC unroll 1
         for (int k = 0; k < kLanes; ++k) lanes[k] = refs[k] == ref ? values[k] : lanes[k];
-#endif
       }
     };
     const Float dx = fragment.screen_x - tri.origin_x, dy = fragment.screen_y - tri.origin_y;
@@ -163,13 +170,13 @@ template <LaneShader S>
       put(fragment.varyings[f], value);
       if constexpr (ShaderTraits<S>::needs_derivatives) {
         // Coarse derivatives: within each 2x2 quad, right minus left and bottom minus top of the top-left pixel.
-        const Float origin = quad_broadcast(value, kQuadTopLeft);
-        put(fragment.ddx[f], quad_broadcast(value, kQuadTopRight) - origin);
-        put(fragment.ddy[f], quad_broadcast(value, kQuadBottomLeft) - origin);
+        const Float origin = quad_top_left(value);
+        put(fragment.ddx[f], quad_top_right(value) - origin);
+        put(fragment.ddy[f], quad_bottom_left(value) - origin);
       }
     }
   };
-  const unsigned starts = strip_triangle_starts(strip_refs);
+  const unsigned starts = strip_triangle_starts(load<simd::UInt>(refs));
   interpolate.template operator()<true>(refs[std::countr_zero(starts)]);
   for (unsigned rest = starts & (starts - 1); rest; rest &= rest - 1)
     interpolate.template operator()<false>(refs[std::countr_zero(rest)]);
@@ -181,38 +188,38 @@ template <LaneShader S>
 // of its pipeline's code, and this way it is compiled once per CPU level, not once per path that shades strips
 // (single-sampled, with prefetching, multisampled). One call per 16 pixels costs nothing measurable. It takes and
 // gives memory, not lane values, whose registers differ between the CPU levels' copies.
-template <LaneShader S>
-__attribute__((noinline)) void shade_lanes(const S& shader, const FragmentLanes<typename S::Varyings>& fragment,
+template <LaneShader S, class L>
+__attribute__((noinline)) void shade_lanes(const S& shader, const FragmentLanes<typename S::Varyings, L>& fragment,
                                            std::uint32_t* colors) {
-  at_shader_level([&]() __attribute__((always_inline)) {
+  at_layout_level<ShaderTraits<S>::fragment_lanes_per_level, L>([&]() __attribute__((always_inline)) {
     simd::store(colors, simd::pack_rgba8(shader.fragment_lanes(fragment)));
   });
 }
 
 // The prepared strip's 16 colours; lanes without a triangle take the clear colour (stored only where a fill asks).
-template <LaneShader S>
+template <LaneShader S, class L>
 [[gnu::always_inline]] inline void shade_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work,
-                                                     const FragmentLanes<typename S::Varyings>& fragment,
+                                                     const FragmentLanes<typename S::Varyings, L>& fragment,
                                                      std::uint32_t* colors) {
+  using UInt = simd::UIntT<L>;
   alignas(64) std::uint32_t shaded[simd::kLanes];
   shade_lanes(*ctx.shader, fragment, shaded);
-  simd::store(colors,
-              simd::blend(fragment.active, simd::load<simd::UInt>(shaded), simd::UInt{} + work.clear.color_value));
+  simd::store(colors, simd::blend(fragment.active, simd::load<UInt>(shaded), UInt{} + work.clear.color_value));
 }
 
-template <LaneShader S>
+template <LaneShader S, class L>
 [[gnu::always_inline]] inline void finish_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px, int py,
                                                       unsigned covered, unsigned fill,
-                                                      const FragmentLanes<typename S::Varyings>& fragment) {
+                                                      const FragmentLanes<typename S::Varyings, L>& fragment) {
   alignas(64) std::uint32_t colors[simd::kLanes];
   shade_strip_lanes(ctx, work, fragment, colors);
   store_strip(work, px, py, covered | fill, colors);
 }
 
 // A strip prepared ahead of its shading, for shaders that prefetch.
-template <Shader S>
+template <Shader S, class L>
 struct PreparedStrip {
-  FragmentLanes<typename S::Varyings> fragment;
+  FragmentLanes<typename S::Varyings, L> fragment;
   int px, py;
   unsigned covered, fill;
 };
@@ -289,8 +296,9 @@ inline void fence_streamed_depth(const TileWork& work) {
 #endif
 }
 
-template <Shader S>
-[[gnu::always_inline]] inline void raster_tile_deferred(const ShadeContext<S>& ctx, const TileWork& work) {
+// L: the lane layout of this CPU level's copy (detail/dispatch.hpp).
+template <Shader S, class L>
+[[gnu::always_inline]] inline void raster_tile_deferred(const ShadeContext<S>& ctx, const TileWork& work, L) {
   const RenderState& state = *ctx.state;
   TileScratch& scratch = *work.scratch;
   const int width = work.x1 - work.x0, height = work.y1 - work.y0;
@@ -304,7 +312,7 @@ template <Shader S>
   RenderState resolved = state;
   resolved.depth_test = false;
   const ShadeContext<S> shade{ctx.shader, &resolved};
-  [[maybe_unused]] std::conditional_t<ShaderTraits<S>::prefetch_lanes, PreparedStrip<S>[kPrefetchDistance], char> ahead;
+  [[maybe_unused]] std::conditional_t<ShaderTraits<S>::prefetch_lanes, PreparedStrip<S, L>[kPrefetchDistance], char> ahead;
   [[maybe_unused]] unsigned prepared = 0;
   for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
     for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
@@ -320,7 +328,7 @@ template <Shader S>
         if (!covered) continue;
         if constexpr (ShaderTraits<S>::prefetch_lanes) {
           // Shade the strip prepared kPrefetchDistance strips ago, then prepare this one in its slot.
-          PreparedStrip<S>& slot = ahead[prepared % kPrefetchDistance];
+          PreparedStrip<S, L>& slot = ahead[prepared % kPrefetchDistance];
           if (prepared >= kPrefetchDistance)
             finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
           prepare_strip_lanes(shade, work, px, py, refs, depth, slot.fragment);
@@ -328,7 +336,7 @@ template <Shader S>
           ctx.shader->prefetch_lanes(slot.fragment);
           ++prepared;
         } else if constexpr (ShaderTraits<S>::fragment_lanes) {
-          FragmentLanes<typename S::Varyings> fragment;
+          FragmentLanes<typename S::Varyings, L> fragment;
           prepare_strip_lanes(shade, work, px, py, refs, depth, fragment);
           finish_strip_lanes(shade, work, px, py, covered, fill, fragment);
         } else {
@@ -343,7 +351,7 @@ template <Shader S>
       }
   if constexpr (ShaderTraits<S>::prefetch_lanes)
     for (unsigned n = prepared > kPrefetchDistance ? prepared - kPrefetchDistance : 0; n < prepared; ++n) {
-      const PreparedStrip<S>& slot = ahead[n % kPrefetchDistance];
+      const PreparedStrip<S, L>& slot = ahead[n % kPrefetchDistance];
       finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
     }
 

@@ -87,8 +87,10 @@ template <Shader S>
 // of its first sample still waiting; other shaders shade the samples in order, each copying the colours of an
 // earlier sample's triangles and shading only the triangles new to the pixel. Inside a triangle that is one shading
 // per pixel; on an edge, one per triangle meeting there.
-template <Shader S>
-[[gnu::always_inline]] inline void raster_tile_deferred_multisample(const ShadeContext<S>& ctx, const TileWork& work) {
+// L: the lane layout of this CPU level's copy (detail/dispatch.hpp).
+template <Shader S, class L>
+[[gnu::always_inline]] inline void raster_tile_deferred_multisample(const ShadeContext<S>& ctx, const TileWork& work,
+                                                                    L) {
   const RenderState& state = *ctx.state;
   const int n = work.samples;
   TileWork planes[kMaxSamples];
@@ -136,7 +138,7 @@ template <Shader S>
           if (simd::lane_bits(differ != 0u) == 0) {
             const unsigned fill = inside & ~covered[0];
             if (covered[0]) {
-              FragmentLanes<typename S::Varyings> fragment;
+              FragmentLanes<typename S::Varyings, L> fragment;
               prepare_strip_lanes(shade, planes[0], px, py, refs[0], nullptr, fragment);
               alignas(64) std::uint32_t strip_colors[simd::kLanes];
               shade_strip_lanes(shade, work, fragment, strip_colors);
@@ -152,7 +154,7 @@ template <Shader S>
               own_refs = simd::blend(lanes_of(pending[s]), simd::load<simd::UInt>(refs[s]), own_refs);
             alignas(64) std::uint32_t own[simd::kLanes];
             simd::store(own, own_refs);
-            FragmentLanes<typename S::Varyings> fragment;
+            FragmentLanes<typename S::Varyings, L> fragment;
             prepare_strip_lanes(shade, planes[0], px, py, own, nullptr, fragment);
             alignas(64) std::uint32_t own_colors[simd::kLanes];
             shade_lanes(*ctx.shader, fragment, own_colors);

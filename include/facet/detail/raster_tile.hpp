@@ -20,13 +20,13 @@ bool shades_deferred(const RenderState& state) {
 // The whole per-tile loop, with coverage, interpolation and the shader inlined into it, is compiled once per CPU
 // level (x86-64-v4 with AVX-512, v3 with AVX2 and FMA, and the baseline, which the SSE4.2 level runs too: see
 // at_shader_level) and the active level's copy runs (detail/dispatch.hpp), so one binary runs everywhere and the
-// 16-lane shading path uses the widest vectors the CPU has.
+// 16-lane shading path uses the registers the CPU has, in its lane layout.
 template <Shader S>
 void raster_tile(const void* draw, const TileWork& work) {
-  at_shader_level([&]() __attribute__((always_inline)) {
+  at_shader_level<ShaderTraits<S>::fragment_lanes_per_level>([&](auto layout) __attribute__((always_inline)) {
     const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
     if (shades_deferred<S>(*ctx.state)) {
-      raster_tile_deferred(ctx, work);
+      raster_tile_deferred(ctx, work, layout);
       return;
     }
     for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
@@ -40,10 +40,10 @@ void raster_tile(const void* draw, const TileWork& work) {
 // loops (a frame of sphere:224 took four times as long).
 template <Shader S>
 void raster_tile_multisample(const void* draw, const TileWork& work) {
-  at_shader_level([&]() __attribute__((always_inline)) {
+  at_shader_level<ShaderTraits<S>::fragment_lanes_per_level>([&](auto layout) __attribute__((always_inline)) {
     const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
     if (shades_deferred<S>(*ctx.state)) {
-      raster_tile_deferred_multisample(ctx, work);
+      raster_tile_deferred_multisample(ctx, work, layout);
     } else {
       for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
         raster_triangle_multisample(ctx, tri, work);

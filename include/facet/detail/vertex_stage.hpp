@@ -61,7 +61,7 @@ struct VertexSource {
   // The shader runs on 16 vertices per call if it has vertex_lanes, else on one; each block's clip positions are
   // then projected together (see ClipBlock). Compiled per CPU level like raster_tile, for the lane types.
   static void shade(const void* source, std::size_t begin, std::size_t end, const VertexOutputs& out) {
-    at_shader_level([&]() __attribute__((always_inline)) {
+    at_shader_level<ShaderTraits<S>::vertex_lanes_per_level>([&]<class L>(L) __attribute__((always_inline)) {
       using Varyings = typename S::Varyings;
       constexpr std::size_t kFloats = float_count_v<Varyings>;
       const auto& self = *static_cast<const VertexSource*>(source);
@@ -71,7 +71,8 @@ struct VertexSource {
         std::size_t k = 0;
         if constexpr (ShaderTraits<S>::vertex_lanes) {
           for (; k + simd::kLanes <= count; k += simd::kLanes) {
-            const VertexOutLanes<Varyings> shaded = self.shader->vertex_lanes({self.vertices + first + k});
+            const VertexOutLanes<Varyings, L> shaded =
+                self.shader->vertex_lanes(VertexLanes<typename S::Vertex, L>{self.vertices + first + k});
             simd::store(block.x + k, shaded.clip_x), simd::store(block.y + k, shaded.clip_y);
             simd::store(block.z + k, shaded.clip_z), simd::store(block.w + k, shaded.clip_w);
             float* varyings = out.varyings + (first + k - out.first) * kFloats;

@@ -19,7 +19,7 @@ enum class ToneMapping {
 
 namespace facet::brdf {
 
-// Every function below is a template on F, float for one pixel or simd::Float for 16, built from the same
+// Every function below is a template on F, float for one pixel or simd::FloatT for 16, built from the same
 // operations in the same order, so that a shader's scalar and lane paths give identical images. Only exact IEEE
 // operations are used (+, -, *, /, sqrt, comparisons), so every CPU and the browser round alike.
 
@@ -29,7 +29,7 @@ FACET_LANES_INLINE F constant(float v) {
   if constexpr (std::is_same_v<F, float>) {
     return v;
   } else {
-    return simd::splat(v);
+    return simd::splat<typename F::layout>(v);
   }
 }
 inline float select(bool m, float a, float b) { return m ? a : b; }

@@ -13,10 +13,19 @@ namespace facet::brdf {
 // (__builtin_bit_cast: the browser build's standard library has no std::bit_cast.)
 inline float from_bits(std::int32_t bits) { return __builtin_bit_cast(float, bits); }
 inline std::int32_t to_bits(float v) { return __builtin_bit_cast(std::int32_t, v); }
-FACET_LANES_INLINE simd::Float from_bits(const simd::Int& bits) { return simd::bit_cast<simd::Float>(bits); }
-FACET_LANES_INLINE simd::Int to_bits(const simd::Float& v) { return simd::bit_cast<simd::Int>(v); }
+template <class L>
+FACET_LANES_INLINE simd::FloatT<L> from_bits(const simd::IntT<L>& bits) {
+  return simd::bit_cast<simd::FloatT<L>>(bits);
+}
+template <class L>
+FACET_LANES_INLINE simd::IntT<L> to_bits(const simd::FloatT<L>& v) {
+  return simd::bit_cast<simd::IntT<L>>(v);
+}
 inline std::int32_t to_int(float v) { return static_cast<std::int32_t>(v); }
-FACET_LANES_INLINE simd::Int to_int(const simd::Float& v) { return simd::truncate(v); }
+template <class L>
+FACET_LANES_INLINE simd::IntT<L> to_int(const simd::FloatT<L>& v) {
+  return simd::truncate(v);
+}
 
 // 2^x = 2^i 2^f with i = floor(x) and f in [0, 1): 2^i built in the exponent's bits, 2^f by its Taylor series
 // in f ln 2 (degree 7). x is clamped to [-126, 127], where both are normal floats.

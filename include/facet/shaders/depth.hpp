@@ -33,11 +33,13 @@ struct DepthShader {
   }
   // fragment() for 16 pixels at once, identical lane for lane (std::clamp's comparisons, in its order).
   static constexpr bool lanes_read_primitive = false;
-  FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> fragment_lanes(const FragmentLanes<Varyings, L>& f) const {
     using namespace simd;
-    const Float t = far > near ? (f.get(&Varyings::eye_depth) - near) / (far - near) : splat(0.0f);
-    const Float grey = 1.0f - select(t < 0.0f, splat(0.0f), select(1.0f < t, splat(1.0f), t));
-    return {grey, grey, grey, splat(1.0f)};
+    FACET_LANE_TYPES(L);
+    const Float t = far > near ? (f.get(&Varyings::eye_depth) - near) / (far - near) : splat<L>(0.0f);
+    const Float grey = 1.0f - select(t < 0.0f, splat<L>(0.0f), select(1.0f < t, splat<L>(1.0f), t));
+    return {grey, grey, grey, splat<L>(1.0f)};
   }
 };
 

@@ -49,11 +49,13 @@ struct EnvironmentBackgroundShader {
   }
 
   // fragment() for 16 pixels, the same operations in the same order.
-  FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> fragment_lanes(const FragmentLanes<Varyings, L>& f) const {
     using namespace simd;
-    const Vec3 l = environment->radiance(normalize(f.get(&Varyings::direction)), splat(blur));
+    FACET_LANE_TYPES(L);
+    const Vec3 l = environment->radiance(normalize(f.get(&Varyings::direction)), splat<L>(blur));
     const brdf::Rgb<Float> c = PbrShader::encode(brdf::tone_map(brdf::Rgb<Float>{l.x, l.y, l.z}, tone_mapping, exposure));
-    return {c.r, c.g, c.b, splat(1.0f)};
+    return {c.r, c.g, c.b, splat<L>(1.0f)};
   }
 };
 

@@ -28,8 +28,10 @@ struct FlatShader : LitUniforms {
 
   // fragment() for 16 pixels at once, the same operations in the same order, so both give identical images: each
   // lane's face normal times normal_from_object, summed as glm's matrix product sums, then normalised.
-  FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> fragment_lanes(const FragmentLanes<Varyings, L>& f) const {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     alignas(kLaneAlign) float x[kLanes], y[kLanes], z[kLanes];
     for (int k = 0; k < kLanes; ++k) {
       const glm::vec3 face = face_normals[f.primitive[k]];

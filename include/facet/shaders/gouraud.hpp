@@ -34,8 +34,10 @@ struct GouraudShader : LitUniforms {
   }
 
   // fragment() for 16 pixels at once, the same operations in the same order, so both give identical images.
-  FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> fragment_lanes(const FragmentLanes<Varyings, L>& f) const {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     const Color base = albedo_lanes(f);
     const Mask back = back_lanes(f.front_facing);
     const Vec3 d = f.get(&Varyings::diffuse), back_d = f.get(&Varyings::back_diffuse);

@@ -45,26 +45,28 @@ struct LitUniforms {
   }
 
   // albedo() for 16 pixels (SurfaceColor::albedo_lanes).
-  template <class V>
-  FACET_LANES_INLINE simd::Color albedo_lanes(const FragmentLanes<V>& f) const {
+  template <class V, class L>
+  FACET_LANES_INLINE simd::ColorT<L> albedo_lanes(const FragmentLanes<V, L>& f) const {
     return surface.albedo_lanes(f);
   }
 
   // shade() for 16 pixels, the same operations in the same order as light_terms() and shade_lit(), so both give
   // identical images; the specular pow() is taken lane by lane with std::pow.
-  FACET_LANES_INLINE simd::Color shade_lanes(const simd::Color& albedo, const simd::Vec3& n,
-                                             const simd::Vec3& world) const {
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> shade_lanes(const simd::ColorT<L>& albedo, const simd::Vec3T<L>& n,
+                                                 const simd::Vec3T<L>& world) const {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     const Vec3 v = normalize(eye - world);
     const bool with_specular = specular != glm::vec3(0.0f);
-    Vec3 diffuse{splat(lights.ambient.x), splat(lights.ambient.y), splat(lights.ambient.z)};
-    Vec3 highlight{splat(0.0f), splat(0.0f), splat(0.0f)};
+    Vec3 diffuse{splat<L>(lights.ambient.x), splat<L>(lights.ambient.y), splat<L>(lights.ambient.z)};
+    Vec3 highlight{splat<L>(0.0f), splat<L>(0.0f), splat<L>(0.0f)};
     for (int i = 0; i < lights.count; ++i) {
       const glm::vec4 vk = lights.vector_kind[static_cast<std::size_t>(i)];
-      const Vec3 l = vk.w == 0.0f ? Vec3{splat(vk.x), splat(vk.y), splat(vk.z)} : normalize(glm::vec3(vk) - world);
+      const Vec3 l = vk.w == 0.0f ? Vec3{splat<L>(vk.x), splat<L>(vk.y), splat<L>(vk.z)} : normalize(glm::vec3(vk) - world);
       const Float n_dot_l = dot(n, l);
       const glm::vec3 c = lights.color[static_cast<std::size_t>(i)];
-      const Float lambert = select(n_dot_l < 0.0f, splat(0.0f), n_dot_l);  // std::max(n_dot_l, 0.0f)
+      const Float lambert = select(n_dot_l < 0.0f, splat<L>(0.0f), n_dot_l);  // std::max(n_dot_l, 0.0f)
       diffuse = diffuse + Vec3{lambert * c.x, lambert * c.y, lambert * c.z};
       if (!with_specular) continue;
       Float s;
@@ -74,7 +76,7 @@ struct LitUniforms {
       } else {
         s = dot(n, normalize(l + v));
       }
-      s = select(s < 0.0f, splat(0.0f), s);
+      s = select(s < 0.0f, splat<L>(0.0f), s);
       for (int k = 0; k < kLanes; ++k) s[k] = std::pow(s[k], shininess);
       highlight = highlight + Vec3{s * c.x, s * c.y, s * c.z};
     }
@@ -83,7 +85,8 @@ struct LitUniforms {
   }
 
   // The lanes whose surface is lit from behind: front_side() is false there.
-  FACET_LANES_INLINE simd::Mask back_lanes(const simd::Mask& front_facing) const {
+  template <class L>
+  FACET_LANES_INLINE simd::MaskT<L> back_lanes(const simd::MaskT<L>& front_facing) const {
     return transforms.mirrored ? front_facing : ~front_facing;
   }
 };

@@ -26,9 +26,10 @@ struct NormalShader {
   }
   // fragment() for 16 pixels at once, identical lane for lane.
   static constexpr bool lanes_read_primitive = false;
-  FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
-    const simd::Vec3 n = simd::normalize(f.get(&Varyings::normal));
-    return {n.x * 0.5f + 0.5f, n.y * 0.5f + 0.5f, n.z * 0.5f + 0.5f, simd::splat(1.0f)};
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> fragment_lanes(const FragmentLanes<Varyings, L>& f) const {
+    const simd::Vec3T<L> n = simd::normalize(f.get(&Varyings::normal));
+    return {n.x * 0.5f + 0.5f, n.y * 0.5f + 0.5f, n.z * 0.5f + 0.5f, simd::splat<L>(1.0f)};
   }
 };
 

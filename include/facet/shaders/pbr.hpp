@@ -147,11 +147,13 @@ struct BasicPbrShader : PbrUniforms {
   // fragment() for 16 pixels, the same operations in the same order: the shading is one template for both
   // (shade()), and texture lookups are taken lane by lane with the scalar functions. A normal-mapped material is
   // shaded by fragment() lane by lane, and so is everything TangentPbrShader draws.
-  FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> fragment_lanes(const FragmentLanes<Varyings, L>& f) const {
     if constexpr (kTangents) {
       return fragment_each_lane(*this, f);
     } else {
       using namespace simd;
+      FACET_LANE_TYPES(L);
       if (material.bumped()) return fragment_each_lane(*this, f);
       Vec3 n = normalize(f.get(&Varyings::normal));
       const Mask back = transforms.mirrored ? f.front_facing : ~f.front_facing;
@@ -169,27 +171,29 @@ struct BasicPbrShader : PbrUniforms {
   }
 
   // inputs() for 16 pixels: the same operations in the same order, face colours and textures lane by lane.
-  FACET_LANES_INLINE PbrInputs<simd::Float> inputs_lanes(const FragmentLanes<Varyings>& f) const {
+  template <class L>
+  FACET_LANES_INLINE PbrInputs<simd::FloatT<L>> inputs_lanes(const FragmentLanes<Varyings, L>& f) const {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     const Color c = f.get(&Varyings::color);
     PbrInputs<Float> in = factor_inputs<Float>(material, {c.r, c.g, c.b}, c.a);
     if constexpr (kTextured) {
       if (material.face_colors || material.textured()) {
         const std::size_t u0 = FragmentLanes<Varyings>::float_index(&Varyings::uv);
         const std::size_t u1 = FragmentLanes<Varyings>::float_index(&Varyings::uv1);
-        const LaneUvs uvs{{f.get(&Varyings::uv), f.get(&Varyings::uv1)},
+        const LaneUvs<L> uvs{{f.get(&Varyings::uv), f.get(&Varyings::uv1)},
                           {{f.ddx[u0], f.ddx[u0 + 1]}, {f.ddx[u1], f.ddx[u1 + 1]}},
                           {{f.ddy[u0], f.ddy[u0 + 1]}, {f.ddy[u1], f.ddy[u1 + 1]}}};
         multiply_per_pixel(material, f.primitive, uvs, in);
       }
     } else if (material.face_colors) {
-      multiply_per_pixel(material, f.primitive, LaneUvs{}, in);  // no textures: the uvs go unread
+      multiply_per_pixel(material, f.primitive, LaneUvs<L>{}, in);  // no textures: the uvs go unread
     }
-    if (material.opaque) in.alpha = splat(1.0f);
+    if (material.opaque) in.alpha = splat<L>(1.0f);
     return in;
   }
 
-  // The scene-referred radiance towards the eye, for F = float (with glm::vec3) or simd::Float (with simd::Vec3):
+  // The scene-referred radiance towards the eye, for F = float (with glm::vec3) or simd::FloatT (with Vec3T):
   // the core BRDF under the lights and the environment, the sheen over it, the clear coat over both (three.js's
   // layering of KHR_materials_sheen and _clearcoat, emission included under the coat).
   template <class F, class V3>
@@ -254,14 +258,16 @@ struct BasicPbrShader : PbrUniforms {
     return {detail::srgb_encode(c.r, table), detail::srgb_encode(c.g, table), detail::srgb_encode(c.b, table)};
   }
   // detail::srgb_encode's operations in lanes, the two table entries gathered per lane.
-  FACET_LANES_INLINE static brdf::Rgb<simd::Float> encode(const brdf::Rgb<simd::Float>& c) {
+  template <class L>
+  FACET_LANES_INLINE static brdf::Rgb<simd::FloatT<L>> encode(const brdf::Rgb<simd::FloatT<L>>& c) {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     const float* table = detail::srgb_encode_table();
     const auto channel = [table](const Float& linear) {
-      const Float x = select(linear > 0.0f, select(linear < 1.0f, linear, splat(1.0f)), splat(0.0f));
+      const Float x = select(linear > 0.0f, select(linear < 1.0f, linear, splat<L>(1.0f)), splat<L>(0.0f));
       const Float f = x * static_cast<float>(detail::kSrgbEncodeSteps);
       Int i = truncate(f);
-      i = blend(i < detail::kSrgbEncodeSteps, i, splat(detail::kSrgbEncodeSteps - 1));
+      i = blend(i < detail::kSrgbEncodeSteps, i, splat<L>(detail::kSrgbEncodeSteps - 1));
       const Float w = f - to_float(i);
       const Float t0 = gather(table, i), t1 = gather(table + 1, i);
       return t0 + (t1 - t0) * w;
@@ -357,8 +363,10 @@ struct BasicPbrShader : PbrUniforms {
     const glm::vec3 l = environment->radiance(r, roughness);
     return {l.r, l.g, l.b};
   }
-  FACET_LANES_INLINE brdf::Rgb<simd::Float> radiance_along(const simd::Vec3& r, const simd::Float& roughness) const {
-    const simd::Vec3 l = environment->radiance(r, roughness);
+  template <class L>
+  FACET_LANES_INLINE brdf::Rgb<simd::FloatT<L>> radiance_along(const simd::Vec3T<L>& r,
+                                                              const simd::FloatT<L>& roughness) const {
+    const simd::Vec3T<L> l = environment->radiance(r, roughness);
     return {l.x, l.y, l.z};
   }
 
@@ -369,12 +377,14 @@ struct BasicPbrShader : PbrUniforms {
     return screen_occlusion[static_cast<std::size_t>(row) * static_cast<std::size_t>(screen_occlusion_width) +
                             static_cast<std::size_t>(column)];
   }
-  FACET_LANES_INLINE simd::Float screen_open(const simd::Float& x, const simd::Float& y) const {
+  template <class L>
+  FACET_LANES_INLINE simd::FloatT<L> screen_open(const simd::FloatT<L>& x, const simd::FloatT<L>& y) const {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     const Int column = truncate(x) >> 1, row = truncate(y) >> 1;
     const int last_column = screen_occlusion_width - 1, last_row = screen_occlusion_height - 1;
-    const Int c = blend(column < last_column, column, splat(last_column));
-    const Int r = blend(row < last_row, row, splat(last_row));
+    const Int c = blend(column < last_column, column, splat<L>(last_column));
+    const Int r = blend(row < last_row, row, splat<L>(last_row));
     return gather(screen_occlusion, r * screen_occlusion_width + c);
   }
 

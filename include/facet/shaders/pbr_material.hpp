@@ -60,7 +60,7 @@ struct PbrMaterial {
   bool bumped() const { return normal_map || (coated() && clearcoat_normal_map); }
 };
 
-// What the material is at one pixel (F = float) or at 16 (F = simd::Float).
+// What the material is at one pixel (F = float) or at 16 (F = simd::FloatT of a lane layout).
 template <class F>
 struct PbrInputs {
   brdf::Rgb<F> base;
@@ -158,8 +158,9 @@ inline void multiply_textures(const PbrMaterial& m, const PixelUvs& at, PbrInput
 }
 
 // PixelUvs for 16 lanes.
+template <class L>
 struct LaneUvs {
-  simd::Vec2 uv[2], dx[2], dy[2];
+  simd::Vec2T<L> uv[2], dx[2], dy[2];
   PixelUvs lane(int k) const {
     PixelUvs out;
     for (int s = 0; s < 2; ++s) {
@@ -173,14 +174,15 @@ struct LaneUvs {
 
 // The same per-pixel steps for 16 lanes, lane by lane with the scalar functions, so both paths agree exactly.
 // `primitive` is read only with face colours.
-FACET_LANES_INLINE void multiply_per_pixel(const PbrMaterial& m, const simd::UInt& primitive, const LaneUvs& uvs,
-                                           PbrInputs<simd::Float>& in) {
+template <class L>
+FACET_LANES_INLINE void multiply_per_pixel(const PbrMaterial& m, const simd::UIntT<L>& primitive,
+                                           const LaneUvs<L>& uvs, PbrInputs<simd::FloatT<L>>& in) {
   for (int k = 0; k < simd::kLanes; ++k) {
     PbrInputs<float> one;
-    in.each_number(one, [k](simd::Float& lanes, float& v) { v = lanes[k]; });
+    in.each_number(one, [k](simd::FloatT<L>& lanes, float& v) { v = lanes[k]; });
     if (m.face_colors) multiply_face_color(m.face_colors[primitive[k]], one);
     if (m.textured()) multiply_textures(m, uvs.lane(k), one);
-    in.each_number(one, [k](simd::Float& lanes, float& v) { lanes[k] = v; });
+    in.each_number(one, [k](simd::FloatT<L>& lanes, float& v) { lanes[k] = v; });
   }
 }
 

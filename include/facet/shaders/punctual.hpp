@@ -61,7 +61,7 @@ FACET_LANES_INLINE void incident_light(const PunctualLight& light, const V3& wor
     if constexpr (std::is_same_v<V3, glm::vec3>) {
       l = light.vector;
     } else {
-      l = V3{simd::splat(light.vector.x), simd::splat(light.vector.y), simd::splat(light.vector.z)};
+      l = V3{constant<F>(light.vector.x), constant<F>(light.vector.y), constant<F>(light.vector.z)};
     }
     falloff = constant<F>(1.0f);
     return;

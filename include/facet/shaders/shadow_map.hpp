@@ -38,7 +38,7 @@ class ShadowMap {
   int size() const { return size_; }
 
   // The share of the light that reaches `world` on a surface of unit normal n, 0 to 1, for one pixel (F = float,
-  // V3 = glm::vec3) or 16 lanes (simd::Float, simd::Vec3), the same operations in the same order for both:
+  // V3 = glm::vec3) or 16 lanes (simd::FloatT, simd::Vec3T), the same operations in the same order for both:
   // percentage-closer filtering over 3 x 3 texels with tent weights (the mean of four bilinear comparisons half a
   // texel apart), so the edge of a shadow is about two texels wide. Points outside the light's view are lit.
   template <class F, class V3>
@@ -92,11 +92,12 @@ class ShadowMap {
     const int y = std::clamp(static_cast<int>(v0), -kBorder, size_) + kBorder + j;
     return depth_[static_cast<std::size_t>(y * stride_ + x)];
   }
-  FACET_LANES_INLINE simd::Float texels(const simd::Float& u0, const simd::Float& v0, int i, int j) const {
-    using simd::Int;
+  template <class L>
+  FACET_LANES_INLINE simd::FloatT<L> texels(const simd::FloatT<L>& u0, const simd::FloatT<L>& v0, int i, int j) const {
+    using Int = simd::IntT<L>;
     const auto clamp = [this](Int t) {
-      t = simd::blend(t < -kBorder, simd::splat(-kBorder), t);
-      return simd::blend(t > size_, simd::splat(size_), t);
+      t = simd::blend(t < -kBorder, simd::splat<L>(-kBorder), t);
+      return simd::blend(t > size_, simd::splat<L>(size_), t);
     };
     const Int index = (clamp(simd::truncate(v0)) + (kBorder + j)) * stride_ + (clamp(simd::truncate(u0)) + (kBorder + i));
     return simd::gather(depth_.data(), index);

@@ -41,8 +41,10 @@ struct SurfaceShader : LitUniforms {
   // fragment() for 16 pixels at once, the same operations in the same order, so both give identical images.
   // Texture samples and the specular pow() are taken lane by lane with the scalar functions; a normal-mapped
   // material is shaded by fragment() lane by lane.
-  FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> fragment_lanes(const FragmentLanes<Varyings, L>& f) const {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     if (normal_map) return fragment_each_lane(*this, f);
     Vec3 n = normalize(f.get(&Varyings::normal));
     const Mask back = back_lanes(f.front_facing);

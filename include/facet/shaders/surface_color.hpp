@@ -32,9 +32,10 @@ struct SurfaceColor {
 
   // albedo() for 16 pixels, the same operations in the same order, for varyings with members `color` and `uv`.
   // Texture samples are taken lane by lane with the scalar function.
-  template <class V>
-  FACET_LANES_INLINE simd::Color albedo_lanes(const FragmentLanes<V>& f) const {
+  template <class V, class L>
+  FACET_LANES_INLINE simd::ColorT<L> albedo_lanes(const FragmentLanes<V, L>& f) const {
     using namespace simd;
+    FACET_LANE_TYPES(L);
     const Color vertex = f.get(&V::color);
     const glm::vec4 d = diffuse;
     Color c{d.r * vertex.r, d.g * vertex.g, d.b * vertex.b, d.a * vertex.a};
@@ -53,7 +54,7 @@ struct SurfaceColor {
         c.r[k] *= t.r, c.g[k] *= t.g, c.b[k] *= t.b, c.a[k] *= t.a;
       }
     }
-    if (opaque) c.a = splat(1.0f);
+    if (opaque) c.a = splat<L>(1.0f);
     return c;
   }
 };

@@ -30,7 +30,8 @@ struct UnlitShader {
     return surface.albedo(f.varyings.color, f.primitive, f.varyings.uv, f.ddx.uv, f.ddy.uv);
   }
   // fragment() for 16 pixels at once, identical lane for lane.
-  FACET_LANES_INLINE simd::Color fragment_lanes(const FragmentLanes<Varyings>& f) const {
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> fragment_lanes(const FragmentLanes<Varyings, L>& f) const {
     return surface.albedo_lanes(f);
   }
 };
