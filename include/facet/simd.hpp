@@ -266,9 +266,23 @@ FACET_LANES_INLINE FloatT<L> sqrt(const FloatT<L>& v) {
     return r;
   });
 }
-// Like sqrt: one rounding instruction per part where the level has one (SSE4.1 and later).
+// Like sqrt: one rounding instruction per part where the level has one (SSE4.1 and later, NEON). The 128-bit
+// layout on x86-64 is the baseline's (SSE2, which has none, and GCC 12 rounds lane by lane there), so it rounds by
+// conversion: the truncation, less one where it rounded up; values of 2^23 and more (already whole) and NaN as
+// they are; and the sign bit of the input kept, so that -0 stays -0. Exactly std::floor.
 template <class L>
 FACET_LANES_INLINE FloatT<L> floor(const FloatT<L>& v) {
+#if defined(__x86_64__)
+  if constexpr (L::parts == 4) {
+    const IntT<L> bits = bit_cast<IntT<L>>(v), sign = bits & static_cast<std::int32_t>(0x80000000u);
+    const MaskT<L> small = bit_cast<FloatT<L>>(bits ^ sign) < 8388608.0f;
+    const FloatT<L> in_range = bit_cast<FloatT<L>>(bits & small);  // 0 elsewhere: no conversion overflows
+    const FloatT<L> truncated = to_float(truncate(in_range));
+    const FloatT<L> lower =
+        truncated - bit_cast<FloatT<L>>((truncated > in_range) & bit_cast<IntT<L>>(splat<L>(1.0f)));
+    return bit_cast<FloatT<L>>(blend(small, bit_cast<IntT<L>>(lower) | sign, bits));
+  }
+#endif
   return FloatT<L>::by_part([&](int i) __attribute__((always_inline)) {
     typename FloatT<L>::Part r;
     for (int k = 0; k < L::width; ++k) r[k] = std::floor(v.part[i][k]);
@@ -302,15 +316,20 @@ FACET_LANES_INLINE IntT<L> to_int(const UIntT<L>& v) { return convert<IntT<L>>(v
 template <class L>
 FACET_LANES_INLINE UIntT<L> to_uint(const IntT<L>& v) { return convert<UIntT<L>>(v); }
 
+// 16 lanes from memory, or to it, at any alignment: part by part, so that each part goes straight to or from its
+// register (a copy of the whole array leaves GCC 12 copying through the stack).
 template <class V>
 FACET_LANES_INLINE V load(const void* p) {
-  V v;
-  std::memcpy(v.part, p, sizeof v.part);
-  return v;
+  return V::by_part([&](int i) __attribute__((always_inline)) {
+    typename V::Part part;
+    std::memcpy(&part, static_cast<const char*>(p) + i * sizeof part, sizeof part);
+    return part;
+  });
 }
 template <class V>
 FACET_LANES_INLINE void store(void* p, const V& v) {
-  std::memcpy(p, v.part, sizeof v.part);
+  for (int i = 0; i < V::kParts; ++i)
+    std::memcpy(static_cast<char*>(p) + i * sizeof v.part[i], &v.part[i], sizeof v.part[i]);
 }
 
 // Bit k set where lane k of m is -1 (true).

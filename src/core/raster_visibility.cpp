@@ -92,8 +92,41 @@ template <DepthFunc kFunc, bool kDepthTest, class L>
                           const std::int32_t* step_x, const std::int32_t* step_y) __attribute__((always_inline)) {
     const std::int32_t a0 = step_x[0], b0 = step_y[0], a1 = step_x[1], b1 = step_y[1], a2 = step_x[2], b2 = step_y[2];
     const std::size_t block = scratch_index((bx - work.x0) / kScratchBlock, (by - work.y0) / kScratchBlock);
+    if constexpr (kLanePath) {
+      using namespace simd;
+      FACET_LANE_TYPES(L);
+      // Per block: each lane's offset from the strip's edge values, and the depth plane along x. The same integer
+      // sums and the same float operations in the same order as the scalar path, so the same bits.
+      const Int lane_x = kLaneXT<L>, lane_y = kLaneYT<L>;
+      const Int o0 = a0 * lane_x + b0 * lane_y, o1 = a1 * lane_x + b1 * lane_y, o2 = a2 * lane_x + b2 * lane_y;
+      const Int lane_bit = Int{} + 1 << kLaneIndexT<L>;
+      [[maybe_unused]] Float z_x;
+      if constexpr (kDepthTest) z_x = plane.at_origin + plane.ddx * (to_float(lane_x + bx) + 0.5f - origin_x);
+      Mask passed{};
+      for (int strip = j0 / 2; strip <= j1 / 2; ++strip) {
+        const std::int32_t bits = static_cast<std::int32_t>((rect >> (strip * kLanes)) & 0xffffu);
+        float* depth = work.scratch->depth + block + static_cast<std::size_t>(strip) * kLanes;
+        std::uint32_t* triangle = work.scratch->triangle + block + static_cast<std::size_t>(strip) * kLanes;
+        const std::int32_t e0 = base[0] + 2 * strip * b0, e1 = base[1] + 2 * strip * b1, e2 = base[2] + 2 * strip * b2;
+        Mask pass = (lane_bit & bits) != 0;
+        pass &= ((e0 + o0) | (e1 + o1) | (e2 + o2)) >= 0;
+        Float z{};
+        const Float stored = load<Float>(depth);
+        if constexpr (kDepthTest) {
+          const Float dy = to_float(lane_y + (by + 2 * strip)) + 0.5f - origin_y;
+          z = z_x + plane.ddy * dy + offset;
+          z = select(z < 0.0f, splat<L>(0.0f), select(1.0f < z, splat<L>(1.0f), z));  // as the scalar clamp
+          pass &= depth_test_passes<kFunc>(z, stored);
+        }
+        if (depth_write) {
+          passed |= pass;
+          store(depth, blend(pass, z, stored));
+        }
+        store(triangle, blend(pass, UInt{} + ref, load<UInt>(triangle)));
+      }
+      return lane_bits(passed);
+    }
     unsigned any = 0;
-    [[maybe_unused]] simd::MaskT<L> passed{};
     for (int strip = j0 / 2; strip <= j1 / 2; ++strip) {
       const unsigned bits = static_cast<unsigned>(rect >> (strip * simd::kLanes)) & 0xffffu;
       float* depth = work.scratch->depth + block + static_cast<std::size_t>(strip) * simd::kLanes;
@@ -102,30 +135,6 @@ template <DepthFunc kFunc, bool kDepthTest, class L>
       // Only locals inside the loops: the triangle's fields, read there, might alias the stores through depth[]
       // and triangle[] as far as GCC knows, and that keeps it from vectorising.
       const std::int32_t e0 = base[0] + 2 * strip * b0, e1 = base[1] + 2 * strip * b1, e2 = base[2] + 2 * strip * b2;
-      if constexpr (kLanePath) {
-        using namespace simd;
-        FACET_LANE_TYPES(L);
-        const Int lane_x = kLaneXT<L>, lane_y = kLaneYT<L>;
-        const Int signs = (e0 + a0 * lane_x + b0 * lane_y) | (e1 + a1 * lane_x + b1 * lane_y) |
-                          (e2 + a2 * lane_x + b2 * lane_y);
-        Mask pass = (((Int{} + static_cast<std::int32_t>(bits)) >> kLaneIndexT<L>) & 1) != 0;
-        pass &= signs >= 0;
-        Float z{};
-        const Float stored = load<Float>(depth);
-        if constexpr (kDepthTest) {
-          const Float dx = to_float(lane_x + bx) + 0.5f - origin_x;
-          const Float dy = to_float(lane_y + py) + 0.5f - origin_y;
-          z = plane.at_origin + plane.ddx * dx + plane.ddy * dy + offset;
-          z = select(z < 0.0f, splat<L>(0.0f), select(1.0f < z, splat<L>(1.0f), z));  // as the scalar clamp
-          pass &= depth_test_passes<kFunc>(z, stored);
-        }
-        if (depth_write) {
-          passed |= pass;
-          store(depth, simd::blend(pass, z, stored));
-        }
-        store(triangle, simd::blend(pass, UInt{} + ref, load<UInt>(triangle)));
-        continue;
-      }
       // Branch-free, so that the loops vectorise: bitwise &, selects, and stores of the old value where nothing
       // passes.
       const auto lane_pass = [&](int k, float& z) __attribute__((always_inline)) {
@@ -158,7 +167,6 @@ template <DepthFunc kFunc, bool kDepthTest, class L>
         }
       }
     }
-    if constexpr (kLanePath) any = simd::lane_bits(passed);
     return any;
   };
 

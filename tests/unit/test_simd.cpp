@@ -121,6 +121,27 @@ TEST(SimdLayouts, HalvesAndQuartersMatchTheWholeLayout) {
   expect_layout_matches_whole<simd::Quarters>();
 }
 
+// floor is std::floor in every layout, for any bits (the 128-bit layout rounds by conversion on x86-64).
+TEST(SimdLayouts, FloorIsStdFloorForAnyBits) {
+  std::uint32_t state = 12345u;
+  const auto next = [&state] { return state = state * 1664525u + 1013904223u; };
+  const auto check = [](const auto& lanes, const float* in) {
+    for (int k = 0; k < simd::kLanes; ++k) EXPECT_EQ(bits(std::floor(in[k])), bits(lanes[k])) << in[k];
+  };
+  for (int round = 0; round < 4096; ++round) {
+    alignas(64) float in[simd::kLanes];
+    for (int k = 0; k < simd::kLanes; ++k) {
+      const std::uint32_t r = next();
+      // Half any bit pattern, half values near whole numbers within +-2^24.
+      in[k] = k % 2 ? std::bit_cast<float>(r) : static_cast<float>(static_cast<std::int32_t>(r) >> 7) / 64.0f;
+    }
+    if (round == 0) in[0] = -0.0f, in[1] = 8388608.5f, in[2] = -8388607.5f, in[3] = -1e-45f;
+    check(simd::floor(simd::load<simd::Float>(in)), in);
+    check(simd::floor(simd::load<simd::FloatT<simd::Halves>>(in)), in);
+    check(simd::floor(simd::load<simd::FloatT<simd::Quarters>>(in)), in);
+  }
+}
+
 #pragma GCC diagnostic pop
 
 }  // namespace
