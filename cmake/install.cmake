@@ -23,16 +23,18 @@ install(FILES ${CMAKE_CURRENT_BINARY_DIR}/facetConfig.cmake ${CMAKE_CURRENT_BINA
 # links. The flags the templated stages need (see CMakeLists.txt) travel in Cflags.
 # The prefix is found from the .pc file's own place, so the tree works wherever `cmake --install --prefix` puts it.
 list(JOIN FACET_PUBLIC_FLAGS " " FACET_PC_FLAGS)
-# Five libraries are named by file in Libs rather than as modules in Requires, in the order facet links them
+# Six libraries are named by file in Libs rather than as modules in Requires, in the order facet links them
 # (CMakeLists.txt says why stb's archive precedes Draco's; pkg-config would put Requires after Libs): tinygltf,
 # stb's archive, OpenEXR's C core (OpenEXR.pc names the C++ libraries too, which facet does not use), Draco's static
-# archive (draco.pc names the shared library) and meshoptimizer (which ships no .pc file).
+# archive (draco.pc names the shared library), meshoptimizer and liblzf (which ship no .pc file).
 get_target_property(FACET_PC_TINYGLTF TinyGLTF::TinyGLTF LOCATION)
 get_target_property(FACET_PC_EXR_CORE OpenEXR::OpenEXRCore LOCATION)
 get_target_property(FACET_PC_DRACO draco::draco_static LOCATION)
 get_target_property(FACET_PC_MESHOPT meshoptimizer::meshoptimizer LOCATION)
+get_target_property(FACET_PC_LZF liblzf::liblzf LOCATION)
 set(FACET_PC_LIBS "")
-foreach(file ${FACET_PC_TINYGLTF} ${FACET_STB_ARCHIVE} ${FACET_PC_EXR_CORE} ${FACET_PC_DRACO} ${FACET_PC_MESHOPT})
+foreach(file ${FACET_PC_TINYGLTF} ${FACET_STB_ARCHIVE} ${FACET_PC_EXR_CORE} ${FACET_PC_DRACO} ${FACET_PC_MESHOPT}
+        ${FACET_PC_LZF})
   get_filename_component(folder ${file} DIRECTORY)
   get_filename_component(file ${file} NAME)
   if(NOT folder IN_LIST CMAKE_CXX_IMPLICIT_LINK_DIRECTORIES)

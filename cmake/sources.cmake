@@ -67,6 +67,7 @@ set(FACET_JOB_SOURCES
   src/job/io/references.cpp
   src/job/io/stl_loader.cpp
   src/job/io/xyz_loader.cpp
+  src/job/io/pcd_loader.cpp
   src/job/job_frame.cpp
   src/job/look.cpp
   src/job/names.cpp

@@ -8,7 +8,7 @@
 # A finding, once fixed, joins tests/fuzz/regressions/FORMAT/, which every test run reads through the same reader.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-targets=(obj ply stl gltf xyz image environment batch)
+targets=(obj ply stl gltf xyz pcd image environment batch)
 if [ "${1:-}" = --list ]; then
   printf '%s\n' "${targets[@]}"
   exit 0
@@ -45,6 +45,31 @@ case $target in
     printf '0 0 0 0 0 1\n1 0 0 0.6 0.8 0\n' >"$corpus/xyz-normals"
     printf '2\n0 0 0 -1200 255 255 255\n1 1 1 300 10 20 30\n' >"$corpus/pts"
     printf '0;0;0;0;0;1;10;20;30\r\n1;1;1;1;0;0;40;50;60\r\n' >"$corpus/xyz9"
+    ;;
+  pcd)
+    # No PCD files among the test models: one per data encoding, written here (the compressed one's LZF stream is
+    # literal runs, which any LZF decoder reads).
+    python3 - "$corpus" <<'PY'
+import struct, sys
+out = sys.argv[1]
+def header(fields, sizes, types, counts, n, data):
+    return (f"# .PCD v0.7\nVERSION 0.7\nFIELDS {fields}\nSIZE {sizes}\nTYPE {types}\nCOUNT {counts}\n"
+            f"WIDTH {n}\nHEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS {n}\nDATA {data}\n").encode()
+pts = [(0, 0, 0, 0x00ff0000), (1, 2, 3, 0x0000ff80), (float('nan'), 0, 0, 0)]
+with open(f"{out}/ascii", "wb") as f:
+    f.write(header("x y z rgb", "4 4 4 4", "F F F U", "1 1 1 1", 3, "ascii"))
+    f.write(b"".join(f"{x} {y} {z} {c}\n".encode() for x, y, z, c in pts))
+rows = b"".join(struct.pack("<fffI3f", x, y, z, c, 0, 0, 1) for x, y, z, c in pts)
+with open(f"{out}/binary", "wb") as f:
+    f.write(header("x y z rgba normal_x normal_y normal_z", "4 4 4 4 4 4 4", "F F F U F F F", "1 1 1 1 1 1 1", 3,
+                   "binary") + rows)
+by_field = struct.pack("<3f", *[p[0] for p in pts]) + struct.pack("<3f", *[p[1] for p in pts]) + \
+    struct.pack("<3f", *[p[2] for p in pts])
+lzf = b"".join(bytes([len(by_field[i:i + 32]) - 1]) + by_field[i:i + 32] for i in range(0, len(by_field), 32))
+with open(f"{out}/compressed", "wb") as f:
+    f.write(header("x y z", "4 4 4", "F F F", "1 1 1", 3, "binary_compressed") +
+            struct.pack("<II", len(lzf), len(by_field)) + lzf)
+PY
     ;;
   image) seed \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.tga' -o -iname '*.bmp' \) ;;
   environment)

@@ -41,6 +41,7 @@ set(FACET_LIGHT_TEST_SOURCES
   unit/test_gltf_texcoord1.cpp
   unit/test_hostile_files.cpp
   unit/test_xyz_loader.cpp
+  unit/test_pcd_loader.cpp
   unit/test_image_io.cpp
   unit/test_mesh.cpp
   unit/test_names.cpp

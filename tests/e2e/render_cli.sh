@@ -139,6 +139,15 @@ for i in range(2000):
 run cloud_xyz image 320 240 inside -- render "$scratch/helix.xyz" --resolution 320,240
 run cloud_discs image 320 240 inside -- render "$scratch/helix.xyz" --resolution 320,240 --point-shape disc \
   --point-size 5
+# PCL's PCD, ASCII with a packed colour per point (PCL writes rgb's bits as a float: 0x00ff8000 here).
+python3 -c 'import math, struct
+rgb = struct.unpack("<f", struct.pack("<I", 0x00ff8000))[0]
+print("# .PCD v0.7\nVERSION 0.7\nFIELDS x y z rgb\nSIZE 4 4 4 4\nTYPE F F F F\nCOUNT 1 1 1 1\nWIDTH 2000")
+print("HEIGHT 1\nVIEWPOINT 0 0 0 1 0 0 0\nPOINTS 2000\nDATA ascii")
+for i in range(2000):
+    t = i * 0.01
+    print(f"{math.cos(t * 7):.4f} {math.sin(t * 7):.4f} {t / 20 - 0.5:.4f} {rgb!r}")' >"$scratch/helix.pcd"
+run cloud_pcd image 320 240 inside -- render "$scratch/helix.pcd" --resolution 320,240 --point-size 3
 for bad_points in "--point-size 0" "--point-size 300" "--point-shape star"; do
   # shellcheck disable=SC2086  # the flags are meant to split
   if "$facet" render "$scratch/helix.xyz" $bad_points --output "$scratch/bad_points.png" 2>"$scratch/bad_points.log"; then

@@ -1,5 +1,5 @@
-// fuzz_models.cpp - libFuzzer targets for the model readers (OBJ with MTL, PLY, STL, glTF and GLB, XYZ), one per
-// format, chosen at compile time by FACET_FUZZ_FORMAT.
+// fuzz_models.cpp - libFuzzer targets for the model readers (OBJ with MTL, PLY, STL, glTF and GLB, XYZ, PCD), one
+// per format, chosen at compile time by FACET_FUZZ_FORMAT.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -40,8 +40,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)facet::load_gltf(model_path(), bytes, source, options);
 #elif FACET_FUZZ_FORMAT == 5
     (void)facet::load_xyz(bytes, source);
+#elif FACET_FUZZ_FORMAT == 6
+    (void)facet::load_pcd(bytes, source);
 #else
-#error "FACET_FUZZ_FORMAT: 1 OBJ, 2 PLY, 3 STL, 4 glTF, 5 XYZ"
+#error "FACET_FUZZ_FORMAT: 1 OBJ, 2 PLY, 3 STL, 4 glTF, 5 XYZ, 6 PCD"
 #endif
   });
 }

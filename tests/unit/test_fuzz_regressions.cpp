@@ -58,6 +58,7 @@ void read_as(const std::string& format, const fs::path& input) {
   else if (format == "ply") (void)load_ply(bytes, source, 2, 0);  // both PLY readers (loaders.hpp)
   else if (format == "stl") (void)load_stl(bytes, source);
   else if (format == "gltf") (void)load_gltf(input, bytes, source, options);
+  else if (format == "pcd") (void)load_pcd(bytes, source);
   else if (format == "image")
     (void)decode_texture_file(std::span(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()),
                               TexelEncoding::srgb, input);

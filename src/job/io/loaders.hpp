@@ -35,6 +35,10 @@ Mesh load_stl(std::string_view bytes, const std::string& source);
 // Numbers are separated by spaces, tabs, commas or semicolons; blank lines and lines starting with # or // are
 // skipped, and a first line of one number (a point count) too.
 Mesh load_xyz(std::string_view bytes, const std::string& source);
+// A Point Cloud Library PCD file (ascii, binary or binary_compressed data): x y z, normal_x normal_y normal_z and a
+// packed rgb or rgba where it has them; other fields are skipped, and so are points whose position is NaN (an
+// organized cloud's missing points), with a warning.
+Mesh load_pcd(std::string_view bytes, const std::string& source);
 // glTF resolves external buffers and images against the path's folder; its meshes and node instances.
 Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const std::string& source,
                 const LoadOptions& options);

@@ -28,14 +28,14 @@ void warn(const std::string& source, const std::string& message) { warn(source +
 
 namespace {
 
-enum class Format { kObj, kPly, kStl, kGltf, kXyz, kAssimp, kUnknown };
+enum class Format { kObj, kPly, kStl, kGltf, kXyz, kPcd, kAssimp, kUnknown };
 
-// A build without Assimp (the browser page's, FACET_NO_ASSIMP) reads facet's own four formats alone.
+// A build without Assimp (the browser page's, FACET_NO_ASSIMP) reads facet's own formats alone.
 #ifndef FACET_NO_ASSIMP
 constexpr const char* kSupported =
-    "supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts and the formats Assimp reads";
+    "supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts, .pcd and the formats Assimp reads";
 #else
-constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf, .glb, .xyz and .pts";
+constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts and .pcd";
 #endif
 
 Format format_of_extension(const std::string& extension) {
@@ -44,6 +44,7 @@ Format format_of_extension(const std::string& extension) {
   if (extension == ".stl") return Format::kStl;
   if (extension == ".gltf" || extension == ".glb") return Format::kGltf;
   if (extension == ".xyz" || extension == ".pts") return Format::kXyz;
+  if (extension == ".pcd") return Format::kPcd;
 #ifndef FACET_NO_ASSIMP
   if (assimp_reads(extension)) return Format::kAssimp;
 #endif
@@ -84,6 +85,7 @@ bool looks_like_gltf_json(std::string_view bytes) {
 // For files whose extension names no supported format: magic numbers first, then the shape of the text.
 Format format_of_content(std::string_view bytes) {
   if (bytes.starts_with("ply\n") || bytes.starts_with("ply\r\n")) return Format::kPly;
+  if (bytes.starts_with("# .PCD") || bytes.starts_with("VERSION")) return Format::kPcd;
   if (is_gltf_binary(bytes) || looks_like_gltf_json(bytes)) return Format::kGltf;
   if (is_binary_stl(bytes)) return Format::kStl;
   if (bytes.starts_with("solid") && (bytes.size() == 5 || is_space(bytes[5]))) return Format::kStl;
@@ -106,7 +108,7 @@ Model read_any_model(const fs::path& path, std::string& format_name, const LoadO
   Format format = format_of_extension(lower_extension(path));
   FileBytes bytes = read_regular_file(path, kMaxModelFileBytes, source);
   if (format == Format::kUnknown) format = format_of_content(bytes);
-  constexpr const char* kNames[] = {"OBJ", "PLY", "STL", "glTF", "XYZ", "Assimp", ""};
+  constexpr const char* kNames[] = {"OBJ", "PLY", "STL", "glTF", "XYZ", "PCD", "Assimp", ""};
   format_name = kNames[static_cast<int>(format)];
   if (format == Format::kGltf && is_gltf_binary(bytes)) format_name = "GLB";
   if (format == Format::kAssimp) format_name += " (" + printable(extension.substr(1)) + ")";
@@ -117,6 +119,7 @@ Model read_any_model(const fs::path& path, std::string& format_name, const LoadO
       case Format::kStl: return one_mesh(load_stl(bytes, source));
       case Format::kGltf: return load_gltf(path, bytes, source, options);
       case Format::kXyz: return one_mesh(load_xyz(bytes, source));
+      case Format::kPcd: return one_mesh(load_pcd(bytes, source));
 #ifndef FACET_NO_ASSIMP
       case Format::kAssimp: return load_with_assimp(path, bytes, source, options);
 #else
