@@ -114,22 +114,40 @@ class alignas(kLaneAlign) Lanes {
   FACET_LANES_INLINE Scalar& operator[](int k) { return part[k / kWidth][k % kWidth]; }
 #endif
 
-  FACET_LANES_INLINE friend constexpr Lanes operator-(const Lanes& a) {
-    return by_part([&](int i) __attribute__((always_inline)) { return -a.part[i]; });
-  }
-  FACET_LANES_INLINE friend constexpr Lanes operator~(const Lanes& a) {
-    return by_part([&](int i) __attribute__((always_inline)) { return ~a.part[i]; });
-  }
+// The operators spell out each part, R r's part i being EXPR, rather than calling by_part with a lambda: they are
+// most of what lane code instantiates, and a lambda per operator and type cost a tenth more compile time.
+#define FACET_LANES_BY_PART_(R, EXPR)            \
+  R r;                                           \
+  {                                              \
+    constexpr int i = 0;                         \
+    r.part[i] = EXPR;                            \
+  }                                              \
+  if constexpr (kParts > 1) {                    \
+    constexpr int i = 1;                         \
+    r.part[i] = EXPR;                            \
+  }                                              \
+  if constexpr (kParts > 2) {                    \
+    constexpr int i = 2;                         \
+    r.part[i] = EXPR;                            \
+  }                                              \
+  if constexpr (kParts > 3) {                    \
+    constexpr int i = 3;                         \
+    r.part[i] = EXPR;                            \
+  }                                              \
+  return r
+
+  FACET_LANES_INLINE friend constexpr Lanes operator-(const Lanes& a) { FACET_LANES_BY_PART_(Lanes, -a.part[i]); }
+  FACET_LANES_INLINE friend constexpr Lanes operator~(const Lanes& a) { FACET_LANES_BY_PART_(Lanes, ~a.part[i]); }
 
 #define FACET_LANES_OPERATOR(op)                                                                           \
   FACET_LANES_INLINE friend constexpr Lanes operator op(const Lanes& a, const Lanes& b) {                   \
-    return by_part([&](int i) __attribute__((always_inline)) { return a.part[i] op b.part[i]; });           \
+    FACET_LANES_BY_PART_(Lanes, a.part[i] op b.part[i]);                                                    \
   }                                                                                                         \
   FACET_LANES_INLINE friend constexpr Lanes operator op(const Lanes& a, Scalar b) {                         \
-    return by_part([&](int i) __attribute__((always_inline)) { return a.part[i] op b; });                   \
+    FACET_LANES_BY_PART_(Lanes, a.part[i] op b);                                                            \
   }                                                                                                         \
   FACET_LANES_INLINE friend constexpr Lanes operator op(Scalar a, const Lanes& b) {                         \
-    return by_part([&](int i) __attribute__((always_inline)) { return a op b.part[i]; });                   \
+    FACET_LANES_BY_PART_(Lanes, a op b.part[i]);                                                            \
   }                                                                                                         \
   FACET_LANES_INLINE constexpr Lanes& operator op##=(const Lanes& b) { return *this = *this op b; }         \
   FACET_LANES_INLINE constexpr Lanes& operator op##=(Scalar b) { return *this = *this op b; }
@@ -147,15 +165,15 @@ class alignas(kLaneAlign) Lanes {
 
   // Comparisons give a mask per lane: -1 where true, 0 where false.
   using MaskType = Lanes<std::int32_t, L>;
-#define FACET_LANES_COMPARISON(op)                                                                              \
-  FACET_LANES_INLINE friend constexpr MaskType operator op(const Lanes& a, const Lanes& b) {                     \
-    return MaskType::by_part([&](int i) __attribute__((always_inline)) { return a.part[i] op b.part[i]; });      \
-  }                                                                                                              \
-  FACET_LANES_INLINE friend constexpr MaskType operator op(const Lanes& a, Scalar b) {                           \
-    return MaskType::by_part([&](int i) __attribute__((always_inline)) { return a.part[i] op b; });              \
-  }                                                                                                              \
-  FACET_LANES_INLINE friend constexpr MaskType operator op(Scalar a, const Lanes& b) {                           \
-    return MaskType::by_part([&](int i) __attribute__((always_inline)) { return a op b.part[i]; });              \
+#define FACET_LANES_COMPARISON(op)                                                                  \
+  FACET_LANES_INLINE friend constexpr MaskType operator op(const Lanes& a, const Lanes& b) {         \
+    FACET_LANES_BY_PART_(MaskType, a.part[i] op b.part[i]);                                          \
+  }                                                                                                  \
+  FACET_LANES_INLINE friend constexpr MaskType operator op(const Lanes& a, Scalar b) {               \
+    FACET_LANES_BY_PART_(MaskType, a.part[i] op b);                                                  \
+  }                                                                                                  \
+  FACET_LANES_INLINE friend constexpr MaskType operator op(Scalar a, const Lanes& b) {               \
+    FACET_LANES_BY_PART_(MaskType, a op b.part[i]);                                                  \
   }
   FACET_LANES_COMPARISON(==)
   FACET_LANES_COMPARISON(!=)
@@ -164,6 +182,7 @@ class alignas(kLaneAlign) Lanes {
   FACET_LANES_COMPARISON(>)
   FACET_LANES_COMPARISON(>=)
 #undef FACET_LANES_COMPARISON
+#undef FACET_LANES_BY_PART_
 };
 
 // The lane types of a layout. Comparisons of FloatT or IntT give an IntT mask per lane: -1 where true, 0 where false.

@@ -46,7 +46,8 @@ template <DepthFunc kFunc>
 
 // depth_test_passes for 16 lanes: -1 where the test passes, 0 where it fails.
 template <DepthFunc kFunc, class L>
-[[gnu::always_inline]] inline simd::MaskT<L> depth_test_passes(const simd::FloatT<L>& z, const simd::FloatT<L>& stored) {
+[[gnu::always_inline]] inline simd::MaskT<L> depth_test_passes(const simd::FloatT<L>& z,
+                                                             const simd::FloatT<L>& stored) {
   if constexpr (kFunc == DepthFunc::less) return z < stored;
   else if constexpr (kFunc == DepthFunc::equal) return z == stored;
   else if constexpr (kFunc == DepthFunc::lequal) return z <= stored;
@@ -125,49 +126,51 @@ template <DepthFunc kFunc, bool kDepthTest, class L>
         store(triangle, blend(pass, UInt{} + ref, load<UInt>(triangle)));
       }
       return lane_bits(passed);
-    }
-    unsigned any = 0;
-    for (int strip = j0 / 2; strip <= j1 / 2; ++strip) {
-      const unsigned bits = static_cast<unsigned>(rect >> (strip * simd::kLanes)) & 0xffffu;
-      float* depth = work.scratch->depth + block + static_cast<std::size_t>(strip) * simd::kLanes;
-      std::uint32_t* triangle = work.scratch->triangle + block + static_cast<std::size_t>(strip) * simd::kLanes;
-      const int py = by + 2 * strip;
-      // Only locals inside the loops: the triangle's fields, read there, might alias the stores through depth[]
-      // and triangle[] as far as GCC knows, and that keeps it from vectorising.
-      const std::int32_t e0 = base[0] + 2 * strip * b0, e1 = base[1] + 2 * strip * b1, e2 = base[2] + 2 * strip * b2;
-      // Branch-free, so that the loops vectorise: bitwise &, selects, and stores of the old value where nothing
-      // passes.
-      const auto lane_pass = [&](int k, float& z) __attribute__((always_inline)) {
-        // Inside all three edges when no value has its sign bit set. Bit arithmetic rather than compares: GCC
-        // turns a chain of boolean &s into branches, which the vectoriser cannot take.
-        const int i = k & 7, j = k >> 3;
-        const std::int32_t signs = (e0 + a0 * i + b0 * j) | (e1 + a1 * i + b1 * j) | (e2 + a2 * i + b2 * j);
-        unsigned pass = (bits >> k) & (~static_cast<std::uint32_t>(signs) >> 31);
-        if constexpr (kDepthTest) {
-          const float dx = static_cast<float>(bx + (k & 7)) + 0.5f - origin_x;
-          const float dy = static_cast<float>(py + (k >> 3)) + 0.5f - origin_y;
-          z = evaluate(plane, dx, dy) + offset;
-          z = z < 0.0f ? 0.0f : (1.0f < z ? 1.0f : z);  // std::clamp(z, 0, 1), NaN kept, as shade_quad
-          pass &= depth_test_passes<kFunc>(z, depth[k]);
-        }
-        return pass;
-      };
-      if (depth_write) {
-        for (int k = 0; k < simd::kLanes; ++k) {
-          float z = 0.0f;
-          const unsigned pass = lane_pass(k, z);
-          any |= pass;
-          depth[k] = pass ? z : depth[k];
-          triangle[k] = pass ? ref : triangle[k];
-        }
-      } else {
-        for (int k = 0; k < simd::kLanes; ++k) {
-          float z = 0.0f;
-          triangle[k] = lane_pass(k, z) ? ref : triangle[k];
+    } else {
+      unsigned any = 0;
+      for (int strip = j0 / 2; strip <= j1 / 2; ++strip) {
+        const unsigned bits = static_cast<unsigned>(rect >> (strip * simd::kLanes)) & 0xffffu;
+        float* depth = work.scratch->depth + block + static_cast<std::size_t>(strip) * simd::kLanes;
+        std::uint32_t* triangle = work.scratch->triangle + block + static_cast<std::size_t>(strip) * simd::kLanes;
+        const int py = by + 2 * strip;
+        // Only locals inside the loops: the triangle's fields, read there, might alias the stores through depth[]
+        // and triangle[] as far as GCC knows, and that keeps it from vectorising.
+        const std::int32_t e0 = base[0] + 2 * strip * b0, e1 = base[1] + 2 * strip * b1,
+                           e2 = base[2] + 2 * strip * b2;
+        // Branch-free, so that the loops vectorise: bitwise &, selects, and stores of the old value where nothing
+        // passes.
+        const auto lane_pass = [&](int k, float& z) __attribute__((always_inline)) {
+          // Inside all three edges when no value has its sign bit set. Bit arithmetic rather than compares: GCC
+          // turns a chain of boolean &s into branches, which the vectoriser cannot take.
+          const int i = k & 7, j = k >> 3;
+          const std::int32_t signs = (e0 + a0 * i + b0 * j) | (e1 + a1 * i + b1 * j) | (e2 + a2 * i + b2 * j);
+          unsigned pass = (bits >> k) & (~static_cast<std::uint32_t>(signs) >> 31);
+          if constexpr (kDepthTest) {
+            const float dx = static_cast<float>(bx + (k & 7)) + 0.5f - origin_x;
+            const float dy = static_cast<float>(py + (k >> 3)) + 0.5f - origin_y;
+            z = evaluate(plane, dx, dy) + offset;
+            z = z < 0.0f ? 0.0f : (1.0f < z ? 1.0f : z);  // std::clamp(z, 0, 1), NaN kept, as shade_quad
+            pass &= depth_test_passes<kFunc>(z, depth[k]);
+          }
+          return pass;
+        };
+        if (depth_write) {
+          for (int k = 0; k < simd::kLanes; ++k) {
+            float z = 0.0f;
+            const unsigned pass = lane_pass(k, z);
+            any |= pass;
+            depth[k] = pass ? z : depth[k];
+            triangle[k] = pass ? ref : triangle[k];
+          }
+        } else {
+          for (int k = 0; k < simd::kLanes; ++k) {
+            float z = 0.0f;
+            triangle[k] = lane_pass(k, z) ? ref : triangle[k];
+          }
         }
       }
+      return any;
     }
-    return any;
   };
 
   if (tri.max_x - tri.min_x <= kSmallTriangleSpan && tri.max_y - tri.min_y <= kSmallTriangleSpan) {
@@ -228,7 +231,8 @@ template <DepthFunc kFunc, bool kDepthTest, class L>
 }  // namespace
 
 // Both passes take the depth function as a constant (with_depth_func), so the per-pixel test has no switch inside
-// the loops; the helpers above are inlined into each CPU level's clone.
+// the loops; the helpers above are inlined into each CPU level's clone. Without a depth test the function is
+// `always`, so only that one is compiled without the test.
 void raster_tile_visibility(const RenderState& state, const TileWork& work) {
   at_cpu_level([&]<class L>(L) __attribute__((always_inline)) {
     with_depth_func(state.depth_test ? state.depth_func : DepthFunc::always,
@@ -236,7 +240,8 @@ void raster_tile_visibility(const RenderState& state, const TileWork& work) {
                       for_each_tile_triangle(
                           work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
                             if (state.depth_test) raster_triangle_visibility<kFunc, true, L>(tri, state, work, ref);
-                            else raster_triangle_visibility<kFunc, false, L>(tri, state, work, ref);
+                            else if constexpr (kFunc == DepthFunc::always)  // the one function without a test
+                              raster_triangle_visibility<kFunc, false, L>(tri, state, work, ref);
                           });
                     });
   });
@@ -252,7 +257,8 @@ void raster_tile_visibility_multisample(const RenderState& state, const TileWork
             for (int s = 0; s < n; ++s) {
               const TriangleSetup view = at_sample(tri, pattern, s);
               if (state.depth_test) raster_triangle_visibility<kFunc, true, L>(view, state, planes[s], ref);
-              else raster_triangle_visibility<kFunc, false, L>(view, state, planes[s], ref);
+              else if constexpr (kFunc == DepthFunc::always)
+                raster_triangle_visibility<kFunc, false, L>(view, state, planes[s], ref);
             }
           });
         });

@@ -312,7 +312,8 @@ template <Shader S, class L>
   RenderState resolved = state;
   resolved.depth_test = false;
   const ShadeContext<S> shade{ctx.shader, &resolved};
-  [[maybe_unused]] std::conditional_t<ShaderTraits<S>::prefetch_lanes, PreparedStrip<S, L>[kPrefetchDistance], char> ahead;
+  using Ahead = std::conditional_t<ShaderTraits<S>::prefetch_lanes, PreparedStrip<S, L>[kPrefetchDistance], char>;
+  [[maybe_unused]] Ahead ahead;
   [[maybe_unused]] unsigned prepared = 0;
   for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
     for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)

@@ -63,7 +63,8 @@ struct LitUniforms {
     Vec3 highlight{splat<L>(0.0f), splat<L>(0.0f), splat<L>(0.0f)};
     for (int i = 0; i < lights.count; ++i) {
       const glm::vec4 vk = lights.vector_kind[static_cast<std::size_t>(i)];
-      const Vec3 l = vk.w == 0.0f ? Vec3{splat<L>(vk.x), splat<L>(vk.y), splat<L>(vk.z)} : normalize(glm::vec3(vk) - world);
+      const Vec3 l =
+          vk.w == 0.0f ? Vec3{splat<L>(vk.x), splat<L>(vk.y), splat<L>(vk.z)} : normalize(glm::vec3(vk) - world);
       const Float n_dot_l = dot(n, l);
       const glm::vec3 c = lights.color[static_cast<std::size_t>(i)];
       const Float lambert = select(n_dot_l < 0.0f, splat<L>(0.0f), n_dot_l);  // std::max(n_dot_l, 0.0f)
