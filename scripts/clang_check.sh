@@ -1,9 +1,10 @@
 #!/usr/bin/env bash
-# clang_check.sh - compiles the library, the CLI, the examples and the benchmarks with Clang, front end only,
-# warnings as errors. Usage: clang_check.sh BUILD_DIR (a configured build; its compile_commands.json is reused).
-# The front end is where the compilers differ (builtins, attributes, warnings), at a fraction of a full Clang
-# build's time. These files include every public header and instantiate the pipeline for the stock shaders; the
-# tests, which would double the time, add GoogleTest and no other facet code.
+# clang_check.sh - compiles the CLI, the apps, the examples, the benchmarks and the Python module with Clang, front
+# end only, warnings as errors. Usage: clang_check.sh BUILD_DIR (a configured build; its compile_commands.json is
+# reused). The front end is where the compilers differ (builtins, attributes, warnings), at a fraction of a full
+# Clang build's time. The library (src/) is left to the test command's Clang build (the clang preset), which
+# compiles it with the same warnings as errors; the tests, which would double the time, add GoogleTest and no other
+# facet code. FACET_CLANG_CHECK_LIBRARY=1 checks the library's files here too.
 set -euo pipefail
 build=${1:?usage: clang_check.sh BUILD_DIR}
 clang=$(command -v clang++ || true)
@@ -14,11 +15,16 @@ commands=$build/compile_commands.json
 [ -f "$commands" ] || { echo "clang_check.sh: $commands not found (configure the build first)" >&2; exit 1; }
 
 # One line per file: the GCC command with Clang in place of the compiler and no output file.
-python3 - "$commands" "$clang" "$launcher" > "$build/clang_check.commands" <<'PY'
-import json, shlex, sys
-entries, clang, launcher = json.load(open(sys.argv[1])), sys.argv[2], sys.argv[3]
+source_dir=$(cd "$(dirname "${BASH_SOURCE[0]}")/.." && pwd)
+python3 - "$commands" "$clang" "$launcher" "${FACET_CLANG_CHECK_LIBRARY:-0}" "$source_dir" \
+  > "$build/clang_check.commands" <<'PY'
+import json, os, shlex, sys
+entries, clang, launcher, library = json.load(open(sys.argv[1])), sys.argv[2], sys.argv[3], sys.argv[4] == "1"
+root = os.path.realpath(sys.argv[5])
 for e in entries:
     if "/tests/" in e["file"] and not e["file"].endswith("support/test_shaders.cpp"):
+        continue
+    if not library and os.path.realpath(e["file"]).startswith(os.path.join(root, "src") + os.sep):
         continue
     args = e.get("arguments") or shlex.split(e["command"])
     out, skip = ([launcher] if launcher else []) + [clang], False
