@@ -139,16 +139,19 @@ class alignas(kLaneAlign) Lanes {
   FACET_LANES_INLINE friend constexpr Lanes operator-(const Lanes& a) { FACET_LANES_BY_PART_(Lanes, -a.part[i]); }
   FACET_LANES_INLINE friend constexpr Lanes operator~(const Lanes& a) { FACET_LANES_BY_PART_(Lanes, ~a.part[i]); }
 
+// The three forms of a binary operator giving R: two lane values, or a scalar on either side.
+#define FACET_LANES_BINARY_(R, op)                                                                        \
+  FACET_LANES_INLINE friend constexpr R operator op(const Lanes& a, const Lanes& b) {                      \
+    FACET_LANES_BY_PART_(R, a.part[i] op b.part[i]);                                                       \
+  }                                                                                                        \
+  FACET_LANES_INLINE friend constexpr R operator op(const Lanes& a, Scalar b) {                            \
+    FACET_LANES_BY_PART_(R, a.part[i] op b);                                                               \
+  }                                                                                                        \
+  FACET_LANES_INLINE friend constexpr R operator op(Scalar a, const Lanes& b) {                            \
+    FACET_LANES_BY_PART_(R, a op b.part[i]);                                                               \
+  }
 #define FACET_LANES_OPERATOR(op)                                                                           \
-  FACET_LANES_INLINE friend constexpr Lanes operator op(const Lanes& a, const Lanes& b) {                   \
-    FACET_LANES_BY_PART_(Lanes, a.part[i] op b.part[i]);                                                    \
-  }                                                                                                         \
-  FACET_LANES_INLINE friend constexpr Lanes operator op(const Lanes& a, Scalar b) {                         \
-    FACET_LANES_BY_PART_(Lanes, a.part[i] op b);                                                            \
-  }                                                                                                         \
-  FACET_LANES_INLINE friend constexpr Lanes operator op(Scalar a, const Lanes& b) {                         \
-    FACET_LANES_BY_PART_(Lanes, a op b.part[i]);                                                            \
-  }                                                                                                         \
+  FACET_LANES_BINARY_(Lanes, op)                                                                            \
   FACET_LANES_INLINE constexpr Lanes& operator op##=(const Lanes& b) { return *this = *this op b; }         \
   FACET_LANES_INLINE constexpr Lanes& operator op##=(Scalar b) { return *this = *this op b; }
   FACET_LANES_OPERATOR(+)
@@ -165,23 +168,13 @@ class alignas(kLaneAlign) Lanes {
 
   // Comparisons give a mask per lane: -1 where true, 0 where false.
   using MaskType = Lanes<std::int32_t, L>;
-#define FACET_LANES_COMPARISON(op)                                                                  \
-  FACET_LANES_INLINE friend constexpr MaskType operator op(const Lanes& a, const Lanes& b) {         \
-    FACET_LANES_BY_PART_(MaskType, a.part[i] op b.part[i]);                                          \
-  }                                                                                                  \
-  FACET_LANES_INLINE friend constexpr MaskType operator op(const Lanes& a, Scalar b) {               \
-    FACET_LANES_BY_PART_(MaskType, a.part[i] op b);                                                  \
-  }                                                                                                  \
-  FACET_LANES_INLINE friend constexpr MaskType operator op(Scalar a, const Lanes& b) {               \
-    FACET_LANES_BY_PART_(MaskType, a op b.part[i]);                                                  \
-  }
-  FACET_LANES_COMPARISON(==)
-  FACET_LANES_COMPARISON(!=)
-  FACET_LANES_COMPARISON(<)
-  FACET_LANES_COMPARISON(<=)
-  FACET_LANES_COMPARISON(>)
-  FACET_LANES_COMPARISON(>=)
-#undef FACET_LANES_COMPARISON
+  FACET_LANES_BINARY_(MaskType, ==)
+  FACET_LANES_BINARY_(MaskType, !=)
+  FACET_LANES_BINARY_(MaskType, <)
+  FACET_LANES_BINARY_(MaskType, <=)
+  FACET_LANES_BINARY_(MaskType, >)
+  FACET_LANES_BINARY_(MaskType, >=)
+#undef FACET_LANES_BINARY_
 #undef FACET_LANES_BY_PART_
 };
 

@@ -44,12 +44,8 @@ constexpr std::size_t kMaxPointBytes = 1 << 20;
 
 std::vector<std::string_view> words(std::string_view line) {
   std::vector<std::string_view> out;
-  for (std::size_t i = 0; i < line.size();) {
-    while (i < line.size() && is_space(line[i])) ++i;
-    const std::size_t start = i;
-    while (i < line.size() && !is_space(line[i])) ++i;
-    if (i > start) out.push_back(line.substr(start, i - start));
-  }
+  TextCursor cursor(line.data(), line.data() + line.size(), 0);
+  for (std::string_view word = cursor.next(); !word.empty(); word = cursor.next()) out.push_back(word);
   return out;
 }
 
@@ -216,13 +212,10 @@ void read_ascii(const Header& h, const Roles& r, std::string_view text, const st
   std::vector<std::size_t> first(h.fields.size());  // each field's first value within a point's
   for (std::size_t i = 0, at = 0; i < h.fields.size(); ++i) first[i] = at, at += h.fields[i].count;
   std::vector<double> values(h.point_values);
-  std::size_t at = 0;
+  TextCursor cursor(text.data(), text.data() + text.size(), 0);
   for (std::size_t point = 0; point < h.points; ++point) {
     for (double& v : values) {
-      while (at < text.size() && is_space(text[at])) ++at;
-      const std::size_t start = at;
-      while (at < text.size() && !is_space(text[at])) ++at;
-      const std::string_view token = text.substr(start, at - start);
+      const std::string_view token = cursor.next();
       if (token.empty())
         throw InputError(source, "the data ends after " + std::to_string(point) + " of " +
                                      std::to_string(h.points) + " points");
