@@ -2,7 +2,9 @@
 #pragma once
 
 #include <cstdint>
+#include <new>
 #include <span>
+#include <type_traits>
 
 #include "facet/detail/raster_tile.hpp"
 #include "facet/detail/vertex_stage.hpp"
@@ -15,6 +17,17 @@ namespace facet::detail {
 
 // Renderer::draw, draw_lines and draw_points for shader S: the typed halves of the vertex stage and of the tile loop,
 // handed to the shader-independent rest of the pipeline (Renderer::execute) as plain function pointers.
+// A recorded draw's own copies of its shader and state, for the frame's tile pass.
+template <class S>
+struct RecordedDraw {
+  RecordedDraw(const S& s, const RenderState& st) : shader(s), state(st), context{&shader, &state} {}
+  RecordedDraw(const RecordedDraw&) = delete;
+  RecordedDraw& operator=(const RecordedDraw&) = delete;
+  S shader;
+  RenderState state;
+  ShadeContext<S> context;
+};
+
 template <class S>
 struct DrawWith {
   using Vertex = typename S::Vertex;
@@ -37,7 +50,12 @@ struct DrawWith {
   static void primitives(PrimitiveKind kind, Renderer& renderer, Framebuffer& target, const S& shader,
                          std::span<const Vertex> vertices, std::span<const std::uint32_t> indices,
                          const RenderState& state) {
-    const ShadeContext<S> context{&shader, &state};
+    static_assert(std::is_copy_constructible_v<S>, "a shader must be copyable: a recorded draw keeps a copy");
+    static_assert(alignof(RecordedDraw<S>) <= Renderer::kRecordAlign, "a shader may be aligned to 64 bytes at most");
+    void* storage = renderer.record_storage(target, sizeof(RecordedDraw<S>));
+    const auto* recorded = new (storage) RecordedDraw<S>(shader, state);
+    if constexpr (!std::is_trivially_destructible_v<RecordedDraw<S>>)
+      renderer.record_destructor(storage, [](void* p) { static_cast<RecordedDraw<S>*>(p)->~RecordedDraw(); });
     const VertexSource<S> source{&shader, vertices.data()};
     renderer.execute(target, {.kind = kind,
                               .vertex_count = vertices.size(),
@@ -48,8 +66,7 @@ struct DrawWith {
                               .indices = indices,
                               .state = &state,
                               .raster = target.samples() > 1 ? &raster_tile_multisample<S> : &raster_tile<S>,
-                              .draw = &context,
-                              .deferred = shades_deferred<S>(state)});
+                              .draw = &recorded->context});
   }
 };
 

@@ -64,6 +64,8 @@ struct PendingClear {
   std::uint32_t color_value = 0;
   float depth_value = 1.0f;
 };
+inline constexpr int kTileBlocks = (kTileSize / 8) * (kTileSize / 8);  // 8x8 blocks of hierarchical depth per tile
+struct TileMemory;
 }  // namespace detail
 
 class Renderer;
@@ -72,8 +74,16 @@ class Framebuffer {
  public:
   // Throws std::invalid_argument unless 1 <= width, height <= kMaxDimension and samples is 1, 2, 4 or 8.
   // With samples > 1 every pixel holds that many colour and depth samples at the standard Vulkan (and Direct3D)
-  // sample positions, and color() is the average of each pixel's colour samples.
+  // sample positions while a frame is drawn, and color() is the average of each pixel's colour samples. The samples
+  // themselves live in the memory of the tile being drawn and are not kept after the frame unless keep_samples(true)
+  // asks for them.
   Framebuffer(int width, int height, int samples = 1);
+  ~Framebuffer();
+  // A move hands the pixels over; draws recorded for the source are drawn into it first.
+  Framebuffer(Framebuffer&& other);
+  Framebuffer& operator=(Framebuffer&& other);
+  Framebuffer(const Framebuffer&) = delete;
+  Framebuffer& operator=(const Framebuffer&) = delete;
 
   int width() const { return width_; }
   int height() const { return height_; }
@@ -82,102 +92,93 @@ class Framebuffer {
   int tiles_y() const { return tiles_y_; }
 
   // Rows are top to bottom; x grows to the right. Valid after Renderer::finish(): with several samples, the
-  // average of each pixel's samples (the resolve, which each tile does as it is drawn).
-  std::span<const std::uint32_t> color() const {
-    return samples_ > 1 ? std::span<const std::uint32_t>(resolved_) : std::span<const std::uint32_t>(color_);
-  }
-  // color() for writing: the caller may store anything, so the next clear rewrites every tile (and, with several
-  // samples, the next draw over a tile resolves over it).
-  std::span<std::uint32_t> mutable_color() {
-    apply_pending_clears();
-    contents_exposed_ = true;
-    return samples_ > 1 ? std::span<std::uint32_t>(resolved_) : std::span<std::uint32_t>(color_);
-  }
-  // The colour of one sample of every pixel, not averaged: buffers whose values must not blend (surface ids) read
-  // sample 0, the same sample depth() holds.
-  std::span<const std::uint32_t> sample_color(int sample) const {
-    return std::span<const std::uint32_t>(color_).subspan(sample_offset(sample), pixel_count());
-  }
-  // Depth of sample 0 of every pixel (the only one with a single sample). Valid after Renderer::finish().
-  std::span<const float> depth() const { return std::span<const float>(depth_).first(pixel_count()); }
-  // depth() for writing: also voids the hierarchical depth bounds (they become "unknown") and the kept clear.
-  std::span<float> mutable_depth() {
-    apply_pending_clears();
-    contents_exposed_ = true;
-    std::fill(block_max_depth_.begin(), block_max_depth_.end(), kUnknownDepthBound);
-    return std::span<float>(depth_).first(pixel_count());
-  }
-  std::uint32_t pixel(int x, int y) const { return color()[static_cast<std::size_t>(y) * width_ + x]; }
+  // average of each pixel's samples (the resolve, which each tile does at the end of the frame).
+  std::span<const std::uint32_t> color() const { return color_; }
+  // color() for writing: draws recorded and not yet drawn are drawn first, and the caller may then store anything,
+  // so the next clear rewrites every tile. With several samples and samples not kept, the next frame's draws start
+  // from these colours in every sample; with samples kept, from the kept samples.
+  std::span<std::uint32_t> mutable_color();
+  // Multisampled targets only: whether each pixel's samples outlive the frame (sample_color, and frames drawn over
+  // this one in several finish() calls without a clear between them, which then continue from every sample rather
+  // than from the resolved colour and sample 0's depth). Off by default: the samples then cost tile memory only.
+  // Turning it on keeps full-size planes of colour and depth per sample from the next frame on.
+  void keep_samples(bool keep);
+  bool keeps_samples() const { return keep_samples_; }
+  // The colour of one sample of every pixel, not averaged, after finish(). With one sample, color(); with several,
+  // keep_samples(true) must have been set before the frame (std::logic_error otherwise).
+  std::span<const std::uint32_t> sample_color(int sample) const;
+  // Depth of every pixel (sample 0's with several samples). Valid after Renderer::finish().
+  std::span<const float> depth() const { return depth_; }
+  // depth() for writing: draws recorded and not yet drawn are drawn first; also voids the hierarchical depth bounds
+  // (they become "unknown") and the kept clear.
+  std::span<float> mutable_depth();
+  std::uint32_t pixel(int x, int y) const { return color_[static_cast<std::size_t>(y) * width_ + x]; }
   float depth_at(int x, int y) const { return depth_[static_cast<std::size_t>(y) * width_ + x]; }
 
   // The colour as bytes R, G, B, A per pixel, top row first (what PNG writers take).
   std::vector<std::uint8_t> rgba8() const;
 
  private:
-  // Renderer::clear and finish record and apply clears, and the tile loop writes the storage directly.
+  // Renderer::clear and finish record and apply clears, and the tile pass moves tiles in and out.
   friend class Renderer;
 
-  // A clear is recorded and applied to each tile just before the tile is first drawn (while it is in cache), or
-  // at Renderer::finish() for tiles nothing touched. A tile that received the same colour and depth clear and
+  // A clear is recorded and applied to each tile as the tile pass loads it into tile memory, or at
+  // Renderer::finish() for tiles nothing touched. A tile that received the same colour and depth clear and
   // has not been written since (no draw touched it, no mutable_color() or mutable_depth() access) still holds it, and
   // is skipped: a model that covers part of the frame leaves the rest of the next frame's clear nothing to write.
   void request_clear(glm::vec4 color, float depth, bool clear_color = true, bool clear_depth = true);
   // Applies the pending clear to one tile if it has not been applied yet. Only the tile's owner thread calls it.
   void resolve_clear(int tile_index);
-  // For the renderer, before a draw writes to a tile; only the tile's owner thread calls it. deferred = false
-  // applies the pending clear first. deferred = true is for a draw that writes every pixel of the tile itself
-  // (deferred shading): it marks the pending clear as applied and returns it, leaving the colour and depth writes
-  // to the caller (no clear when nothing was pending); depth bounds are reset here.
-  detail::PendingClear begin_tile_draw(int tile_index, bool deferred);
   // Applies the pending clear to every tile of one row of tiles that still needs it. When all of them do (the
   // common case at finish() after an empty or sparse frame), the row's pixels are contiguous in memory and are
   // filled in one pass, near memset speed; otherwise each run of neighbouring tiles that need it is filled one
   // pixel row at a time. Only the owner of that row of tiles calls it.
   void resolve_clear_tile_row(int tile_row);
   void resolve_all_clears();
-  // Before the caller writes pixels itself: the clears recorded so far (a new framebuffer's included) are applied
-  // first, so that they do not later overwrite what it writes.
-  void apply_pending_clears() {
-    if (std::find(tile_needs_clear_.begin(), tile_needs_clear_.end(), 1) != tile_needs_clear_.end())
-      resolve_all_clears();
-  }
+  // Before the caller writes pixels itself: the draws recorded and the clears requested so far (a new
+  // framebuffer's included) are applied first, so that they do not later overwrite what it writes.
+  void settle_before_write();
 
-  // For the rasterizer. Hierarchical depth: one upper bound on the stored depth per 8x8 block; a triangle whose
-  // nearest point in a block is behind the bound is rejected for the whole block without a per-pixel test. Each
-  // tile's kTileBlocks bounds are contiguous (row-major over its 8x8 grid of blocks) and start a cache line, so
-  // threads updating the bounds of neighbouring tiles never share a line.
+  // For the renderer's tile pass, on the tile's owner thread: load_tile fills a thread's tile memory with the
+  // tile's pending clear, or else its contents (every kept sample, or the resolved colour and depth in each
+  // sample); store_tile writes the tile's final pixels back (the resolve with several samples, and kept samples).
+  void load_tile(int tile_index, detail::TileMemory& memory);
+  void store_tile(int tile_index, const detail::TileMemory& memory);
+
+  // Hierarchical depth: one upper bound on the stored depth per 8x8 block; a triangle whose nearest point in a
+  // block is behind the bound is rejected for the whole block without a per-pixel test. Each tile's kTileBlocks
+  // bounds are contiguous (row-major over its 8x8 grid of blocks). Kept between frames with the depth they bound.
   static constexpr float kUnknownDepthBound = 3.402823466e+38f;
-  static constexpr int kTileBlocks = (kTileSize / 8) * (kTileSize / 8);
-  // Samples are stored as planes, one whole image per sample (sample s at s * pixel_count()), so that the code
-  // that draws one sample reads like the code that draws pixels; each plane has its own depth bounds.
   std::size_t pixel_count() const { return static_cast<std::size_t>(width_) * height_; }
-  std::size_t sample_offset(int sample) const { return static_cast<std::size_t>(sample) * pixel_count(); }
-  std::size_t bounds_per_sample() const { return static_cast<std::size_t>(tiles_x_) * tiles_y_ * kTileBlocks; }
-  std::uint32_t* color_storage() { return color_.data(); }
-  // The averaged colour, which each tile's rasterization keeps current (clears fill it too); null with one sample.
-  std::uint32_t* resolved_storage() { return samples_ > 1 ? resolved_.data() : nullptr; }
-  float* depth_storage() { return depth_.data(); }
-  float* tile_depth_bounds(int tile_index) {
-    return block_max_depth_.data() + static_cast<std::size_t>(tile_index) * kTileBlocks;
+  std::size_t bounds_per_sample() const {
+    return static_cast<std::size_t>(tiles_x_) * tiles_y_ * detail::kTileBlocks;
   }
-
   void reset_depth_bounds(int tile_index, float value);
+  bool holds_samples() const { return !sample_color_.empty(); }
+  // Allocates the sample planes (keep_samples without the settling): each sample takes the pixel's colour and depth.
+  void hold_sample_planes();
+  void detach_recorder();
 
   int width_, height_, samples_, tiles_x_, tiles_y_;
   // Left unset when made: a new framebuffer records a clear to colour 0 and depth 1 instead, which the first clear
   // asked for replaces, so its planes are written once, by that clear or by the draws, not twice.
   template <class T>
   using Plane = std::vector<T, detail::DefaultInitAllocator<CacheAlignedAllocator<T>>>;
-  Plane<std::uint32_t> color_;
-  Plane<std::uint32_t> resolved_;  // with several samples
-  Plane<float> depth_;
-  std::vector<float, CacheAlignedAllocator<float>> block_max_depth_;
+  Plane<std::uint32_t> color_;  // the resolved colour with several samples
+  Plane<float> depth_;          // sample 0's
+  std::vector<float, CacheAlignedAllocator<float>> block_max_depth_;  // bounds of depth_
+  // Kept samples (keep_samples): one whole image per sample (sample s at s * pixel_count()), with their bounds.
+  Plane<std::uint32_t> sample_color_;
+  Plane<float> sample_depth_;
+  std::vector<float, CacheAlignedAllocator<float>> sample_bounds_;
+  bool keep_samples_ = false;
   detail::PendingClear pending_;
   std::vector<std::uint8_t> tile_needs_clear_;
   // Per tile: it holds `held_` (a colour and depth clear) in every pixel. Tiles drawn into lose the mark.
   std::vector<std::uint8_t> tile_holds_clear_;
   detail::PendingClear held_;
   bool contents_exposed_ = false;  // writable color() or depth() since the last request_clear
+  Renderer* recorder_ = nullptr;   // the renderer holding draws recorded for this target, not yet drawn
 };
 
 }  // namespace facet

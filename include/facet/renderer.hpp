@@ -48,11 +48,22 @@ class Renderer {
   // exactly once, in no set order: for passes over a frame's buffers between draws (ambient occlusion).
   void parallel_for(std::size_t count, const std::function<void(std::size_t)>& body);
 
-  // Records a clear; each tile applies it the first time it is drawn (while hot in cache) or at finish().
+  // Records a clear; each tile applies it as the frame's tile pass loads it (while hot in cache) or at finish().
+  // Draws recorded for `target` before it are drawn first.
   void clear(Framebuffer& target, glm::vec4 color = {0, 0, 0, 1}, float depth = 1.0f);
 
+  // A frame's draws are recorded and drawn together at finish(): each tile is rasterized once, with every draw that
+  // touches it in the order they were made, in memory its thread owns (so samples never need full-size planes).
+  // A draw shades its vertices and sets up and bins its primitives before it returns, so its vertex and index spans
+  // may change or go at once; it keeps a copy of the shader and the state, and what the shader points to
+  // (textures, environments, lights, arrays) must stay alive and unchanged until finish(). Between draw() and
+  // finish() the framebuffer's contents are not yet drawn: mutable_color() and mutable_depth() draw the recorded
+  // work first, a draw to another framebuffer draws it first, and a framebuffer destroyed meanwhile drops it. A
+  // frame whose recorded work passes 128 MiB (set-up primitives, bins and varyings: about 800,000 visible
+  // triangles) is drawn in parts, and a multisampled target then keeps full-size sample planes (keep_samples).
+  //
   // Draws indexed triangles (3 indices each, counter-clockwise front faces). Indices outside the vertex span skip
-  // their triangle. Returns when the pixels are in `target`. The stock shaders are compiled into the library
+  // their triangle. The pixels are in `target` after finish(). The stock shaders are compiled into the library
   // (facet/shaders/stock.hpp); drawing with a shader of your own compiles the pipeline for it, which needs
   // #include <facet/draw.hpp> (without it, detail::DrawWith<S> is an incomplete type).
   template <Shader S>
@@ -73,7 +84,8 @@ class Renderer {
   void draw_points(Framebuffer& target, const S& shader, std::span<const typename S::Vertex> vertices,
                    std::span<const std::uint32_t> indices, const RenderState& state = {});
 
-  // Applies clears no draw has touched. Call before reading the framebuffer.
+  // Draws the frame recorded so far (whichever framebuffer it is for) and applies clears no draw has touched. Call
+  // before reading the framebuffer.
   void finish(Framebuffer& target);
 
   const DrawStats& last_stats() const { return stats_; }
@@ -81,10 +93,24 @@ class Renderer {
  private:
   template <class S>
   friend struct detail::DrawWith;
+  friend class Framebuffer;
+  static constexpr std::size_t kRecordAlign = 64;
+  // Memory for a recorded draw's copies of its shader and state (aligned to kRecordAlign), alive until the frame
+  // recorded for `target` is drawn or dropped; draws recorded for another framebuffer are drawn first. An object
+  // built there that needs destroying registers how with record_destructor.
+  void* record_storage(Framebuffer& target, std::size_t bytes);
+  void record_destructor(void* object, void (*destroy)(void*));
+  // Records one draw's batches (see Work).
   void execute(Framebuffer& target, const detail::DrawRequest& request);
+  // The tile pass over the frame recorded so far, then drop_recorded.
+  void flush_recorded();
+  // Forgets the recorded frame: its batches, varyings and copies.
+  void drop_recorded();
+  void draw_recorded_tiles();
+  void release_batches();
 
-  // The thread pool and the frame's work buffers (post-transform vertices, setup chunks and bins, tile order,
-  // per-thread tile scratch), reused from draw to draw; defined in src/core/renderer.cpp.
+  // The thread pool and the frame's work buffers (post-transform vertices, the recorded batches, tile order,
+  // per-thread tile memory and scratch), reused from frame to frame; defined in src/core/renderer.cpp.
   struct Work;
   std::unique_ptr<Work> work_;
   DrawStats stats_;

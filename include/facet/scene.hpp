@@ -118,7 +118,8 @@ class Scene {
   const std::vector<Instance>& instances() const;
 
   // Draws every instance whose bounding sphere meets the view frustum; the others are rejected before any vertex
-  // work. Returns how many instances were drawn. Does not clear or finish the framebuffer.
+  // work. Returns how many instances were drawn. Does not clear the framebuffer; ends with Renderer::finish (its
+  // draws' shaders read this frame's lights and buffers), so the frame is in `target` when it returns.
   std::size_t render(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options);
 
   // Clears target and draws the surfaces as render() would (same instances, culling, depth test and order, no

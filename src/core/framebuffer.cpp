@@ -1,11 +1,15 @@
-// framebuffer.cpp - colour/depth storage and the deferred per-tile clear.
+// framebuffer.cpp - colour/depth storage, the deferred per-tile clear, tiles in and out of tile memory.
 #include "facet/framebuffer.hpp"
 
 #include "facet/detail/bits.hpp"
 #include "facet/detail/dispatch.hpp"
+#include "facet/detail/multisample.hpp"
+#include "facet/detail/tile_memory.hpp"
+#include "facet/renderer.hpp"
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 #include <stdexcept>
 #include <string>
 
@@ -42,6 +46,35 @@ void fill_words(void* first, std::size_t count, std::uint32_t value) {
 #endif
 }
 
+// A tile's pixel rectangle [x0, x1) x [y0, y1).
+struct TileRect {
+  int x0, y0, x1, y1;
+};
+
+template <class T>
+void copy_rect(const T* from, std::size_t from_stride, T* to, std::size_t to_stride, int rows, int columns) {
+  for (int y = 0; y < rows; ++y)
+    std::memcpy(to + static_cast<std::size_t>(y) * to_stride, from + static_cast<std::size_t>(y) * from_stride,
+                static_cast<std::size_t>(columns) * sizeof(T));
+}
+
+// Averages a tile's colour samples into the framebuffer's colour rows (see detail::resolve_row).
+void resolve_rect(const std::uint32_t* samples, std::uint32_t* out, std::size_t out_stride, int rows, int columns,
+                  int count) {
+  detail::at_cpu_level([&]() __attribute__((always_inline)) {
+    for (int y = 0; y < rows; ++y) {
+      const std::uint32_t* in = samples + static_cast<std::size_t>(y) * kTileSize;
+      std::uint32_t* row = out + static_cast<std::size_t>(y) * out_stride;
+      constexpr std::size_t kPlane = detail::TileMemory::kPixels;
+      switch (count) {
+        case 2: detail::resolve_row<2>(in, kPlane, row, columns); break;
+        case 4: detail::resolve_row<4>(in, kPlane, row, columns); break;
+        default: detail::resolve_row<kMaxSamples>(in, kPlane, row, columns); break;
+      }
+    }
+  });
+}
+
 }  // namespace
 
 Framebuffer::Framebuffer(int width, int height, int samples) : width_(width), height_(height), samples_(samples) {
@@ -52,14 +85,48 @@ Framebuffer::Framebuffer(int width, int height, int samples) : width_(width), he
     throw std::invalid_argument("samples per pixel must be 1, 2, 4 or 8, not " + std::to_string(samples));
   tiles_x_ = (width + kTileSize - 1) / kTileSize;
   tiles_y_ = (height + kTileSize - 1) / kTileSize;
-  color_.resize(pixel_count() * static_cast<std::size_t>(samples));
-  depth_.resize(pixel_count() * static_cast<std::size_t>(samples));
-  if (samples > 1) resolved_.resize(pixel_count());
-  block_max_depth_.assign(bounds_per_sample() * static_cast<std::size_t>(samples), 1.0f);
+  color_.resize(pixel_count());
+  depth_.resize(pixel_count());
+  block_max_depth_.assign(bounds_per_sample(), 1.0f);
   // Every tile starts with a clear to colour 0 and depth 1 pending (see color_).
   pending_ = {true, true, 0, 1.0f};
   tile_needs_clear_.assign(static_cast<std::size_t>(tiles_x_) * tiles_y_, 1);
   tile_holds_clear_.assign(tile_needs_clear_.size(), 0);
+}
+
+Framebuffer::~Framebuffer() { detach_recorder(); }
+
+Framebuffer::Framebuffer(Framebuffer&& other)
+    : width_(other.width_), height_(other.height_), samples_(other.samples_), tiles_x_(other.tiles_x_),
+      tiles_y_(other.tiles_y_) {
+  *this = std::move(other);
+}
+
+Framebuffer& Framebuffer::operator=(Framebuffer&& other) {
+  if (this == &other) return *this;
+  detach_recorder();
+  // The renderer holds the source's address: its recorded draws are drawn into it before its pixels move.
+  if (other.recorder_) other.recorder_->flush_recorded();
+  width_ = other.width_, height_ = other.height_, samples_ = other.samples_;
+  tiles_x_ = other.tiles_x_, tiles_y_ = other.tiles_y_;
+  color_ = std::move(other.color_);
+  depth_ = std::move(other.depth_);
+  block_max_depth_ = std::move(other.block_max_depth_);
+  sample_color_ = std::move(other.sample_color_);
+  sample_depth_ = std::move(other.sample_depth_);
+  sample_bounds_ = std::move(other.sample_bounds_);
+  keep_samples_ = other.keep_samples_;
+  pending_ = other.pending_;
+  tile_needs_clear_ = std::move(other.tile_needs_clear_);
+  tile_holds_clear_ = std::move(other.tile_holds_clear_);
+  held_ = other.held_;
+  contents_exposed_ = other.contents_exposed_;
+  return *this;
+}
+
+// A framebuffer that goes away takes its recorded draws with it: nothing is left to draw into.
+void Framebuffer::detach_recorder() {
+  if (recorder_) recorder_->drop_recorded();
 }
 
 std::vector<std::uint8_t> Framebuffer::rgba8() const {
@@ -68,6 +135,65 @@ std::vector<std::uint8_t> Framebuffer::rgba8() const {
   for (std::size_t i = 0; i < pixels.size(); ++i)
     for (int c = 0; c < 4; ++c) bytes[i * 4 + c] = static_cast<std::uint8_t>(pixels[i] >> (8 * c));
   return bytes;
+}
+
+std::span<std::uint32_t> Framebuffer::mutable_color() {
+  settle_before_write();
+  contents_exposed_ = true;
+  return color_;
+}
+
+std::span<float> Framebuffer::mutable_depth() {
+  settle_before_write();
+  contents_exposed_ = true;
+  std::fill(block_max_depth_.begin(), block_max_depth_.end(), kUnknownDepthBound);
+  std::fill(sample_bounds_.begin(), sample_bounds_.end(), kUnknownDepthBound);
+  return depth_;
+}
+
+void Framebuffer::settle_before_write() {
+  if (recorder_) recorder_->flush_recorded();
+  if (std::find(tile_needs_clear_.begin(), tile_needs_clear_.end(), 1) != tile_needs_clear_.end())
+    resolve_all_clears();
+}
+
+void Framebuffer::keep_samples(bool keep) {
+  keep_samples_ = keep && samples_ > 1;
+  if (keep_samples_ == holds_samples()) return;
+  settle_before_write();
+  if (!keep_samples_) {
+    sample_color_ = {};
+    sample_depth_ = {};
+    sample_bounds_ = {};
+    return;
+  }
+  hold_sample_planes();
+}
+
+void Framebuffer::hold_sample_planes() {
+  if (holds_samples()) return;
+  // Until a frame draws them, every sample holds what the pixel shows.
+  sample_color_.resize(pixel_count() * static_cast<std::size_t>(samples_));
+  sample_depth_.resize(pixel_count() * static_cast<std::size_t>(samples_));
+  sample_bounds_.resize(bounds_per_sample() * static_cast<std::size_t>(samples_));
+  for (int s = 0; s < samples_; ++s) {
+    std::copy(color_.begin(), color_.end(), sample_color_.begin() + static_cast<std::ptrdiff_t>(s * pixel_count()));
+    std::copy(depth_.begin(), depth_.end(), sample_depth_.begin() + static_cast<std::ptrdiff_t>(s * pixel_count()));
+    std::copy(block_max_depth_.begin(), block_max_depth_.end(),
+              sample_bounds_.begin() + static_cast<std::ptrdiff_t>(s * bounds_per_sample()));
+  }
+}
+
+std::span<const std::uint32_t> Framebuffer::sample_color(int sample) const {
+  if (sample < 0 || sample >= samples_)
+    throw std::out_of_range("sample " + std::to_string(sample) + " of a framebuffer with " +
+                            std::to_string(samples_) + " samples per pixel");
+  if (samples_ == 1) return color_;
+  if (!holds_samples())
+    throw std::logic_error("sample_color: the framebuffer does not keep its samples; call keep_samples(true) "
+                           "before drawing the frame");
+  return std::span<const std::uint32_t>(sample_color_)
+      .subspan(static_cast<std::size_t>(sample) * pixel_count(), pixel_count());
 }
 
 void Framebuffer::request_clear(glm::vec4 color, float depth, bool clear_color, bool clear_depth) {
@@ -92,35 +218,34 @@ void Framebuffer::resolve_clear(int tile_index) {
   tile_needs_clear_[tile_index] = 0;
   const int x0 = (tile_index % tiles_x_) * kTileSize, y0 = (tile_index / tiles_x_) * kTileSize;
   const int x1 = std::min(x0 + kTileSize, width_), y1 = std::min(y0 + kTileSize, height_);
-  for (int s = 0; s < samples_; ++s) {
-    const std::size_t first = sample_offset(s) + static_cast<std::size_t>(y0) * width_ + x0;
-    if (pending_.color) fill_color(color_.data() + first, width_, y1 - y0, x1 - x0, pending_.color_value);
-    if (pending_.depth) fill_depth(depth_.data() + first, width_, y1 - y0, x1 - x0, pending_.depth_value);
+  const std::size_t first = static_cast<std::size_t>(y0) * width_ + x0;
+  const int planes = holds_samples() ? samples_ : 0;
+  if (pending_.color) {
+    fill_color(color_.data() + first, width_, y1 - y0, x1 - x0, pending_.color_value);
+    for (int s = 0; s < planes; ++s)
+      fill_color(sample_color_.data() + s * pixel_count() + first, width_, y1 - y0, x1 - x0, pending_.color_value);
   }
-  if (pending_.color && samples_ > 1)
-    fill_color(resolved_.data() + static_cast<std::size_t>(y0) * width_ + x0, width_, y1 - y0, x1 - x0,
-               pending_.color_value);
-  if (pending_.depth) reset_depth_bounds(tile_index, pending_.depth_value);
+  if (pending_.depth) {
+    fill_depth(depth_.data() + first, width_, y1 - y0, x1 - x0, pending_.depth_value);
+    for (int s = 0; s < planes; ++s)
+      fill_depth(sample_depth_.data() + s * pixel_count() + first, width_, y1 - y0, x1 - x0, pending_.depth_value);
+    reset_depth_bounds(tile_index, pending_.depth_value);
+  }
   tile_holds_clear_[tile_index] = held_.color;
 }
 
-detail::PendingClear Framebuffer::begin_tile_draw(int tile_index, bool deferred) {
-  if (!deferred) resolve_clear(tile_index);
-  tile_holds_clear_[tile_index] = 0;
-  if (!deferred || !tile_needs_clear_[tile_index]) return {};
-  tile_needs_clear_[tile_index] = 0;
-  if (pending_.depth) reset_depth_bounds(tile_index, pending_.depth_value);
-  return pending_;
-}
-
 void Framebuffer::reset_depth_bounds(int tile_index, float value) {
-  for (int s = 0; s < samples_; ++s)
-    std::fill_n(tile_depth_bounds(tile_index) + static_cast<std::size_t>(s) * bounds_per_sample(), kTileBlocks, value);
+  const std::size_t first = static_cast<std::size_t>(tile_index) * detail::kTileBlocks;
+  std::fill_n(block_max_depth_.data() + first, detail::kTileBlocks, value);
+  if (holds_samples())
+    for (int s = 0; s < samples_; ++s)
+      std::fill_n(sample_bounds_.data() + s * bounds_per_sample() + first, detail::kTileBlocks, value);
 }
 
 void Framebuffer::resolve_clear_tile_row(int tile_row) {
   const int first = tile_row * tiles_x_, last = first + tiles_x_;
   const int y0 = tile_row * kTileSize, y1 = std::min(y0 + kTileSize, height_);
+  const int planes = holds_samples() ? samples_ : 0;
   // Runs of neighbouring tiles still to clear. A run across the whole width (the common case at finish() after an
   // empty or sparse frame) is contiguous in memory and takes one fill; a run beside drawn tiles takes one fill per
   // pixel row, rather than a strided fill per tile.
@@ -135,15 +260,16 @@ void Framebuffer::resolve_clear_tile_row(int tile_row) {
     const bool whole_rows = x0 == 0 && x1 == width_;
     const int fills = whole_rows ? 1 : y1 - y0;
     const std::size_t count = static_cast<std::size_t>(x1 - x0) * (whole_rows ? y1 - y0 : 1);
-    for (int s = 0; s < samples_; ++s)
-      for (int y = y0; y < y0 + fills; ++y) {
-        const std::size_t offset = sample_offset(s) + static_cast<std::size_t>(y) * width_ + x0;
-        if (pending_.color) fill_words(color_.data() + offset, count, pending_.color_value);
-        if (pending_.depth)
-          fill_words(depth_.data() + offset, count, detail::bit_cast<std::uint32_t>(pending_.depth_value));
-        if (pending_.color && samples_ > 1 && s == 0)
-          fill_words(resolved_.data() + offset, count, pending_.color_value);
+    const std::uint32_t depth_bits = detail::bit_cast<std::uint32_t>(pending_.depth_value);
+    for (int y = y0; y < y0 + fills; ++y) {
+      const std::size_t offset = static_cast<std::size_t>(y) * width_ + x0;
+      if (pending_.color) fill_words(color_.data() + offset, count, pending_.color_value);
+      if (pending_.depth) fill_words(depth_.data() + offset, count, depth_bits);
+      for (int s = 0; s < planes; ++s) {
+        if (pending_.color) fill_words(sample_color_.data() + s * pixel_count() + offset, count, pending_.color_value);
+        if (pending_.depth) fill_words(sample_depth_.data() + s * pixel_count() + offset, count, depth_bits);
       }
+    }
     for (; t < end; ++t) {
       tile_needs_clear_[t] = 0;
       tile_holds_clear_[t] = held_.color;
@@ -155,6 +281,54 @@ void Framebuffer::resolve_clear_tile_row(int tile_row) {
 void Framebuffer::resolve_all_clears() {
   for (int t = 0; t < tiles_x_ * tiles_y_; ++t) resolve_clear(t);
   pending_ = {};
+}
+
+void Framebuffer::load_tile(int tile_index, detail::TileMemory& memory) {
+  const int x0 = (tile_index % tiles_x_) * kTileSize, y0 = (tile_index / tiles_x_) * kTileSize;
+  const int columns = std::min(kTileSize, width_ - x0), rows = std::min(kTileSize, height_ - y0);
+  const std::size_t first = static_cast<std::size_t>(y0) * width_ + x0;
+  const std::size_t bounds = static_cast<std::size_t>(tile_index) * detail::kTileBlocks;
+  const bool cleared = tile_needs_clear_[tile_index] != 0;
+  const bool planes = holds_samples();
+  memory.reserve(samples_);
+  for (int s = 0; s < samples_; ++s) {
+    const std::size_t plane = planes ? static_cast<std::size_t>(s) * pixel_count() : 0;
+    if (cleared && pending_.color)
+      fill_color(memory.color_of(s), kTileSize, rows, columns, pending_.color_value);
+    else
+      copy_rect((planes ? sample_color_.data() : color_.data()) + plane + first, width_, memory.color_of(s),
+                kTileSize, rows, columns);
+    if (cleared && pending_.depth) {
+      fill_depth(memory.depth_of(s), kTileSize, rows, columns, pending_.depth_value);
+      std::fill_n(memory.bounds_of(s), detail::kTileBlocks, pending_.depth_value);
+    } else {
+      copy_rect((planes ? sample_depth_.data() : depth_.data()) + plane + first, width_, memory.depth_of(s),
+                kTileSize, rows, columns);
+      const float* from =
+          planes ? sample_bounds_.data() + s * bounds_per_sample() + bounds : block_max_depth_.data() + bounds;
+      std::copy_n(from, detail::kTileBlocks, memory.bounds_of(s));
+    }
+  }
+  tile_needs_clear_[tile_index] = 0;
+  tile_holds_clear_[tile_index] = 0;
+}
+
+void Framebuffer::store_tile(int tile_index, const detail::TileMemory& memory) {
+  const int x0 = (tile_index % tiles_x_) * kTileSize, y0 = (tile_index / tiles_x_) * kTileSize;
+  const int columns = std::min(kTileSize, width_ - x0), rows = std::min(kTileSize, height_ - y0);
+  const std::size_t first = static_cast<std::size_t>(y0) * width_ + x0;
+  const std::size_t bounds = static_cast<std::size_t>(tile_index) * detail::kTileBlocks;
+  if (samples_ == 1) copy_rect(memory.color_of(0), kTileSize, color_.data() + first, width_, rows, columns);
+  else resolve_rect(memory.color_of(0), color_.data() + first, width_, rows, columns, samples_);
+  copy_rect(memory.depth_of(0), kTileSize, depth_.data() + first, width_, rows, columns);
+  std::copy_n(memory.bounds_of(0), detail::kTileBlocks, block_max_depth_.data() + bounds);
+  if (holds_samples())
+    for (int s = 0; s < samples_; ++s) {
+      const std::size_t plane = static_cast<std::size_t>(s) * pixel_count();
+      copy_rect(memory.color_of(s), kTileSize, sample_color_.data() + plane + first, width_, rows, columns);
+      copy_rect(memory.depth_of(s), kTileSize, sample_depth_.data() + plane + first, width_, rows, columns);
+      std::copy_n(memory.bounds_of(s), detail::kTileBlocks, sample_bounds_.data() + s * bounds_per_sample() + bounds);
+    }
 }
 
 }  // namespace facet

@@ -1,15 +1,18 @@
-// renderer.cpp - the shader-independent half of a draw: painter's order, batched setup and binning, tile dispatch.
+// renderer.cpp - the shader-independent half of a frame: painter's order, batched setup and binning, the tile pass.
 #include "facet/renderer.hpp"
 
 #include <algorithm>
+#include <limits>
+#include <memory>
 #include <numeric>
 #include <thread>
-
+#include <utility>
 #include <vector>
 
 #include "core/thread_pool.hpp"
 #include "facet/cpu_level.hpp"
 #include "facet/detail/multisample.hpp"
+#include "facet/detail/tile_memory.hpp"
 #include "core/setup/setup.hpp"
 
 namespace facet {
@@ -22,8 +25,16 @@ int resolve_thread_count(int threads) {
 
 }  // namespace
 
+// A frame's draws are recorded, not drawn: each batch of a draw is set up and binned as it comes, and keeps its
+// varyings, set-up primitives and bins until the frame's tile pass (flush_recorded), which rasterizes every tile
+// once with all the batches that touch it, in the order they were drawn, in the thread's tile memory.
+// Recorded work is bounded: past kRecordedBytes, the work recorded so far is drawn before the next batch is set up,
+// and a multisampled target then keeps full-size sample planes so that the rest of the frame continues from them.
+inline constexpr std::size_t kRecordedBytes = std::size_t{128} << 20;
+
 struct Renderer::Work {
-  explicit Work(int threads) : pool(threads), scratch(static_cast<std::size_t>(pool.size())) {}
+  explicit Work(int threads)
+      : pool(threads), scratch(static_cast<std::size_t>(pool.size())), memory(static_cast<std::size_t>(pool.size())) {}
 
   detail::VertexOutputs prepare_vertex_outputs(const detail::DrawRequest& request, std::size_t held, std::size_t first,
                                                int width, int height);
@@ -31,18 +42,60 @@ struct Renderer::Work {
                                         std::size_t batch_count);
   void shade_vertex_range(const detail::DrawRequest& request, const detail::VertexOutputs& out, std::size_t begin,
                           std::size_t end, DrawStats& stats);
+  std::size_t new_varying_block(std::size_t floats);
+
+  // One batch of a recorded draw, set up and binned: what the tile pass needs to rasterize it.
+  struct Batch {
+    std::vector<detail::SetupChunk> chunks;  // kept from frame to frame for their memory
+    std::size_t chunk_count = 0;
+    std::size_t varyings = 0;  // its block of varying_blocks
+    detail::TileRasterFn raster = nullptr;
+    const void* draw = nullptr;  // the draw's copies of its shader and state, in `copies`
+  };
+  // The recorded draws' copies of their shaders and states: blocks that stay from frame to frame, so that steady
+  // frames do not touch the heap, and the destructors to run when the frame is drawn.
+  struct Copies {
+    static constexpr std::size_t kBlock = 16 << 10;
+    struct Block {
+      std::unique_ptr<std::byte[], void (*)(std::byte*)> bytes{nullptr, nullptr};
+      std::size_t size = 0;
+    };
+    std::vector<Block> blocks;
+    std::size_t block = 0, used = 0;
+    std::vector<std::pair<void*, void (*)(void*)>> destructors;
+
+    void* allocate(std::size_t bytes);
+    void clear();
+  };
+  using VaryingBlock = std::vector<float, detail::DefaultInitAllocator<CacheAlignedAllocator<float>>>;
 
   detail::ThreadPool pool;
-  // Post-transform vertices of the range being drawn (see VertexOutputs).
+  // Post-transform vertices of the range being set up (see VertexOutputs); the varyings live in varying_blocks.
   std::vector<glm::vec4> clip;                     // clip positions, kept only for lines and the painter's sort
   std::vector<detail::ProjectedVertex> projected;  // the same after the divide, viewport and snapping
-  std::vector<float> varyings;                     // varyings, float_count floats per vertex
-  std::vector<detail::SetupChunk> chunks;
-  std::vector<detail::VertexRange> chunk_bands;  // vertices each setup chunk of the batch references
-  std::vector<std::uint32_t> order;              // painter's order
+  std::vector<detail::VertexRange> chunk_bands;    // vertices each setup chunk of the batch references
+  std::vector<std::uint32_t> order;                // painter's order
   std::vector<float> sort_keys;
-  std::vector<std::uint64_t> active_tiles;   // tiles with work, most binned triangles first (see execute)
-  std::vector<detail::TileScratch> scratch;  // per thread one per sample, for deferred shading
+
+  // The frame being recorded: its target, batches and varyings (both pools only grow, and are reused), the
+  // (tile, batch) pairs with work in batch order, and per tile its primitives binned so far.
+  Framebuffer* target = nullptr;
+  std::vector<Batch> batches;
+  std::size_t batch_count = 0;
+  std::vector<VaryingBlock> varying_blocks;
+  std::size_t varying_block_count = 0;
+  std::size_t current_block = 0;  // the varyings that the draw being recorded sets up from
+  std::size_t recorded_bytes = 0;
+  std::vector<std::uint32_t> pair_tile, pair_batch;
+  std::vector<std::uint32_t> tile_load;
+  Copies copies;
+
+  // The tile pass's: per-tile lists of batches, tiles with work (most binned primitives first), and per thread its
+  // tile memory and one deferred-shading scratch per sample.
+  std::vector<std::uint32_t> tile_first, tile_batches;
+  std::vector<std::uint64_t> active_tiles;
+  std::vector<detail::TileScratch> scratch;
+  std::vector<detail::TileMemory> memory;
 };
 
 Renderer::Renderer(int threads) {
@@ -50,7 +103,7 @@ Renderer::Renderer(int threads) {
   work_ = std::make_unique<Work>(resolve_thread_count(threads));
 }
 
-Renderer::~Renderer() = default;
+Renderer::~Renderer() { drop_recorded(); }
 
 int Renderer::threads() const { return work_->pool.size(); }
 
@@ -58,9 +111,47 @@ void Renderer::parallel_for(std::size_t count, const std::function<void(std::siz
   work_->pool.parallel_for(count, [&](std::size_t i, int) { body(i); });
 }
 
-void Renderer::clear(Framebuffer& target, glm::vec4 color, float depth) { target.request_clear(color, depth); }
+void* Renderer::Work::Copies::allocate(std::size_t bytes) {
+  bytes = (bytes + kRecordAlign - 1) / kRecordAlign * kRecordAlign;
+  while (block < blocks.size() && used + bytes > blocks[block].size) ++block, used = 0;
+  if (block == blocks.size()) {
+    const std::size_t size = std::max(kBlock, bytes);
+    auto* memory = static_cast<std::byte*>(::operator new(size, std::align_val_t{kRecordAlign}));
+    blocks.push_back({{memory, [](std::byte* p) { ::operator delete(p, std::align_val_t{kRecordAlign}); }}, size});
+    used = 0;
+  }
+  void* at = blocks[block].bytes.get() + used;
+  used += bytes;
+  return at;
+}
+
+void Renderer::Work::Copies::clear() {
+  for (auto it = destructors.rbegin(); it != destructors.rend(); ++it) it->second(it->first);
+  destructors.clear();
+  block = used = 0;
+}
+
+void* Renderer::record_storage(Framebuffer& target, std::size_t bytes) {
+  Work& w = *work_;
+  if (w.target != &target) {
+    flush_recorded();
+    w.target = &target;
+    target.recorder_ = this;
+  }
+  return w.copies.allocate(bytes);
+}
+
+void Renderer::record_destructor(void* object, void (*destroy)(void*)) {
+  work_->copies.destructors.emplace_back(object, destroy);
+}
+
+void Renderer::clear(Framebuffer& target, glm::vec4 color, float depth) {
+  if (work_->target == &target) flush_recorded();
+  target.request_clear(color, depth);
+}
 
 void Renderer::finish(Framebuffer& target) {
+  flush_recorded();
   work_->pool.parallel_for(static_cast<std::size_t>(target.tiles_y()),
                            [&](std::size_t row, int) { target.resolve_clear_tile_row(static_cast<int>(row)); });
   target.resolve_all_clears();
@@ -75,9 +166,20 @@ detail::VertexOutputs Renderer::Work::prepare_vertex_outputs(const detail::DrawR
   const bool keep_clip = !triangles || request.state->order == DrawOrder::back_to_front;
   if (keep_clip && clip.size() < held) clip.resize(held);
   if (triangles && projected.size() < held) projected.resize(held);
-  if (varyings.size() < held * request.varying_floats) varyings.resize(held * request.varying_floats);
-  return {first, keep_clip ? clip.data() : nullptr, triangles ? projected.data() : nullptr, varyings.data(), width,
-          height};
+  current_block = new_varying_block(held * request.varying_floats);
+  return {first, keep_clip ? clip.data() : nullptr, triangles ? projected.data() : nullptr,
+          varying_blocks[current_block].data(), width, height};
+}
+
+std::size_t Renderer::Work::new_varying_block(std::size_t floats) {
+  if (varying_block_count == varying_blocks.size()) varying_blocks.emplace_back();
+  VaryingBlock& block = varying_blocks[varying_block_count];
+  if (block.size() < floats) {
+    block.clear();  // nothing to copy when it grows
+    block.resize(floats);
+  }
+  recorded_bytes += floats * sizeof(float);
+  return varying_block_count++;
 }
 
 // The vertices that a batch's primitives reference (empty if none is valid), from a scan per setup chunk.
@@ -126,7 +228,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   // each time. The painter's order shades every vertex (its sort reads them all first). Either way the
   // post-transform cache never misses: each vertex is shaded at most once per batch.
   // A draw's last part shorter than a batch joins the batch before it: one batch boundary fewer, i.e. one round of
-  // barriers and one visit of the tiles both batches touch, for at most twice a batch's setup memory.
+  // barriers, for at most twice a batch's setup memory at a time.
   const std::size_t batch = kSetupChunk * kChunksPerBatch;
   const auto batch_end = [&](std::size_t first) { return count - first < 2 * batch ? count : first + batch; };
   const std::size_t n = request.vertex_count;
@@ -155,14 +257,25 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
 
   const std::size_t tiles = static_cast<std::size_t>(target.tiles_x()) * target.tiles_y();
   const int samples = target.samples();
-  const std::size_t scratch_needed = static_cast<std::size_t>(w.pool.size()) * static_cast<std::size_t>(samples);
-  if (w.scratch.size() < scratch_needed) w.scratch.resize(scratch_needed);
   for (std::size_t batch_first = 0, next_batch = 0; batch_first < count; batch_first = next_batch) {
     next_batch = batch_end(batch_first);
     const std::size_t batch_count = next_batch - batch_first;
     const std::size_t chunk_size = setup_chunk_size(batch_count);
     const std::size_t chunk_count = (batch_count + chunk_size - 1) / chunk_size;
-    if (w.chunks.size() < chunk_count) w.chunks.resize(chunk_count);
+    if (w.recorded_bytes > kRecordedBytes && w.batch_count > 0) {
+      // Too much recorded: draw it now, and go on recording the frame (the draws' copies stay). A whole-draw block
+      // of varyings is still needed by this draw's later batches; a banded draw shades a new one below.
+      if (samples > 1) target.hold_sample_planes();
+      draw_recorded_tiles();
+      const std::size_t kept = w.current_block;
+      release_batches();
+      if (!banded) {
+        std::swap(w.varying_blocks[0], w.varying_blocks[kept]);
+        w.varying_block_count = 1;
+        w.current_block = 0;
+        w.recorded_bytes = w.varying_blocks[0].size() * sizeof(float);
+      }
+    }
     if (banded) {
       const VertexRange band = w.batch_vertex_band(request, batch_first, batch_count);
       // Shading shared vertices again at batch boundaries is cheap; shading the mesh several times over is not. A
@@ -171,9 +284,17 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       banded = width <= n / 4 * 3 && stats_.vertices_shaded + width <= n + n / 4;
       shade_band(banded ? band : VertexRange{0, n});
     }
+    if (w.tile_load.size() != tiles || w.batch_count == 0) w.tile_load.assign(tiles, 0);
 
+    if (w.batch_count == w.batches.size()) w.batches.emplace_back();
+    Work::Batch& recorded = w.batches[w.batch_count++];
+    if (recorded.chunks.size() < chunk_count) recorded.chunks.resize(chunk_count);
+    recorded.chunk_count = chunk_count;
+    recorded.varyings = w.current_block;
+    recorded.raster = request.raster;
+    recorded.draw = request.draw;
     w.pool.parallel_for(chunk_count, [&](std::size_t c, int) {
-      SetupChunk& chunk = w.chunks[c];
+      SetupChunk& chunk = recorded.chunks[c];
       chunk.reset();
       const std::size_t first = batch_first + c * chunk_size;
       const SetupInput input{.clip = outputs.clip,
@@ -199,51 +320,104 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       else setup_points(input, chunk);
       chunk.sort_by_tile(tiles);
     });
-    // Heaviest tiles first, by binned triangles: the pool hands tiles out in this order, so the last ones to start
-    // are short and the threads finish together (in row order the centre of a model came last and one thread ran
-    // on alone: sphere:224 and 707 1.5-3% slower). Each key is the inverted count above the tile index, a total
-    // order, so std::sort needs no buffer and the order is the same every frame.
-    w.active_tiles.clear();
+    const auto batch_index = static_cast<std::uint32_t>(w.batch_count - 1);
     for (std::size_t t = 0; t < tiles; ++t) {
       std::uint32_t binned = 0;
-      for (std::size_t c = 0; c < chunk_count; ++c) binned += w.chunks[c].binned_count(t);
-      if (binned) w.active_tiles.push_back(std::uint64_t{~binned} << 32 | t);
+      for (std::size_t c = 0; c < chunk_count; ++c) binned += recorded.chunks[c].binned_count(t);
+      if (!binned) continue;
+      w.pair_tile.push_back(static_cast<std::uint32_t>(t));
+      w.pair_batch.push_back(batch_index);
+      w.tile_load[t] += binned;
     }
-    std::sort(w.active_tiles.begin(), w.active_tiles.end());
     for (std::size_t c = 0; c < chunk_count; ++c) {
-      stats_.culled += w.chunks[c].culled;
-      stats_.clipped += w.chunks[c].clipped;
-      stats_.invalid += w.chunks[c].invalid;
-      stats_.binned += w.chunks[c].triangles.size();
+      const SetupChunk& chunk = recorded.chunks[c];
+      stats_.culled += chunk.culled;
+      stats_.clipped += chunk.clipped;
+      stats_.invalid += chunk.invalid;
+      stats_.binned += chunk.triangles.size();
+      w.recorded_bytes += chunk.triangles.size() * sizeof(TriangleSetup) + chunk.binned.size() * sizeof(std::uint32_t);
     }
+  }
+}
 
-    // One owner per tile: no two threads ever write the same pixel, so the tile loop needs no locks.
-    w.pool.parallel_for(w.active_tiles.size(), [&](std::size_t i, int thread) {
-      const int tile = static_cast<int>(w.active_tiles[i] & 0xffffffffu);
-      const detail::PendingClear clear = target.begin_tile_draw(tile, request.deferred);
-      const int x0 = (tile % target.tiles_x()) * kTileSize, y0 = (tile / target.tiles_x()) * kTileSize;
+void Renderer::flush_recorded() {
+  if (!work_->target) return;
+  draw_recorded_tiles();
+  drop_recorded();
+}
+
+void Renderer::draw_recorded_tiles() {
+  using namespace detail;
+  Work& w = *work_;
+  Framebuffer* const target = w.target;
+  const std::size_t tiles = w.tile_load.size();
+  const int samples = target->samples();
+
+  // Each tile's batches, in the order they were recorded (a counting sort of the pairs by tile).
+  w.tile_first.assign(tiles + 1, 0);
+  for (const std::uint32_t t : w.pair_tile) ++w.tile_first[t + 1];
+  for (std::size_t t = 0; t < tiles; ++t) w.tile_first[t + 1] += w.tile_first[t];
+  w.tile_batches.resize(w.pair_tile.size());
+  for (std::size_t i = 0; i < w.pair_tile.size(); ++i) w.tile_batches[w.tile_first[w.pair_tile[i]]++] = w.pair_batch[i];
+  for (std::size_t t = tiles; t > 0; --t) w.tile_first[t] = w.tile_first[t - 1];
+  w.tile_first[0] = 0;
+  // Heaviest tiles first, by binned primitives: the pool hands tiles out in this order, so the last ones to start
+  // are short and the threads finish together (in row order the centre of a model came last and one thread ran
+  // on alone: sphere:224 and 707 1.5-3% slower). Each key is the inverted count above the tile index, a total
+  // order, so std::sort needs no buffer and the order is the same every frame.
+  w.active_tiles.clear();
+  for (std::size_t t = 0; t < tiles; ++t)
+    if (w.tile_load[t]) w.active_tiles.push_back(std::uint64_t{~w.tile_load[t]} << 32 | t);
+  std::sort(w.active_tiles.begin(), w.active_tiles.end());
+
+  const std::size_t scratch_needed = static_cast<std::size_t>(w.pool.size()) * static_cast<std::size_t>(samples);
+  if (w.scratch.size() < scratch_needed) w.scratch.resize(scratch_needed);
+  // One owner per tile: no two threads ever write the same pixel, so the tile pass needs no locks.
+  w.pool.parallel_for(w.active_tiles.size(), [&](std::size_t i, int thread) {
+    const int tile = static_cast<int>(w.active_tiles[i] & 0xffffffffu);
+    TileMemory& memory = w.memory[static_cast<std::size_t>(thread)];
+    target->load_tile(tile, memory);
+    const int x0 = (tile % target->tiles_x()) * kTileSize, y0 = (tile / target->tiles_x()) * kTileSize;
+    for (std::uint32_t k = w.tile_first[tile]; k < w.tile_first[tile + 1]; ++k) {
+      const Work::Batch& batch = w.batches[w.tile_batches[k]];
       const TileWork work{.tile = tile,
                           .x0 = x0,
                           .y0 = y0,
-                          .x1 = std::min(x0 + kTileSize, target.width()),
-                          .y1 = std::min(y0 + kTileSize, target.height()),
-                          .stride = target.width(),
-                          .color = target.color_storage(),
-                          .depth = target.depth_storage(),
-                          .depth_bounds = target.tile_depth_bounds(tile),
-                          .chunks = w.chunks.data(),
-                          .chunk_count = chunk_count,
-                          .varyings = outputs.varyings,
+                          .x1 = std::min(x0 + kTileSize, target->width()),
+                          .y1 = std::min(y0 + kTileSize, target->height()),
+                          .stride = kTileSize,
+                          .color = memory.color_of(0),
+                          .depth = memory.depth_of(0),
+                          .depth_bounds = memory.bounds_of(0),
+                          .chunks = batch.chunks.data(),
+                          .chunk_count = batch.chunk_count,
+                          .varyings = w.varying_blocks[batch.varyings].data(),
                           .scratch = &w.scratch[static_cast<std::size_t>(thread) * static_cast<std::size_t>(samples)],
-                          .clear = clear,
-                          .last_batch = next_batch == count,
                           .samples = samples,
-                          .sample_stride = target.sample_offset(1),
-                          .bounds_stride = target.bounds_per_sample(),
-                          .resolved = target.resolved_storage()};
-      request.raster(request.draw, work);
-    });
-  }
+                          .sample_stride = TileMemory::kPixels,
+                          .bounds_stride = kTileBlocks};
+      batch.raster(batch.draw, work);
+    }
+    target->store_tile(tile, memory);
+  });
+
+}
+
+void Renderer::release_batches() {
+  Work& w = *work_;
+  w.batch_count = 0;
+  w.varying_block_count = 0;
+  w.recorded_bytes = 0;
+  w.pair_tile.clear();
+  w.pair_batch.clear();
+}
+
+void Renderer::drop_recorded() {
+  Work& w = *work_;
+  if (w.target) w.target->recorder_ = nullptr;
+  w.target = nullptr;
+  release_batches();
+  w.copies.clear();
 }
 
 }  // namespace facet

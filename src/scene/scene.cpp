@@ -170,6 +170,7 @@ std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& v
     const Instance& instance = impl_->instances[i];
     detail::draw_instance(renderer, target, frame, instance, impl_->prepared_of(instance), detail::DrawPass::blended);
   }
+  renderer.finish(target);
   return order.size();
 }
 

@@ -34,9 +34,12 @@ SurfaceIds Scene::render_ids(Renderer& renderer, Framebuffer& target, const View
   key_instance.reserve(keys);
   key_triangle.reserve(keys);
 
+  target.keep_samples(true);                      // sample 0 is read below
   renderer.clear(target, glm::vec4(1.0f), 1.0f);  // every byte 0xff: kNoSurface
   std::vector<MeshVertex> white;
+  // Every draw's face colours, the keys in order: each draw reads its own stretch until the frame is drawn.
   std::vector<glm::vec4> key_colors;
+  key_colors.reserve(keys);
   // As render() draws: the opaque surfaces, then the blended ones farthest first, each with its material's state
   // but no blending, so each pixel keeps the key of the nearest surface.
   const auto draw = [&](std::size_t i, bool blended) {
@@ -49,7 +52,7 @@ SurfaceIds Scene::render_ids(Renderer& renderer, Framebuffer& target, const View
     const ObjectTransforms transforms = ObjectTransforms::make(frame.clip_from_world, instance.world_from_object);
     for (const detail::TriangleGroup& group : prepared.groups) {
       if (detail::is_blended(*instance.mesh, group) != blended) continue;
-      key_colors.clear();
+      const glm::vec4* group_keys = key_colors.data() + key_colors.size();
       for (const std::uint32_t t : group.triangles) {
         key_colors.push_back(color_of_key(static_cast<std::uint32_t>(key_instance.size())));
         key_instance.push_back(static_cast<std::uint32_t>(i));
@@ -64,11 +67,11 @@ SurfaceIds Scene::render_ids(Renderer& renderer, Framebuffer& target, const View
         Masked<UnlitShader> shader{
             UnlitShader{transforms.clip_from_object, detail::surface_color(options, material, prepared, group)}};
         shader.alpha_cutoff = material.alpha_cutoff;
-        shader.replace = key_colors.data();
+        shader.replace = group_keys;
         renderer.draw(target, shader, std::span<const MeshVertex>(prepared.vertices), indices, state);
       } else {
         const UnlitShader shader{transforms.clip_from_object,
-                                 SurfaceColor{glm::vec4(1.0f), key_colors.data(), nullptr, {}}};
+                                 SurfaceColor{glm::vec4(1.0f), group_keys, nullptr, {}}};
         renderer.draw(target, shader, std::span<const MeshVertex>(white), indices, state);
       }
     }

@@ -127,6 +127,7 @@ template <class S>
 Framebuffer render(const std::vector<Draw>& draws, int width, int height, bool deferred, int threads,
                    float clear_depth = 1.0f, int samples = 1) {
   Framebuffer fb(width, height, samples);
+  fb.keep_samples(true);
   Renderer renderer(threads);
   renderer.clear(fb, glm::vec4(0.1f, 0.1f, 0.15f, 1.0f), clear_depth);
   const S shader;

@@ -77,8 +77,10 @@ std::vector<std::vector<int>> sample_owners(const ClipMesh& m, int width, int he
   return owner;
 }
 
-Framebuffer draw_samples(const ClipMesh& m, int width, int height, int samples, RenderState state, int threads = 2) {
+Framebuffer draw_samples(const ClipMesh& m, int width, int height, int samples, RenderState state, int threads = 2,
+                         bool keep = true) {
   Framebuffer fb(width, height, samples);
+  fb.keep_samples(keep);
   const std::vector<ColorShader::Vertex> vertices = color_vertices(m);
   Renderer renderer(threads);
   renderer.clear(fb, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
@@ -145,6 +147,7 @@ TEST(Multisample, TilingTrianglesCoverEverySampleExactlyOnce) {
     RenderState state = no_depth_no_cull();
     state.blend = BlendMode::alpha;
     Framebuffer fb(width, height, samples);
+    fb.keep_samples(true);
     Renderer renderer(2);
     renderer.clear(fb, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
     renderer.draw(fb, TranslucentShader{}, std::span<const TranslucentShader::Vertex>(vertices), m.indices, state);
@@ -222,6 +225,25 @@ TEST(Multisample, ResolveAveragesSamples) {
         for (int s = 0; s < samples; ++s) sum += static_cast<int>((fb.sample_color(s)[i] >> (8 * c)) & 0xffu);
         ASSERT_EQ(static_cast<int>((fb.color()[i] >> (8 * c)) & 0xffu), (sum + samples / 2) / samples);
       }
+  }
+}
+
+// Samples live in tile memory while the frame is drawn: keeping them afterwards changes what can be read, not the
+// image.
+TEST(Multisample, KeptSamplesLeaveTheImageAsItIs) {
+  const ClipMesh m = random_triangles(150, 61, 37, 7);
+  for (const int samples : {2, 4, 8}) {
+    for (const bool depth : {false, true}) {
+      RenderState state = no_depth_no_cull();
+      state.depth_test = depth;
+      const Framebuffer kept = draw_samples(m, 61, 37, samples, state, 2, true);
+      const Framebuffer bare = draw_samples(m, 61, 37, samples, state, 2, false);
+      EXPECT_TRUE(std::ranges::equal(kept.color(), bare.color())) << samples << " samples";
+      EXPECT_TRUE(std::ranges::equal(kept.depth(), bare.depth())) << samples << " samples";
+      EXPECT_THROW((void)bare.sample_color(0), std::logic_error);
+      EXPECT_EQ(kept.sample_color(samples - 1).size(), 61u * 37u);
+      EXPECT_THROW((void)kept.sample_color(samples), std::out_of_range);
+    }
   }
 }
 

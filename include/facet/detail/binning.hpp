@@ -101,21 +101,23 @@ struct alignas(64) TileScratch {
 struct TileWork {
   int tile;
   int x0, y0, x1, y1;  // pixel rectangle [x0, x1) x [y0, y1)
-  int stride;          // pixels per framebuffer row
+  // The tile's pixels in the thread's tile memory (TileMemory): pixel (x, y) at (y - y0) * stride + (x - x0).
+  int stride;
   std::uint32_t* color;
   float* depth;
-  float* depth_bounds;  // the tile's, see Framebuffer::tile_depth_bounds
+  float* depth_bounds;  // kTileBlocks, row-major over the tile's 8x8 blocks
   const SetupChunk* chunks;
   std::size_t chunk_count;
   const float* varyings;       // post-transform varyings, indexed by TriangleSetup::vertex
-  TileScratch* scratch;        // the running thread's, for deferred shading: one per sample
-  detail::PendingClear clear;  // deferred shading: the clear the tile applies itself as it writes its pixels
-  bool last_batch;             // no later batch of the draw visits the tile: deferred shading may stream its depth out
+  TileScratch* scratch;  // the running thread's, for deferred shading: one per sample
   // Multisampling: samples per pixel, and how far apart the samples' colour and depth planes and depth bounds lie
   // (color, depth and depth_bounds above are sample 0's; see sample_work in multisample.hpp).
   int samples = 1;
   std::size_t sample_stride = 0, bounds_stride = 0;
-  std::uint32_t* resolved = nullptr;  // the averaged colour (stride as color), which the tile pass keeps current
+  // The pixel's place in color and depth (sample 0's plane).
+  std::size_t at(int x, int y) const {
+    return static_cast<std::size_t>(y - y0) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(x - x0);
+  }
 };
 
 // Calls f(triangle, ref) for each triangle binned to the work's tile, in draw order (chunk by chunk).

@@ -98,22 +98,6 @@ template <int kSamples>
   }
 }
 
-// Averages the tile's colour samples into work.resolved, while they are still in cache: the rounded mean per
-// channel, two channels at a time in the 16-bit halves of 32-bit words (eight samples of 255 sum to 2040).
-[[gnu::always_inline]] inline void resolve_tile(const TileWork& work) {
-  const int width = work.x1 - work.x0;
-  for (int y = work.y0; y < work.y1; ++y) {
-    const std::size_t row = static_cast<std::size_t>(y) * work.stride + work.x0;
-    const std::uint32_t* in = work.color + row;
-    std::uint32_t* out = work.resolved + row;
-    switch (work.samples) {
-      case 2: resolve_row<2>(in, work.sample_stride, out, width); break;
-      case 4: resolve_row<4>(in, work.sample_stride, out, width); break;
-      default: resolve_row<kMaxSamples>(in, work.sample_stride, out, width); break;  // 8: targets have 2, 4 or 8
-    }
-  }
-}
-
 // The tile work of sample s: its colour and depth planes, depth bounds and the thread's scratch for it.
 inline TileWork sample_work(const TileWork& work, int s) {
   TileWork one = work;

@@ -102,7 +102,7 @@ template <Shader S, bool kMulti>
       const float dy = static_cast<float>(py + (k >> 1)) + 0.5f - views[s].origin_y;
       z[k][s] = std::clamp(evaluate(views[s].depth, dx, dy) + state.depth_offset, 0.0f, 1.0f);
     }
-    index[k] = static_cast<std::size_t>(py + (k >> 1)) * work.stride + (px + (k & 1));
+    index[k] = work.at(px + (k & 1), py + (k >> 1));
   }
   // Drops pixel k's samples that fail the depth test, and writes the depth of those that pass.
   const auto test_depth = [&](int k) __attribute__((always_inline)) {

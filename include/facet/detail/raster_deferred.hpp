@@ -7,10 +7,6 @@
 #include <cstring>
 #include <type_traits>
 
-#if defined(__x86_64__)
-#include <xmmintrin.h>
-#endif
-
 #include "facet/detail/dispatch.hpp"
 #include "facet/detail/raster.hpp"
 #include "facet/detail/raster_visibility.hpp"
@@ -38,7 +34,7 @@ namespace facet::detail {
 [[gnu::always_inline]] inline void store_strip(const TileWork& work, int px, int py, unsigned bits,
                                                const std::uint32_t* colors) {
   for (int row = 0; row < 2; ++row) {
-    std::uint32_t* out = work.color + static_cast<std::size_t>(py + row) * work.stride + px;
+    std::uint32_t* out = work.color + work.at(px, py + row);
     const unsigned row_bits = (bits >> (row * 8)) & 0xffu;
     if (row_bits == 0xffu) {
       std::memcpy(out, colors + row * 8, 8 * sizeof(std::uint32_t));
@@ -49,20 +45,6 @@ namespace facet::detail {
       out[i] = colors[row * 8 + i];
     }
   }
-}
-
-// The strip's pixels that lie inside the tile (the last tiles of a row or column may be cut short).
-inline unsigned strip_inside(const TileWork& work, int px, int py) {
-  if (py >= work.y1) return 0u;
-  const unsigned row = (1u << std::min(8, work.x1 - px)) - 1u;
-  return row | (py + 1 < work.y1 ? row << 8 : 0u);
-}
-
-// A tile with a pending colour clear writes it itself, with its shaded pixels: each pixel is written once.
-[[gnu::always_inline]] inline void fill_strip(const TileWork& work, int px, int py, unsigned bits) {
-  alignas(64) std::uint32_t colors[simd::kLanes];
-  for (int k = 0; k < simd::kLanes; ++k) colors[k] = work.clear.color_value;
-  store_strip(work, px, py, bits, colors);
 }
 
 // The bits of the lanes of a strip whose triangle reference is `ref` (a loop, vectorised in each level's ISA).
@@ -196,24 +178,14 @@ __attribute__((noinline)) void shade_lanes(const S& shader, const FragmentLanes<
   });
 }
 
-// The prepared strip's 16 colours; lanes without a triangle take the clear colour (stored only where a fill asks).
-template <LaneShader S, class L>
-[[gnu::always_inline]] inline void shade_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work,
-                                                     const FragmentLanes<typename S::Varyings, L>& fragment,
-                                                     std::uint32_t* colors) {
-  using UInt = simd::UIntT<L>;
-  alignas(64) std::uint32_t shaded[simd::kLanes];
-  shade_lanes(*ctx.shader, fragment, shaded);
-  simd::store(colors, simd::blend(fragment.active, simd::load<UInt>(shaded), UInt{} + work.clear.color_value));
-}
-
+// Shades the prepared strip and stores the colours of its covered lanes.
 template <LaneShader S, class L>
 [[gnu::always_inline]] inline void finish_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px, int py,
-                                                      unsigned covered, unsigned fill,
+                                                      unsigned covered,
                                                       const FragmentLanes<typename S::Varyings, L>& fragment) {
   alignas(64) std::uint32_t colors[simd::kLanes];
-  shade_strip_lanes(ctx, work, fragment, colors);
-  store_strip(work, px, py, covered | fill, colors);
+  shade_lanes(*ctx.shader, fragment, colors);
+  store_strip(work, px, py, covered, colors);
 }
 
 // A strip prepared ahead of its shading, for shaders that prefetch.
@@ -221,7 +193,7 @@ template <Shader S, class L>
 struct PreparedStrip {
   FragmentLanes<typename S::Varyings, L> fragment;
   int px, py;
-  unsigned covered, fill;
+  unsigned covered;
 };
 
 // Strips prepared before the first is shaded: prefetch_lanes sees each strip this many strips (a few hundred
@@ -238,7 +210,7 @@ template <class Copy>
   const int whole = width / kScratchBlock * kScratchBlock;
   for (int y = 0; y < height; ++y) {
     float* local_row = work.scratch->depth + (y % kScratchBlock) * kScratchBlock;
-    float* global_row = work.depth + static_cast<std::size_t>(work.y0 + y) * work.stride + work.x0;
+    float* global_row = work.depth + work.at(work.x0, work.y0 + y);
     for (int x = 0; x < whole; x += kScratchBlock)
       copy(local_row + scratch_index(x / kScratchBlock, y / kScratchBlock), global_row + x,
            std::integral_constant<int, kScratchBlock>{});
@@ -247,53 +219,22 @@ template <class Copy>
   }
 }
 
-// The tile's depth leaves with streaming stores after the draw's last batch: nothing in the draw reads it again,
-// and a plain store would first read each line of the framebuffer's depth from memory (write-allocate) only to
-// overwrite it. Whole aligned rows of a block only; returns false for the rest, which the caller copies.
-template <class N>
-[[gnu::always_inline]] inline bool stream_depth_row(float* global, const float* local, N n) {
-#if defined(__x86_64__)
-  if constexpr (std::is_same_v<N, std::integral_constant<int, kScratchBlock>>) {
-    static_assert(kScratchBlock == 8);
-    if (reinterpret_cast<std::uintptr_t>(global) % 16 == 0) {
-      _mm_stream_ps(global, _mm_load_ps(local));
-      _mm_stream_ps(global + 4, _mm_load_ps(local + 4));
-      return true;
-    }
-  }
-#endif
-  (void)global, (void)local, (void)n;
-  return false;
-}
-
-// The tile's depth into its scratch from the framebuffer, or the pending depth clear, and no triangle kept yet.
+// The tile's depth into its scratch, and no triangle kept yet.
 [[gnu::always_inline]] inline void begin_tile_scratch(const TileWork& work, bool depth_test) {
-  if (depth_test || work.clear.depth)
+  if (depth_test)
     for_each_depth_row(
         work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
-          if (work.clear.depth) std::fill_n(local, static_cast<int>(n), work.clear.depth_value);
-          else std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
+          std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
         });
   std::fill_n(work.scratch->triangle, kTileSize * kTileSize, kNoTriangle);
 }
 
-// The tile's depth back from its scratch to the framebuffer; after the draw's last batch with streaming stores,
-// which the caller fences (fence_streamed_depth) once its last plane is out.
+// The tile's depth back from its scratch.
 [[gnu::always_inline]] inline void store_tile_depth(const TileWork& work) {
   for_each_depth_row(
       work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
-        if (!(work.last_batch && stream_depth_row(global, local, n)))
-          std::memcpy(global, local, static_cast<std::size_t>(n) * sizeof(float));
+        std::memcpy(global, local, static_cast<std::size_t>(n) * sizeof(float));
       });
-}
-
-// Streaming stores are weakly ordered: fence them before the pool's barrier hands the frame to other threads.
-inline void fence_streamed_depth(const TileWork& work) {
-#if defined(__x86_64__)
-  if (work.last_batch) _mm_sfence();
-#else
-  (void)work;
-#endif
 }
 
 // L: the lane layout of this CPU level's copy (detail/dispatch.hpp).
@@ -323,23 +264,20 @@ template <Shader S, class L>
         const float* depth = depth_resolved ? scratch.depth + at : nullptr;
         const unsigned covered = ~strip_lanes_equal(refs, kNoTriangle) & 0xffffu;
         const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
-        const unsigned fill = work.clear.color ? strip_inside(work, px, py) & ~covered : 0u;
-        // A lane shader's strip stores the clear colour with its shaded pixels; otherwise it is stored first.
-        if (fill && !(ShaderTraits<S>::fragment_lanes && covered)) fill_strip(work, px, py, fill);
         if (!covered) continue;
         if constexpr (ShaderTraits<S>::prefetch_lanes) {
           // Shade the strip prepared kPrefetchDistance strips ago, then prepare this one in its slot.
           PreparedStrip<S, L>& slot = ahead[prepared % kPrefetchDistance];
           if (prepared >= kPrefetchDistance)
-            finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
+            finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fragment);
           prepare_strip_lanes(shade, work, px, py, refs, depth, slot.fragment);
-          slot.px = px, slot.py = py, slot.covered = covered, slot.fill = fill;
+          slot.px = px, slot.py = py, slot.covered = covered;
           ctx.shader->prefetch_lanes(slot.fragment);
           ++prepared;
         } else if constexpr (ShaderTraits<S>::fragment_lanes) {
           FragmentLanes<typename S::Varyings, L> fragment;
           prepare_strip_lanes(shade, work, px, py, refs, depth, fragment);
-          finish_strip_lanes(shade, work, px, py, covered, fill, fragment);
+          finish_strip_lanes(shade, work, px, py, covered, fragment);
         } else {
           // One triangle at a time, a quad at a time; ctx's state has the depth test off: it is resolved.
           for (unsigned pending = covered; pending;) {
@@ -353,13 +291,10 @@ template <Shader S, class L>
   if constexpr (ShaderTraits<S>::prefetch_lanes)
     for (unsigned n = prepared > kPrefetchDistance ? prepared - kPrefetchDistance : 0; n < prepared; ++n) {
       const PreparedStrip<S, L>& slot = ahead[n % kPrefetchDistance];
-      finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
+      finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fragment);
     }
 
-  if (work.clear.depth || (state.depth_test && state.depth_write)) {
-    store_tile_depth(work);
-    fence_streamed_depth(work);
-  }
+  if (state.depth_test && state.depth_write) store_tile_depth(work);
 }
 
 }  // namespace facet::detail

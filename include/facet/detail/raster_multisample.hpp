@@ -105,15 +105,14 @@ template <Shader S, class L>
   resolved.depth_test = false;
   const ShadeContext<S> shade{ctx.shader, &resolved};
   const int width = work.x1 - work.x0, height = work.y1 - work.y0;
-  // Per strip, each sample's 16 colours. Lanes a sample neither covers nor fills keep an older strip's values, which
-  // nothing reads.
+  // Per strip, each sample's 16 colours. Lanes a sample does not cover keep an older strip's values, which nothing
+  // reads.
   alignas(64) std::uint32_t colors[kMaxSamples][simd::kLanes] = {};
   for (int block_y = 0; block_y * kScratchBlock < height; ++block_y)
     for (int block_x = 0; block_x * kScratchBlock < width; ++block_x)
       for (int strip = 0; strip < kScratchBlock / 2; ++strip) {
         const std::size_t at = scratch_index(block_x, block_y) + static_cast<std::size_t>(strip) * simd::kLanes;
         const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
-        const unsigned inside = work.clear.color ? strip_inside(work, px, py) : 0u;
         const std::uint32_t* refs[kMaxSamples];
         unsigned covered[kMaxSamples];
         [[maybe_unused]] unsigned pending[kMaxSamples];  // lanes not yet shaded, for lane shaders
@@ -136,15 +135,12 @@ template <Shader S, class L>
           simd::UInt differ = simd::UInt{};
           for (int s = 1; s < n; ++s) differ |= simd::load<simd::UInt>(refs[s]) ^ simd::load<simd::UInt>(refs[0]);
           if (simd::lane_bits(differ != 0u) == 0) {
-            const unsigned fill = inside & ~covered[0];
             if (covered[0]) {
               FragmentLanes<typename S::Varyings, L> fragment;
               prepare_strip_lanes(shade, planes[0], px, py, refs[0], nullptr, fragment);
               alignas(64) std::uint32_t strip_colors[simd::kLanes];
-              shade_strip_lanes(shade, work, fragment, strip_colors);
-              for (int s = 0; s < n; ++s) store_strip(planes[s], px, py, covered[0] | fill, strip_colors);
-            } else if (fill) {
-              for (int s = 0; s < n; ++s) fill_strip(planes[s], px, py, fill);
+              shade_lanes(*ctx.shader, fragment, strip_colors);
+              for (int s = 0; s < n; ++s) store_strip(planes[s], px, py, covered[0], strip_colors);
             }
             continue;
           }
@@ -167,19 +163,12 @@ template <Shader S, class L>
               waiting |= pending[s] &= ~taken;
             }
           }
-          for (int s = 0; s < n; ++s) {
-            const unsigned fill = inside & ~covered[s];
-            if (!(covered[s] | fill)) continue;
-            if (fill)
-              simd::store(colors[s], simd::blend(lanes_of(fill), simd::UInt{} + work.clear.color_value,
-                                                 simd::load<simd::UInt>(colors[s])));
-            store_strip(planes[s], px, py, covered[s] | fill, colors[s]);
-          }
+          for (int s = 0; s < n; ++s)
+            if (covered[s]) store_strip(planes[s], px, py, covered[s], colors[s]);
         } else {
           for (int s = 0; s < n; ++s) {
             const TileWork& plane = planes[s];
-            const unsigned fill = inside & ~covered[s];
-            if (!(covered[s] | fill)) continue;
+            if (!covered[s]) continue;
             std::uint32_t* out = colors[s];
             // Lanes whose triangle an earlier sample kept take that sample's colour; the rest are shaded.
             unsigned copied = 0;
@@ -202,18 +191,15 @@ template <Shader S, class L>
             }
             for (unsigned b = shaded; b; b &= b - 1) {
               const int k = std::countr_zero(b);
-              out[k] = plane.color[static_cast<std::size_t>(py + (k >> 3)) * work.stride + px + (k & 7)];
+              out[k] = plane.color[work.at(px + (k & 7), py + (k >> 3))];
             }
-            for (int k = 0; k < simd::kLanes; ++k) out[k] = (fill >> k) & 1 ? work.clear.color_value : out[k];
-            store_strip(plane, px, py, covered[s] | fill, out);
+            store_strip(plane, px, py, covered[s], out);
           }
         }
       }
 
-  if (work.clear.depth || (state.depth_test && state.depth_write)) {
+  if (state.depth_test && state.depth_write)
     for (int s = 0; s < n; ++s) store_tile_depth(planes[s]);
-    fence_streamed_depth(work);
-  }
 }
 
 }  // namespace facet::detail

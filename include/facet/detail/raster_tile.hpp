@@ -49,7 +49,6 @@ void raster_tile_multisample(const void* draw, const TileWork& work) {
         raster_triangle_multisample(ctx, tri, work);
       });
     }
-    resolve_tile(work);
   });
 }
 

@@ -114,8 +114,7 @@ struct DrawRequest {
   std::span<const std::uint32_t> indices;
   const RenderState* state;
   TileRasterFn raster;
-  const void* draw;  // what `raster` reads: shader and state
-  bool deferred;     // tiles keep their depth locally (see raster_deferred.hpp)
+  const void* draw;  // what `raster` reads: the recorded draw's copies of shader and state (Renderer::record_copy)
 };
 
 }  // namespace facet::detail
