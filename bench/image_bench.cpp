@@ -50,14 +50,14 @@ void BM_FacetPng(benchmark::State& state) {
   const std::vector<std::uint8_t>& rgba = frame();
   std::size_t bytes = 0;
   for (auto _ : state) {
-    const std::vector<std::uint8_t> png = facet::encode_png(1920, 1080, 4, rgba);
+    const std::vector<std::uint8_t> png = facet::encode_png(1920, 1080, 4, rgba, 4, static_cast<int>(state.range(0)));
     bytes = png.size();
     benchmark::DoNotOptimize(png.data());
   }
   state.counters["file_bytes"] = static_cast<double>(bytes);
   state.SetBytesProcessed(static_cast<std::int64_t>(state.iterations() * rgba.size()));
 }
-BENCHMARK(BM_FacetPng)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_FacetPng)->Arg(1)->Arg(2)->ArgName("threads")->Unit(benchmark::kMillisecond)->UseRealTime();
 
 void BM_StbPng(benchmark::State& state) {
   const std::vector<std::uint8_t>& rgba = frame();

@@ -15,10 +15,12 @@ class Framebuffer;
 // A regular file (or the one a symlink points to) is written under a temporary name in the same folder and renamed
 // into place, so a failure never leaves a partial file at path. "-" is standard output; a device, a FIFO or a link
 // into /proc/self/fd (such as /dev/stdout) is opened and written in place, never replaced. Throws std::invalid_argument
-// for a bad size, std::runtime_error("<path>: <reason>") when the file cannot be written.
+// for a bad size, std::runtime_error("<path>: <reason>") when the file cannot be written. Up to `threads` threads
+// (the caller's included) compress bands of rows at once; a frame of 1920x1080 takes two bands or more.
 void write_png(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba,
-               bool keep_alpha = true);
-void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha = true);
+               bool keep_alpha = true, int threads = 1);
+void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha = true,
+               int threads = 1);
 
 // An 8-bit greyscale PNG of width * height values, top row first; written like write_png.
 void write_png_gray(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> gray);

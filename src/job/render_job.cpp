@@ -134,7 +134,7 @@ void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const
   try {
     const int w = buffers.width, h = buffers.height;
     if (!outputs.color.empty()) {
-      write_png(outputs.color, target, clear.a < 1.0f);
+      write_png(outputs.color, target, clear.a < 1.0f, renderer.threads());
       written.push_back(outputs.color);
     }
     if (!outputs.depth.empty()) {
@@ -219,7 +219,7 @@ void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timin
                   sheet.begin() + (static_cast<std::ptrdiff_t>(y0 + y) * sheet_width + x0) * 4);
   }
   if (timings) timings->draw = clock.lap();
-  write_png(o.color, sheet_width, sheet_height, sheet, frame.clear.a < 1.0f);
+  write_png(o.color, sheet_width, sheet_height, sheet, frame.clear.a < 1.0f, renderer.threads());
   if (timings) timings->write = clock.lap();
 }
 

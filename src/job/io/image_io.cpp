@@ -1,4 +1,4 @@
-// image_io.cpp - PNG (libdeflate), GIF, .npy and OpenEXR writers over write_output, and a PNG reader for tests.
+// image_io.cpp - PNG (zlib), GIF, .npy and OpenEXR writers over write_output, and a PNG reader for tests.
 #include "facet/image_io.hpp"
 
 #include <algorithm>
@@ -36,9 +36,9 @@ void check_size(int width, int height, std::size_t count, std::size_t per_pixel,
 }  // namespace
 
 void write_png(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba,
-               bool keep_alpha) {
+               bool keep_alpha, int threads) {
   check_size(width, height, rgba.size(), 4, "PNG");
-  write_output(path, encode_png(width, height, keep_alpha ? 4 : 3, rgba, 4));
+  write_output(path, encode_png(width, height, keep_alpha ? 4 : 3, rgba, 4, threads));
 }
 
 void write_png_gray(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> gray) {
@@ -73,14 +73,14 @@ void write_text(const std::filesystem::path& path, const std::string& text) {
   write_output(path, std::span(reinterpret_cast<const std::uint8_t*>(text.data()), text.size()));
 }
 
-void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha) {
+void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha, int threads) {
   if constexpr (detail::kLittleEndian) {
     // Packed pixels are R, G, B, A in memory on a little-endian machine: encoded where they lie, without a copy.
     const std::span<const std::uint32_t> color = framebuffer.color();
     write_png(path, framebuffer.width(), framebuffer.height(),
-              std::span(reinterpret_cast<const std::uint8_t*>(color.data()), color.size_bytes()), keep_alpha);
+              std::span(reinterpret_cast<const std::uint8_t*>(color.data()), color.size_bytes()), keep_alpha, threads);
   } else {
-    write_png(path, framebuffer.width(), framebuffer.height(), framebuffer.rgba8(), keep_alpha);
+    write_png(path, framebuffer.width(), framebuffer.height(), framebuffer.rgba8(), keep_alpha, threads);
   }
 }
 
