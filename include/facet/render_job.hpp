@@ -110,8 +110,8 @@ struct RenderJob {
   // when its name holds {frame} (output_template.hpp).
   int turntable = 0;
   // Multisample anti-aliasing: 1, 2, 4 or 8 samples per pixel, averaged into the colour image. The depth, normal,
-  // id and mask outputs hold the values of sample 0 of each pixel (its first standard sample position), never a
-  // blend. 4, as thumbnails are expected to look; 1 draws aliased edges, a little faster.
+  // id and mask outputs hold the values at each pixel's centre, never a blend: the same as with 1 sample. 4, as
+  // thumbnails are expected to look; 1 draws aliased edges, a little faster.
   int samples = 4;
   // What the model file may make facet read and allocate (model_io.hpp).
   LoadOptions load;

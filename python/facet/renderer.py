@@ -41,7 +41,7 @@ class OffscreenRenderer:
     threads: the renderer's worker threads (0: one per hardware thread). Each renderer renders one frame at a
     time; renderers in different Python threads render in parallel (the GIL is released while drawing).
     samples: multisample anti-aliasing, 1, 2, 4 or 8 samples per pixel (4 as pyrender draws); depth, ids and the
-    mask are taken from sample 0 of each pixel, never blended.
+    mask are taken at each pixel's centre, never blended.
     point_size: the side in pixels of the square each point of a point cloud (Mesh.from_points) covers.
     """
 

@@ -222,8 +222,8 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   stats_.primitives = count;
 
   // Vertex stage. Meshes whose index order is coherent (grids, strips, any optimised mesh) reference a narrow band
-  // of vertices per batch, so each batch shades just its band and post-transform memory follows the batch, not the
-  // mesh. One batch, or bands that overlap too much (a shuffled index order), shade the draw's whole band once
+  // of vertices per batch, so each batch shades just its band, which it records with its varyings (the positions
+  // that setup reads are reused from batch to batch). One batch, or bands that overlap too much (a shuffled index order), shade the draw's whole band once
   // instead: a mesh drawn in several parts (one per material) shades each part's vertices, not the whole array
   // each time. The painter's order shades every vertex (its sort reads them all first). Either way the
   // post-transform cache never misses: each vertex is shaded at most once per batch.

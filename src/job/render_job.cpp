@@ -89,16 +89,31 @@ FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene,
   out.width = target.width();
   out.height = target.height();
   if (request.color) out.color = target.rgba8();
-  // Depth and mask come from one depth read, so every buffer agrees on which pixels are empty.
-  if (request.depth || request.mask) out.depth = linear_depth(target, view.clip_from_view);
+  // Depth, mask, ids and normals describe the surface at each pixel's centre, whatever the sample count, as the
+  // colour pass does with one sample: with several, depth and mask come from a pass of the same scene at one sample,
+  // unlit (its depth is the colour pass's at the centres), and ids from the id pass at one sample. The depth and the
+  // mask come from one depth read, so every buffer agrees on which pixels are empty.
+  if (request.depth || request.mask) {
+    if (target.samples() == 1) {
+      out.depth = linear_depth(target, view.clip_from_view);
+    } else {
+      Framebuffer centres(target.width(), target.height());
+      SceneOptions plain = options;
+      plain.shading = Shading::unlit;
+      plain.environment_background = plain.shadows = plain.ambient_occlusion = false;
+      renderer.clear(centres, clear, 1.0f);
+      scene.render(renderer, centres, view, plain);
+      out.depth = linear_depth(centres, view.clip_from_view);
+    }
+  }
   if (request.mask) {
     out.mask.resize(out.depth.size());
     for (std::size_t i = 0; i < out.depth.size(); ++i) out.mask[i] = out.depth[i] > 0.0f ? 255 : 0;
     if (!request.depth) out.depth = {};
   }
   if (surface_pass) {
-    // Ids and the normals found from them come from sample 0, as depth and the mask do: never a blend of samples.
-    Framebuffer id_target(target.width(), target.height(), target.samples());
+    // Ids and the normals found from them come from pixel centres, as depth and the mask do: never a blend.
+    Framebuffer id_target(target.width(), target.height());
     out.surfaces = scene.render_ids(renderer, id_target, view, options);
     if (request.normal) out.normal = scene.camera_normals(out.surfaces, view);
     if (request.ids) out.ids = file_ids(scene, out.surfaces);

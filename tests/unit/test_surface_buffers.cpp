@@ -203,6 +203,51 @@ TEST(FaceIds, ValidateRefusesTheReservedIdAndWrongSizes) {
 
 float as_float(std::uint32_t word) { return std::bit_cast<float>(word); }
 
+// Depth, mask and ids describe each pixel's centre at any sample count: with 4 samples they are the 1-sample
+// render's, bit for bit, where sample 0 (a quarter pixel off) would move every silhouette; and the colour image lines
+// up with them (each pixel that the mask and its neighbours call empty shows the background).
+TEST(Render, BuffersTakePixelCentresAtAnySampleCount) {
+  const fs::path dir = test::scratch_dir("centre_buffers");
+  const auto render_at = [&](int samples, const std::string& name) {
+    RenderJob job;
+    job.model = kBox;
+    job.width = 61;
+    job.height = 47;
+    job.samples = samples;
+    job.look.background = glm::vec3(0.0f, 0.0f, 1.0f);
+    job.outputs = {.color = dir / (name + "c.png"),
+                   .depth = dir / (name + "d.npy"),
+                   .ids = dir / (name + "i.npy"),
+                   .mask = dir / (name + "m.png")};
+    Renderer renderer(2);
+    render(job, renderer);
+    return job.outputs;
+  };
+  const OutputSpec one = render_at(1, "one_"), four = render_at(4, "four_");
+  EXPECT_EQ(test::read_npy(four.depth).words, test::read_npy(one.depth).words);
+  EXPECT_EQ(test::read_npy(four.ids).words, test::read_npy(one.ids).words);
+  int w = 0, h = 0;
+  const std::vector<std::uint8_t> mask = read_png(four.mask, w, h);
+  EXPECT_EQ(mask, read_png(one.mask, w, h));
+  const std::vector<std::uint8_t> color = read_png(four.color, w, h);
+  int empty = 0, covered = 0;
+  for (int y = 1; y + 1 < h; ++y)
+    for (int x = 1; x + 1 < w; ++x) {
+      const auto at = [&](int dx, int dy) { return mask[4 * (static_cast<std::size_t>(y + dy) * w + x + dx)]; };
+      const std::size_t p = 4 * (static_cast<std::size_t>(y) * w + x);
+      const bool background = color[p] == 0 && color[p + 1] == 0 && color[p + 2] == 255;
+      if (at(0, 0) == 0 && at(-1, 0) == 0 && at(1, 0) == 0 && at(0, -1) == 0 && at(0, 1) == 0) {
+        EXPECT_TRUE(background) << x << "," << y;
+        ++empty;
+      } else if (at(0, 0) && at(-1, 0) && at(1, 0) && at(0, -1) && at(0, 1)) {
+        EXPECT_FALSE(background) << x << "," << y;
+        ++covered;
+      }
+    }
+  EXPECT_GT(empty, 200);
+  EXPECT_GT(covered, 200);
+}
+
 // What render() writes agrees: a pixel is empty in the mask, depth, normals and ids alike, or in none.
 TEST(Render, EveryBufferAgreesOnWhereTheModelIs) {
   const fs::path dir = test::scratch_dir("surface_buffers");
