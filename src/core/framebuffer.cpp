@@ -7,6 +7,10 @@
 #include "facet/detail/tile_memory.hpp"
 #include "facet/renderer.hpp"
 
+#if defined(__x86_64__)
+#include <emmintrin.h>
+#endif
+
 #include <algorithm>
 #include <cmath>
 #include <cstring>
@@ -56,6 +60,35 @@ void copy_rect(const T* from, std::size_t from_stride, T* to, std::size_t to_str
   for (int y = 0; y < rows; ++y)
     std::memcpy(to + static_cast<std::size_t>(y) * to_stride, from + static_cast<std::size_t>(y) * from_stride,
                 static_cast<std::size_t>(columns) * sizeof(T));
+}
+
+// copy_rect from tile memory to the framebuffer, with streaming stores where a row allows (x86-64): nothing reads the
+// pixels again in the frame, and a plain store would first read each line of the framebuffer from memory only to
+// overwrite it. The caller fences (fence_streamed) before the pool's barrier hands the pixels to other threads.
+template <class T>
+void stream_rect(const T* from, T* to, std::size_t to_stride, int rows, int columns) {
+#if defined(__x86_64__)
+  static_assert(sizeof(T) == 4);
+  const bool whole_vectors = columns % 4 == 0;
+  for (int y = 0; y < rows; ++y) {
+    const T* in = from + static_cast<std::size_t>(y) * kTileSize;
+    T* out = to + static_cast<std::size_t>(y) * to_stride;
+    if (!whole_vectors || reinterpret_cast<std::uintptr_t>(out) % 16 != 0) {
+      std::memcpy(out, in, static_cast<std::size_t>(columns) * sizeof(T));
+      continue;
+    }
+    for (int x = 0; x < columns; x += 4)
+      _mm_stream_si128(reinterpret_cast<__m128i*>(out + x), _mm_load_si128(reinterpret_cast<const __m128i*>(in + x)));
+  }
+#else
+  copy_rect(from, kTileSize, to, to_stride, rows, columns);
+#endif
+}
+
+void fence_streamed() {
+#if defined(__x86_64__)
+  _mm_sfence();
+#endif
 }
 
 // Averages a tile's colour samples into the framebuffer's colour rows (see detail::resolve_row).
@@ -299,7 +332,6 @@ void Framebuffer::load_tile(int tile_index, detail::TileMemory& memory) {
       copy_rect((planes ? sample_color_.data() : color_.data()) + plane + first, width_, memory.color_of(s),
                 kTileSize, rows, columns);
     if (cleared && pending_.depth) {
-      fill_depth(memory.depth_of(s), kTileSize, rows, columns, pending_.depth_value);
       std::fill_n(memory.bounds_of(s), detail::kTileBlocks, pending_.depth_value);
     } else {
       copy_rect((planes ? sample_depth_.data() : depth_.data()) + plane + first, width_, memory.depth_of(s),
@@ -309,6 +341,7 @@ void Framebuffer::load_tile(int tile_index, detail::TileMemory& memory) {
       std::copy_n(from, detail::kTileBlocks, memory.bounds_of(s));
     }
   }
+  memory.lazy_depth = {cleared && pending_.depth, pending_.depth_value};
   tile_needs_clear_[tile_index] = 0;
   tile_holds_clear_[tile_index] = 0;
 }
@@ -318,17 +351,23 @@ void Framebuffer::store_tile(int tile_index, const detail::TileMemory& memory) {
   const int columns = std::min(kTileSize, width_ - x0), rows = std::min(kTileSize, height_ - y0);
   const std::size_t first = static_cast<std::size_t>(y0) * width_ + x0;
   const std::size_t bounds = static_cast<std::size_t>(tile_index) * detail::kTileBlocks;
-  if (samples_ == 1) copy_rect(memory.color_of(0), kTileSize, color_.data() + first, width_, rows, columns);
+  if (samples_ == 1) stream_rect(memory.color_of(0), color_.data() + first, width_, rows, columns);
   else resolve_rect(memory.color_of(0), color_.data() + first, width_, rows, columns, samples_);
-  copy_rect(memory.depth_of(0), kTileSize, depth_.data() + first, width_, rows, columns);
+  const bool depth_cleared = memory.lazy_depth.pending;  // no draw wrote it: the clear, straight to the framebuffer
+  if (depth_cleared) fill_depth(depth_.data() + first, width_, rows, columns, memory.lazy_depth.value);
+  else stream_rect(memory.depth_of(0), depth_.data() + first, width_, rows, columns);
   std::copy_n(memory.bounds_of(0), detail::kTileBlocks, block_max_depth_.data() + bounds);
   if (holds_samples())
     for (int s = 0; s < samples_; ++s) {
       const std::size_t plane = static_cast<std::size_t>(s) * pixel_count();
       copy_rect(memory.color_of(s), kTileSize, sample_color_.data() + plane + first, width_, rows, columns);
-      copy_rect(memory.depth_of(s), kTileSize, sample_depth_.data() + plane + first, width_, rows, columns);
+      if (depth_cleared)
+        fill_depth(sample_depth_.data() + plane + first, width_, rows, columns, memory.lazy_depth.value);
+      else
+        copy_rect(memory.depth_of(s), kTileSize, sample_depth_.data() + plane + first, width_, rows, columns);
       std::copy_n(memory.bounds_of(s), detail::kTileBlocks, sample_bounds_.data() + s * bounds_per_sample() + bounds);
     }
+  fence_streamed();
 }
 
 }  // namespace facet

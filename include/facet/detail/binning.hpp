@@ -97,6 +97,14 @@ struct alignas(64) TileScratch {
   std::uint32_t triangle[kTileSize * kTileSize];
 };
 
+// A tile whose depth is still all one pending clear: its tile memory's depth planes are not written until a path
+// reads them in place (settle_depth). Deferred shading's visibility pass fills its scratch with the value instead,
+// so a cleared tile's depth is written once, not filled and then copied.
+struct LazyDepthClear {
+  bool pending = false;
+  float value = 1.0f;
+};
+
 // One tile's share of a batch, handed to the shader-specific rasterizer.
 struct TileWork {
   int tile;
@@ -110,6 +118,7 @@ struct TileWork {
   std::size_t chunk_count;
   const float* varyings;       // post-transform varyings, indexed by TriangleSetup::vertex
   TileScratch* scratch;  // the running thread's, for deferred shading: one per sample
+  LazyDepthClear* lazy_depth;  // the tile memory's
   // Multisampling: samples per pixel, and how far apart the samples' colour and depth planes and depth bounds lie
   // (color, depth and depth_bounds above are sample 0's; see sample_work in multisample.hpp).
   int samples = 1;
@@ -119,6 +128,16 @@ struct TileWork {
     return static_cast<std::size_t>(y - y0) * static_cast<std::size_t>(stride) + static_cast<std::size_t>(x - x0);
   }
 };
+
+// Writes a pending depth clear into every sample's depth plane, before a path that reads them in place.
+inline void settle_depth(const TileWork& work) {
+  if (!work.lazy_depth->pending) return;
+  work.lazy_depth->pending = false;
+  for (int s = 0; s < work.samples; ++s)
+    for (int y = work.y0; y < work.y1; ++y)
+      std::fill_n(work.depth + work.sample_stride * static_cast<std::size_t>(s) + work.at(work.x0, y), work.x1 - work.x0,
+                  work.lazy_depth->value);
+}
 
 // Calls f(triangle, ref) for each triangle binned to the work's tile, in draw order (chunk by chunk).
 template <class F>

@@ -219,12 +219,13 @@ template <class Copy>
   }
 }
 
-// The tile's depth into its scratch, and no triangle kept yet.
+// The tile's depth into its scratch (a pending clear's value, or the tile memory's), and no triangle kept yet.
 [[gnu::always_inline]] inline void begin_tile_scratch(const TileWork& work, bool depth_test) {
   if (depth_test)
     for_each_depth_row(
         work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
-          std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
+          if (work.lazy_depth->pending) std::fill_n(local, static_cast<int>(n), work.lazy_depth->value);
+          else std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
         });
   std::fill_n(work.scratch->triangle, kTileSize * kTileSize, kNoTriangle);
 }
@@ -294,7 +295,10 @@ template <Shader S, class L>
       finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fragment);
     }
 
-  if (state.depth_test && state.depth_write) store_tile_depth(work);
+  if (state.depth_test && state.depth_write) {
+    store_tile_depth(work);
+    work.lazy_depth->pending = false;
+  }
 }
 
 }  // namespace facet::detail

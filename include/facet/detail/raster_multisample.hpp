@@ -199,7 +199,10 @@ template <Shader S, class L>
       }
 
   if (state.depth_test && state.depth_write)
+  {
     for (int s = 0; s < n; ++s) store_tile_depth(planes[s]);
+    work.lazy_depth->pending = false;
+  }
 }
 
 }  // namespace facet::detail

@@ -29,6 +29,7 @@ void raster_tile(const void* draw, const TileWork& work) {
       raster_tile_deferred(ctx, work, layout);
       return;
     }
+    settle_depth(work);
     for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
       raster_triangle(ctx, tri, work);
     });
@@ -45,6 +46,7 @@ void raster_tile_multisample(const void* draw, const TileWork& work) {
     if (shades_deferred<S>(*ctx.state)) {
       raster_tile_deferred_multisample(ctx, work, layout);
     } else {
+      settle_depth(work);
       for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
         raster_triangle_multisample(ctx, tri, work);
       });

@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "facet/detail/binning.hpp"
 #include "facet/framebuffer.hpp"
 
 namespace facet::detail {
@@ -21,6 +22,7 @@ struct TileMemory {
   Storage<std::uint32_t> color;
   Storage<float> depth;
   Storage<float> bounds;
+  LazyDepthClear lazy_depth;  // depth planes not yet written: all the clear value
 
   void reserve(int samples) {
     const std::size_t n = static_cast<std::size_t>(samples);
