@@ -326,9 +326,7 @@ void Framebuffer::load_tile(int tile_index, detail::TileMemory& memory) {
   memory.reserve(samples_);
   for (int s = 0; s < samples_; ++s) {
     const std::size_t plane = planes ? static_cast<std::size_t>(s) * pixel_count() : 0;
-    if (cleared && pending_.color)
-      fill_color(memory.color_of(s), kTileSize, rows, columns, pending_.color_value);
-    else
+    if (!(cleared && pending_.color))
       copy_rect((planes ? sample_color_.data() : color_.data()) + plane + first, width_, memory.color_of(s),
                 kTileSize, rows, columns);
     if (cleared && pending_.depth) {
@@ -341,7 +339,9 @@ void Framebuffer::load_tile(int tile_index, detail::TileMemory& memory) {
       std::copy_n(from, detail::kTileBlocks, memory.bounds_of(s));
     }
   }
-  memory.lazy_depth = {cleared && pending_.depth, pending_.depth_value};
+  // A pending clear stays lazy: the tile's draws write it (TileWork::lazy_clear), or store_tile does.
+  memory.lazy_clear = {cleared && pending_.color, cleared && pending_.depth, pending_.color_value,
+                       pending_.depth_value};
   tile_needs_clear_[tile_index] = 0;
   tile_holds_clear_[tile_index] = 0;
 }
@@ -351,20 +351,22 @@ void Framebuffer::store_tile(int tile_index, const detail::TileMemory& memory) {
   const int columns = std::min(kTileSize, width_ - x0), rows = std::min(kTileSize, height_ - y0);
   const std::size_t first = static_cast<std::size_t>(y0) * width_ + x0;
   const std::size_t bounds = static_cast<std::size_t>(tile_index) * detail::kTileBlocks;
-  if (samples_ == 1) stream_rect(memory.color_of(0), color_.data() + first, width_, rows, columns);
+  // Planes no draw wrote still hold the clear: it goes straight to the framebuffer.
+  const detail::PendingClear& lazy = memory.lazy_clear;
+  if (lazy.color) fill_color(color_.data() + first, width_, rows, columns, lazy.color_value);
+  else if (samples_ == 1) stream_rect(memory.color_of(0), color_.data() + first, width_, rows, columns);
   else resolve_rect(memory.color_of(0), color_.data() + first, width_, rows, columns, samples_);
-  const bool depth_cleared = memory.lazy_depth.pending;  // no draw wrote it: the clear, straight to the framebuffer
-  if (depth_cleared) fill_depth(depth_.data() + first, width_, rows, columns, memory.lazy_depth.value);
+  if (lazy.depth) fill_depth(depth_.data() + first, width_, rows, columns, lazy.depth_value);
   else stream_rect(memory.depth_of(0), depth_.data() + first, width_, rows, columns);
   std::copy_n(memory.bounds_of(0), detail::kTileBlocks, block_max_depth_.data() + bounds);
   if (holds_samples())
     for (int s = 0; s < samples_; ++s) {
-      const std::size_t plane = static_cast<std::size_t>(s) * pixel_count();
-      copy_rect(memory.color_of(s), kTileSize, sample_color_.data() + plane + first, width_, rows, columns);
-      if (depth_cleared)
-        fill_depth(sample_depth_.data() + plane + first, width_, rows, columns, memory.lazy_depth.value);
-      else
-        copy_rect(memory.depth_of(s), kTileSize, sample_depth_.data() + plane + first, width_, rows, columns);
+      std::uint32_t* color = sample_color_.data() + static_cast<std::size_t>(s) * pixel_count() + first;
+      float* depth = sample_depth_.data() + static_cast<std::size_t>(s) * pixel_count() + first;
+      if (lazy.color) fill_color(color, width_, rows, columns, lazy.color_value);
+      else copy_rect(memory.color_of(s), kTileSize, color, width_, rows, columns);
+      if (lazy.depth) fill_depth(depth, width_, rows, columns, lazy.depth_value);
+      else copy_rect(memory.depth_of(s), kTileSize, depth, width_, rows, columns);
       std::copy_n(memory.bounds_of(s), detail::kTileBlocks, sample_bounds_.data() + s * bounds_per_sample() + bounds);
     }
   fence_streamed();

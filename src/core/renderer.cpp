@@ -393,7 +393,7 @@ void Renderer::draw_recorded_tiles() {
                           .chunk_count = batch.chunk_count,
                           .varyings = w.varying_blocks[batch.varyings].data(),
                           .scratch = &w.scratch[static_cast<std::size_t>(thread) * static_cast<std::size_t>(samples)],
-                          .lazy_depth = &memory.lazy_depth,
+                          .lazy_clear = &memory.lazy_clear,
                           .samples = samples,
                           .sample_stride = TileMemory::kPixels,
                           .bounds_stride = kTileBlocks};

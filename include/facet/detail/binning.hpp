@@ -97,14 +97,6 @@ struct alignas(64) TileScratch {
   std::uint32_t triangle[kTileSize * kTileSize];
 };
 
-// A tile whose depth is still all one pending clear: its tile memory's depth planes are not written until a path
-// reads them in place (settle_depth). Deferred shading's visibility pass fills its scratch with the value instead,
-// so a cleared tile's depth is written once, not filled and then copied.
-struct LazyDepthClear {
-  bool pending = false;
-  float value = 1.0f;
-};
-
 // One tile's share of a batch, handed to the shader-specific rasterizer.
 struct TileWork {
   int tile;
@@ -118,7 +110,11 @@ struct TileWork {
   std::size_t chunk_count;
   const float* varyings;       // post-transform varyings, indexed by TriangleSetup::vertex
   TileScratch* scratch;  // the running thread's, for deferred shading: one per sample
-  LazyDepthClear* lazy_depth;  // the tile memory's
+  // The tile memory's colour or depth planes that still hold nothing but the tile's pending clear and are not yet
+  // written: paths that read or blend them in place settle them first (settle_clear); deferred shading writes the
+  // clear colour with its shaded strips and fills its depth scratch with the clear depth, so that a cleared tile's
+  // pixels are written once, not filled and then overwritten.
+  PendingClear* lazy_clear;
   // Multisampling: samples per pixel, and how far apart the samples' colour and depth planes and depth bounds lie
   // (color, depth and depth_bounds above are sample 0's; see sample_work in multisample.hpp).
   int samples = 1;
@@ -129,14 +125,18 @@ struct TileWork {
   }
 };
 
-// Writes a pending depth clear into every sample's depth plane, before a path that reads them in place.
-inline void settle_depth(const TileWork& work) {
-  if (!work.lazy_depth->pending) return;
-  work.lazy_depth->pending = false;
-  for (int s = 0; s < work.samples; ++s)
-    for (int y = work.y0; y < work.y1; ++y)
-      std::fill_n(work.depth + work.sample_stride * static_cast<std::size_t>(s) + work.at(work.x0, y), work.x1 - work.x0,
-                  work.lazy_depth->value);
+// Writes the lazy clear into every sample's colour (when `color`) and depth (when `depth`) planes.
+inline void settle_clear(const TileWork& work, bool color, bool depth) {
+  PendingClear& clear = *work.lazy_clear;
+  color = color && clear.color, depth = depth && clear.depth;
+  for (int s = 0; s < work.samples && (color || depth); ++s)
+    for (int y = work.y0; y < work.y1; ++y) {
+      const std::size_t at = work.sample_stride * static_cast<std::size_t>(s) + work.at(work.x0, y);
+      if (color) std::fill_n(work.color + at, work.x1 - work.x0, clear.color_value);
+      if (depth) std::fill_n(work.depth + at, work.x1 - work.x0, clear.depth_value);
+    }
+  if (color) clear.color = false;
+  if (depth) clear.depth = false;
 }
 
 // Calls f(triangle, ref) for each triangle binned to the work's tile, in draw order (chunk by chunk).

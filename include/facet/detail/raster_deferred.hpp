@@ -178,14 +178,32 @@ __attribute__((noinline)) void shade_lanes(const S& shader, const FragmentLanes<
   });
 }
 
-// Shades the prepared strip and stores the colours of its covered lanes.
+// The strip's pixels that lie inside the tile (the last tiles of a row or column may be cut short).
+inline unsigned strip_inside(const TileWork& work, int px, int py) {
+  if (py >= work.y1) return 0u;
+  const unsigned row = (1u << std::min(8, work.x1 - px)) - 1u;
+  return row | (py + 1 < work.y1 ? row << 8 : 0u);
+}
+
+// The lazy clear colour into the strip's lanes set in `bits`.
+[[gnu::always_inline]] inline void fill_strip(const TileWork& work, int px, int py, unsigned bits) {
+  alignas(64) std::uint32_t colors[simd::kLanes];
+  for (int k = 0; k < simd::kLanes; ++k) colors[k] = work.lazy_clear->color_value;
+  store_strip(work, px, py, bits, colors);
+}
+
+// Shades the prepared strip and stores the colours of its covered lanes, and the lazy clear colour in the `fill`
+// lanes, which no triangle covers.
 template <LaneShader S, class L>
 [[gnu::always_inline]] inline void finish_strip_lanes(const ShadeContext<S>& ctx, const TileWork& work, int px, int py,
-                                                      unsigned covered,
+                                                      unsigned covered, unsigned fill,
                                                       const FragmentLanes<typename S::Varyings, L>& fragment) {
+  using UInt = simd::UIntT<L>;
   alignas(64) std::uint32_t colors[simd::kLanes];
   shade_lanes(*ctx.shader, fragment, colors);
-  store_strip(work, px, py, covered, colors);
+  if (fill)
+    simd::store(colors, simd::blend(fragment.active, simd::load<UInt>(colors), UInt{} + work.lazy_clear->color_value));
+  store_strip(work, px, py, covered | fill, colors);
 }
 
 // A strip prepared ahead of its shading, for shaders that prefetch.
@@ -193,7 +211,7 @@ template <Shader S, class L>
 struct PreparedStrip {
   FragmentLanes<typename S::Varyings, L> fragment;
   int px, py;
-  unsigned covered;
+  unsigned covered, fill;
 };
 
 // Strips prepared before the first is shaded: prefetch_lanes sees each strip this many strips (a few hundred
@@ -224,7 +242,7 @@ template <class Copy>
   if (depth_test)
     for_each_depth_row(
         work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
-          if (work.lazy_depth->pending) std::fill_n(local, static_cast<int>(n), work.lazy_depth->value);
+          if (work.lazy_clear->depth) std::fill_n(local, static_cast<int>(n), work.lazy_clear->depth_value);
           else std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
         });
   std::fill_n(work.scratch->triangle, kTileSize * kTileSize, kNoTriangle);
@@ -265,20 +283,23 @@ template <Shader S, class L>
         const float* depth = depth_resolved ? scratch.depth + at : nullptr;
         const unsigned covered = ~strip_lanes_equal(refs, kNoTriangle) & 0xffffu;
         const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
+        const unsigned fill = work.lazy_clear->color ? strip_inside(work, px, py) & ~covered : 0u;
+        // A lane shader's strip stores the clear colour with its shaded pixels; otherwise it is stored first.
+        if (fill && !(ShaderTraits<S>::fragment_lanes && covered)) fill_strip(work, px, py, fill);
         if (!covered) continue;
         if constexpr (ShaderTraits<S>::prefetch_lanes) {
           // Shade the strip prepared kPrefetchDistance strips ago, then prepare this one in its slot.
           PreparedStrip<S, L>& slot = ahead[prepared % kPrefetchDistance];
           if (prepared >= kPrefetchDistance)
-            finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fragment);
+            finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
           prepare_strip_lanes(shade, work, px, py, refs, depth, slot.fragment);
-          slot.px = px, slot.py = py, slot.covered = covered;
+          slot.px = px, slot.py = py, slot.covered = covered, slot.fill = fill;
           ctx.shader->prefetch_lanes(slot.fragment);
           ++prepared;
         } else if constexpr (ShaderTraits<S>::fragment_lanes) {
           FragmentLanes<typename S::Varyings, L> fragment;
           prepare_strip_lanes(shade, work, px, py, refs, depth, fragment);
-          finish_strip_lanes(shade, work, px, py, covered, fragment);
+          finish_strip_lanes(shade, work, px, py, covered, fill, fragment);
         } else {
           // One triangle at a time, a quad at a time; ctx's state has the depth test off: it is resolved.
           for (unsigned pending = covered; pending;) {
@@ -292,12 +313,13 @@ template <Shader S, class L>
   if constexpr (ShaderTraits<S>::prefetch_lanes)
     for (unsigned n = prepared > kPrefetchDistance ? prepared - kPrefetchDistance : 0; n < prepared; ++n) {
       const PreparedStrip<S, L>& slot = ahead[n % kPrefetchDistance];
-      finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fragment);
+      finish_strip_lanes(shade, work, slot.px, slot.py, slot.covered, slot.fill, slot.fragment);
     }
+  work.lazy_clear->color = false;  // every pixel of the tile is written: shaded or filled
 
   if (state.depth_test && state.depth_write) {
     store_tile_depth(work);
-    work.lazy_depth->pending = false;
+    work.lazy_clear->depth = false;
   }
 }
 

@@ -94,6 +94,7 @@ template <Shader S, class L>
   const RenderState& state = *ctx.state;
   const int n = work.samples;
   TileWork planes[kMaxSamples];
+  settle_clear(work, true, false);  // strips store the samples they cover; the clear depth goes to the scratch
   for (int s = 0; s < n; ++s) {
     planes[s] = sample_work(work, s);
     begin_tile_scratch(planes[s], state.depth_test);
@@ -201,7 +202,7 @@ template <Shader S, class L>
   if (state.depth_test && state.depth_write)
   {
     for (int s = 0; s < n; ++s) store_tile_depth(planes[s]);
-    work.lazy_depth->pending = false;
+    work.lazy_clear->depth = false;
   }
 }
 

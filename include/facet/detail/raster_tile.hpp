@@ -29,7 +29,7 @@ void raster_tile(const void* draw, const TileWork& work) {
       raster_tile_deferred(ctx, work, layout);
       return;
     }
-    settle_depth(work);
+    settle_clear(work, true, true);
     for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
       raster_triangle(ctx, tri, work);
     });
@@ -46,7 +46,7 @@ void raster_tile_multisample(const void* draw, const TileWork& work) {
     if (shades_deferred<S>(*ctx.state)) {
       raster_tile_deferred_multisample(ctx, work, layout);
     } else {
-      settle_depth(work);
+      settle_clear(work, true, true);
       for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
         raster_triangle_multisample(ctx, tri, work);
       });

@@ -22,7 +22,7 @@ struct TileMemory {
   Storage<std::uint32_t> color;
   Storage<float> depth;
   Storage<float> bounds;
-  LazyDepthClear lazy_depth;  // depth planes not yet written: all the clear value
+  PendingClear lazy_clear;  // planes not yet written: all the tile's clear (TileWork::lazy_clear)
 
   void reserve(int samples) {
     const std::size_t n = static_cast<std::size_t>(samples);
