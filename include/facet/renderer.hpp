@@ -59,8 +59,7 @@ class Renderer {
   // (textures, environments, lights, arrays) must stay alive and unchanged until finish(). Between draw() and
   // finish() the framebuffer's contents are not yet drawn: mutable_color() and mutable_depth() draw the recorded
   // work first, a draw to another framebuffer draws it first, and a framebuffer destroyed meanwhile drops it. A
-  // frame whose recorded work passes 128 MiB (set-up primitives, bins and varyings: about 800,000 visible
-  // triangles) is drawn in parts, and a multisampled target then keeps full-size sample planes (keep_samples).
+  // frame whose recorded work passes recorded_bytes_limit() is drawn in parts (below).
   //
   // Draws indexed triangles (3 indices each, counter-clockwise front faces). Indices outside the vertex span skip
   // their triangle. The pixels are in `target` after finish(). The stock shaders are compiled into the library
@@ -89,6 +88,15 @@ class Renderer {
   void finish(Framebuffer& target);
 
   const DrawStats& last_stats() const { return stats_; }
+
+  // The memory a recorded frame may hold (set-up primitives, bins and varyings) before the work recorded so far is
+  // drawn, ahead of finish(); the frame then goes on in another tile pass, and a multisampled target keeps
+  // full-size sample planes (Framebuffer::keep_samples) so that every sample continues exactly: the image is the
+  // same. Default kDefaultRecordedBytes, about 800,000 visible triangles; 0 draws each batch as soon as the next
+  // one comes.
+  static constexpr std::size_t kDefaultRecordedBytes = std::size_t{128} << 20;
+  void set_recorded_bytes_limit(std::size_t bytes);
+  std::size_t recorded_bytes_limit() const;
 
  private:
   template <class S>

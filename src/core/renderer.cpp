@@ -28,10 +28,8 @@ int resolve_thread_count(int threads) {
 // A frame's draws are recorded, not drawn: each batch of a draw is set up and binned as it comes, and keeps its
 // varyings, set-up primitives and bins until the frame's tile pass (flush_recorded), which rasterizes every tile
 // once with all the batches that touch it, in the order they were drawn, in the thread's tile memory.
-// Recorded work is bounded: past kRecordedBytes, the work recorded so far is drawn before the next batch is set up,
+// Recorded work is bounded: past recorded_limit, the work recorded so far is drawn before the next batch is set up,
 // and a multisampled target then keeps full-size sample planes so that the rest of the frame continues from them.
-inline constexpr std::size_t kRecordedBytes = std::size_t{128} << 20;
-
 struct Renderer::Work {
   explicit Work(int threads)
       : pool(threads), scratch(static_cast<std::size_t>(pool.size())), memory(static_cast<std::size_t>(pool.size())) {}
@@ -86,6 +84,7 @@ struct Renderer::Work {
   std::size_t varying_block_count = 0;
   std::size_t current_block = 0;  // the varyings that the draw being recorded sets up from
   std::size_t recorded_bytes = 0;
+  std::size_t recorded_limit = kDefaultRecordedBytes;
   std::vector<std::uint32_t> pair_tile, pair_batch;
   std::vector<std::uint32_t> tile_load;
   Copies copies;
@@ -106,6 +105,10 @@ Renderer::Renderer(int threads) {
 Renderer::~Renderer() { drop_recorded(); }
 
 int Renderer::threads() const { return work_->pool.size(); }
+
+void Renderer::set_recorded_bytes_limit(std::size_t bytes) { work_->recorded_limit = bytes; }
+
+std::size_t Renderer::recorded_bytes_limit() const { return work_->recorded_limit; }
 
 void Renderer::parallel_for(std::size_t count, const std::function<void(std::size_t)>& body) {
   work_->pool.parallel_for(count, [&](std::size_t i, int) { body(i); });
@@ -262,7 +265,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     const std::size_t batch_count = next_batch - batch_first;
     const std::size_t chunk_size = setup_chunk_size(batch_count);
     const std::size_t chunk_count = (batch_count + chunk_size - 1) / chunk_size;
-    if (w.recorded_bytes > kRecordedBytes && w.batch_count > 0) {
+    if (w.recorded_bytes > w.recorded_limit && w.batch_count > 0) {
       // Too much recorded: draw it now, and go on recording the frame (the draws' copies stay). A whole-draw block
       // of varyings is still needed by this draw's later batches; a banded draw shades a new one below.
       if (samples > 1) target.hold_sample_planes();

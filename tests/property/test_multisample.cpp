@@ -213,6 +213,53 @@ TEST(Multisample, SameImageAtAnyThreadCountAndEitherShading) {
   }
 }
 
+// A frame whose recorded work passes the renderer's limit is drawn in several tile passes, multisampled targets
+// keeping their samples in between: the image is the one a single tile pass draws, bit for bit. Several draws
+// (a limit of 0 draws each before the next), and one draw of two batches drawn in the painter's order (its
+// varyings, shaded once for the whole draw, stay recorded across the parts).
+TEST(Multisample, FramesDrawnInPartsMatchOneTilePass) {
+  const int width = 90, height = 70;
+  const ClipMesh soup = random_triangles(600, width, height, 21);
+  ClipMesh dense;  // small triangles, more than two batches of 65,536: the draw is cut in two
+  std::mt19937 rng(22);
+  std::uniform_real_distribution<float> px(1.0f, width - 1.0f), py(1.0f, height - 1.0f), unit(-1.5f, 1.5f);
+  for (int t = 0; t < 140000; ++t) {
+    const glm::vec2 c(px(rng), py(rng));
+    glm::vec2 corner[3] = {c, c + glm::vec2(unit(rng), unit(rng)), c + glm::vec2(unit(rng), unit(rng))};
+    add_flat_triangle(dense, corner, width, height);
+  }
+  const std::vector<ColorShader::Vertex> soup_vertices = color_vertices(soup), dense_vertices = color_vertices(dense);
+  const auto draw = [&](int samples, std::size_t limit, bool keep) {
+    Framebuffer fb(width, height, samples);
+    fb.keep_samples(keep);
+    Renderer renderer(2);
+    renderer.set_recorded_bytes_limit(limit);
+    renderer.clear(fb, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f));
+    RenderState state;
+    state.cull = CullMode::none;
+    const std::span<const std::uint32_t> indices(soup.indices);
+    for (std::size_t first = 0; first < indices.size(); first += 300)
+      renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(soup_vertices), indices.subspan(first, 300),
+                    state);
+    RenderState painter = no_depth_no_cull();
+    painter.order = DrawOrder::back_to_front;
+    renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(dense_vertices), dense.indices, painter);
+    renderer.finish(fb);
+    return fb;
+  };
+  for (const int samples : {1, 4}) {
+    const Framebuffer whole = draw(samples, Renderer::kDefaultRecordedBytes, false);
+    const Framebuffer parts = draw(samples, 0, false);
+    EXPECT_EQ(parts.keeps_samples(), false);
+    EXPECT_TRUE(std::ranges::equal(parts.color(), whole.color())) << samples << " samples";
+    EXPECT_TRUE(std::ranges::equal(parts.depth(), whole.depth())) << samples << " samples";
+    if (samples > 1) {
+      EXPECT_NO_THROW((void)parts.sample_color(samples - 1));  // held for the parts
+      EXPECT_THROW((void)whole.sample_color(0), std::logic_error);
+    }
+  }
+}
+
 // The resolve is the rounded mean of a pixel's samples, per channel.
 TEST(Multisample, ResolveAveragesSamples) {
   const int width = 70, height = 50;
