@@ -226,10 +226,10 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
 
   // Vertex stage. Meshes whose index order is coherent (grids, strips, any optimised mesh) reference a narrow band
   // of vertices per batch, so each batch shades just its band, which it records with its varyings (the positions
-  // that setup reads are reused from batch to batch). One batch, or bands that overlap too much (a shuffled index order), shade the draw's whole band once
-  // instead: a mesh drawn in several parts (one per material) shades each part's vertices, not the whole array
-  // each time. The painter's order shades every vertex (its sort reads them all first). Either way the
-  // post-transform cache never misses: each vertex is shaded at most once per batch.
+  // that setup reads are reused from batch to batch). One batch, or bands that overlap too much (a shuffled index
+  // order), shade the draw's whole band once instead: a mesh drawn in several parts (one per material) shades each
+  // part's vertices, not the whole array each time. The painter's order shades every vertex (its sort reads them
+  // all first). Either way the post-transform cache never misses: each vertex is shaded at most once per batch.
   // A draw's last part shorter than a batch joins the batch before it: one batch boundary fewer, i.e. one round of
   // barriers, for at most twice a batch's setup memory at a time.
   const std::size_t batch = kSetupChunk * kChunksPerBatch;
@@ -338,7 +338,8 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       stats_.clipped += chunk.clipped;
       stats_.invalid += chunk.invalid;
       stats_.binned += chunk.triangles.size();
-      w.recorded_bytes += chunk.triangles.size() * sizeof(TriangleSetup) + chunk.binned.size() * sizeof(std::uint32_t);
+      w.recorded_bytes +=
+          chunk.triangles.size() * sizeof(TriangleSetup) + chunk.binned.size() * sizeof(std::uint32_t);
     }
   }
 }
@@ -361,7 +362,8 @@ void Renderer::draw_recorded_tiles() {
   for (const std::uint32_t t : w.pair_tile) ++w.tile_first[t + 1];
   for (std::size_t t = 0; t < tiles; ++t) w.tile_first[t + 1] += w.tile_first[t];
   w.tile_batches.resize(w.pair_tile.size());
-  for (std::size_t i = 0; i < w.pair_tile.size(); ++i) w.tile_batches[w.tile_first[w.pair_tile[i]]++] = w.pair_batch[i];
+  for (std::size_t i = 0; i < w.pair_tile.size(); ++i)
+    w.tile_batches[w.tile_first[w.pair_tile[i]]++] = w.pair_batch[i];
   for (std::size_t t = tiles; t > 0; --t) w.tile_first[t] = w.tile_first[t - 1];
   w.tile_first[0] = 0;
   // Heaviest tiles first, by binned primitives: the pool hands tiles out in this order, so the last ones to start
@@ -404,7 +406,6 @@ void Renderer::draw_recorded_tiles() {
     }
     target->store_tile(tile, memory);
   });
-
 }
 
 void Renderer::release_batches() {

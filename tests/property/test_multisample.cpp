@@ -239,8 +239,8 @@ TEST(Multisample, FramesDrawnInPartsMatchOneTilePass) {
     state.cull = CullMode::none;
     const std::span<const std::uint32_t> indices(soup.indices);
     for (std::size_t first = 0; first < indices.size(); first += 300)
-      renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(soup_vertices), indices.subspan(first, 300),
-                    state);
+      renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(soup_vertices),
+                    indices.subspan(first, 300), state);
     RenderState painter = no_depth_no_cull();
     painter.order = DrawOrder::back_to_front;
     renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(dense_vertices), dense.indices, painter);

@@ -108,8 +108,8 @@ struct TileWork {
   float* depth_bounds;  // kTileBlocks, row-major over the tile's 8x8 blocks
   const SetupChunk* chunks;
   std::size_t chunk_count;
-  const float* varyings;       // post-transform varyings, indexed by TriangleSetup::vertex
-  TileScratch* scratch;  // the running thread's, for deferred shading: one per sample
+  const float* varyings;  // post-transform varyings, indexed by TriangleSetup::vertex
+  TileScratch* scratch;   // the running thread's, for deferred shading: one per sample
   // The tile memory's colour or depth planes that still hold nothing but the tile's pending clear and are not yet
   // written: paths that read or blend them in place settle them first (settle_clear); deferred shading writes the
   // clear colour with its shaded strips and fills its depth scratch with the clear depth, so that a cleared tile's

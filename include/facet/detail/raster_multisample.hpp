@@ -199,8 +199,7 @@ template <Shader S, class L>
         }
       }
 
-  if (state.depth_test && state.depth_write)
-  {
+  if (state.depth_test && state.depth_write) {
     for (int s = 0; s < n; ++s) store_tile_depth(planes[s]);
     work.lazy_clear->depth = false;
   }

@@ -142,7 +142,8 @@ std::vector<std::uint8_t> encode_png(int width, int height, int channels, std::s
 
   // Bands of rows, one per thread, compressed at once; the caller's thread takes the first.
   const std::size_t by_size = std::max<std::size_t>(1, (rows.bytes() + 1) * h / kMinPartBytes);
-  const int parts = static_cast<int>(std::min<std::size_t>({by_size, h, static_cast<std::size_t>(std::clamp(threads, 1, kMaxParts))}));
+  const auto most = static_cast<std::size_t>(std::clamp(threads, 1, kMaxParts));
+  const int parts = static_cast<int>(std::min<std::size_t>({by_size, h, most}));
   std::vector<DeflatedPart> deflated(static_cast<std::size_t>(parts));
   const auto band = [&](int p) {
     const std::size_t first = h * static_cast<std::size_t>(p) / static_cast<std::size_t>(parts);
