@@ -124,7 +124,8 @@ class Scene {
 
   // Clears target and draws the surfaces as render() would (same instances, culling, depth test and order, no
   // edges or wireframe), recording per pixel which instance and triangle is seen instead of a colour. Leaves
-  // target's colour meaningless and its depth that of the surfaces; finishes the frame.
+  // target's colour meaningless and its depth that of the surfaces; finishes the frame. A multisampled target keeps
+  // its samples from then on (Framebuffer::keep_samples): the ids are sample 0's, never a blend.
   SurfaceIds render_ids(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options);
 
   // The camera-space (OpenGL axes: x right, y up, z towards the viewer) unit shading normal at each pixel of ids:

@@ -287,7 +287,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       banded = width <= n / 4 * 3 && stats_.vertices_shaded + width <= n + n / 4;
       shade_band(banded ? band : VertexRange{0, n});
     }
-    if (w.tile_load.size() != tiles || w.batch_count == 0) w.tile_load.assign(tiles, 0);
+    if (w.batch_count == 0) w.tile_load.assign(tiles, 0);  // the frame's first batch, or the first after a part
 
     if (w.batch_count == w.batches.size()) w.batches.emplace_back();
     Work::Batch& recorded = w.batches[w.batch_count++];

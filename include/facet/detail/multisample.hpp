@@ -80,8 +80,9 @@ inline TriangleSetup at_sample(const TriangleSetup& tri, const SamplePattern& pa
   return view;
 }
 
-// One row of resolve_tile with the sample count a constant: the loop over samples unrolls, and the loop over the
-// row's pixels vectorises (one contiguous load per sample plane), where a run-time count kept it scalar.
+// One row of a tile's resolve (Framebuffer::store_tile) with the sample count a constant: the loop over samples
+// unrolls, and the loop over the row's pixels vectorises (one contiguous load per sample plane), where a run-time
+// count kept it scalar.
 template <int kSamples>
 [[gnu::always_inline]] inline void resolve_row(const std::uint32_t* in, std::size_t sample_stride, std::uint32_t* out,
                                                int width) {

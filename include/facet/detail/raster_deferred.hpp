@@ -219,21 +219,22 @@ struct PreparedStrip {
 // sphere:224: 2 and 3 alike, 4 1-3% slower, 6 and 8 slower still (more prepared strips to keep in cache).
 inline constexpr unsigned kPrefetchDistance = 3;
 
-// Calls copy(local, global, n) for each run of n <= 8 pixels that one row of one block of the tile has: its place
-// in the tile's local depth and in the framebuffer's. n is the constant 8 in all but a cut-short tile's last
-// column, so that the copies of whole rows compile to single vector moves rather than a variable-length memcpy.
+// Calls copy(scratch, tile, n) for each run of n <= 8 pixels that one row of one block of the tile has: its place
+// in the scratch's depth (block by block) and in the tile memory's (row by row). n is the constant 8 in all but a
+// cut-short tile's last column, so that the copies of whole rows compile to single vector moves rather than a
+// variable-length memcpy.
 template <class Copy>
 [[gnu::always_inline]] inline void for_each_depth_row(const TileWork& work, Copy&& copy) {
   const int width = work.x1 - work.x0, height = work.y1 - work.y0;
   const int whole = width / kScratchBlock * kScratchBlock;
   for (int y = 0; y < height; ++y) {
-    float* local_row = work.scratch->depth + (y % kScratchBlock) * kScratchBlock;
-    float* global_row = work.depth + work.at(work.x0, work.y0 + y);
+    float* scratch_row = work.scratch->depth + (y % kScratchBlock) * kScratchBlock;
+    float* tile_row = work.depth + work.at(work.x0, work.y0 + y);
     for (int x = 0; x < whole; x += kScratchBlock)
-      copy(local_row + scratch_index(x / kScratchBlock, y / kScratchBlock), global_row + x,
+      copy(scratch_row + scratch_index(x / kScratchBlock, y / kScratchBlock), tile_row + x,
            std::integral_constant<int, kScratchBlock>{});
     if (whole < width)
-      copy(local_row + scratch_index(whole / kScratchBlock, y / kScratchBlock), global_row + whole, width - whole);
+      copy(scratch_row + scratch_index(whole / kScratchBlock, y / kScratchBlock), tile_row + whole, width - whole);
   }
 }
 
@@ -241,9 +242,9 @@ template <class Copy>
 [[gnu::always_inline]] inline void begin_tile_scratch(const TileWork& work, bool depth_test) {
   if (depth_test)
     for_each_depth_row(
-        work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
-          if (work.lazy_clear->depth) std::fill_n(local, static_cast<int>(n), work.lazy_clear->depth_value);
-          else std::memcpy(local, global, static_cast<std::size_t>(n) * sizeof(float));
+        work, [&](float* scratch, float* tile, auto n) __attribute__((always_inline)) {
+          if (work.lazy_clear->depth) std::fill_n(scratch, static_cast<int>(n), work.lazy_clear->depth_value);
+          else std::memcpy(scratch, tile, static_cast<std::size_t>(n) * sizeof(float));
         });
   std::fill_n(work.scratch->triangle, kTileSize * kTileSize, kNoTriangle);
 }
@@ -251,8 +252,8 @@ template <class Copy>
 // The tile's depth back from its scratch.
 [[gnu::always_inline]] inline void store_tile_depth(const TileWork& work) {
   for_each_depth_row(
-      work, [&](float* local, float* global, auto n) __attribute__((always_inline)) {
-        std::memcpy(global, local, static_cast<std::size_t>(n) * sizeof(float));
+      work, [&](float* scratch, float* tile, auto n) __attribute__((always_inline)) {
+        std::memcpy(tile, scratch, static_cast<std::size_t>(n) * sizeof(float));
       });
 }
 
