@@ -216,7 +216,8 @@ TEST(Multisample, SameImageAtAnyThreadCountAndEitherShading) {
 // A frame whose recorded work passes the renderer's limit is drawn in several tile passes, multisampled targets
 // keeping their samples in between: the image is the one a single tile pass draws, bit for bit. Several draws
 // (a limit of 0 draws each before the next), and one draw of two batches drawn in the painter's order (its
-// varyings, shaded once for the whole draw, stay recorded across the parts).
+// varyings, shaded once for the whole draw, stay recorded across the parts). At 1 sample the default limit is
+// kCachedRecordedBytes, so there the frame drawn whole is itself in two parts, cut elsewhere.
 TEST(Multisample, FramesDrawnInPartsMatchOneTilePass) {
   const int width = 90, height = 70;
   const ClipMesh soup = random_triangles(600, width, height, 21);
