@@ -93,9 +93,11 @@ class Renderer {
   // drawn, ahead of finish(); the frame then goes on in another tile pass, and a multisampled target keeps
   // full-size sample planes (Framebuffer::keep_samples) so that every sample continues exactly: the image is the
   // same. Default kDefaultRecordedBytes, about 800,000 visible triangles; 0 draws each batch as soon as the next
-  // one comes. A single-sample target needs no sample planes to go on from, so its parts are smaller still, at
-  // most kCachedRecordedBytes (about one batch of a dense mesh): a tile pass that reads set-up work back while it
-  // is still in the cache costs less than the loads and stores of the tiles each extra part touches.
+  // one comes. Within the limit, parts are smaller still: a target that has every plane a part continues from (a
+  // single-sample one, or one holding sample planes) draws parts of at most kCachedRecordedBytes (about one batch
+  // of a dense mesh), as a tile pass that reads its set-up work back from the cache costs less than the loads and
+  // stores of the tiles each extra part touches. A multisampled target without sample planes records up to the
+  // limit itself, as holding them costs fresh memory (66 MB for 4 samples at 1920x1080).
   static constexpr std::size_t kDefaultRecordedBytes = std::size_t{128} << 20;
   static constexpr std::size_t kCachedRecordedBytes = std::size_t{2} << 20;
   void set_recorded_bytes_limit(std::size_t bytes);

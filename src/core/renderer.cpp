@@ -28,9 +28,9 @@ int resolve_thread_count(int threads) {
 // A frame's draws are recorded, not drawn: each batch of a draw is set up and binned as it comes, and keeps its
 // varyings, set-up primitives and bins until the frame's tile pass (flush_recorded), which rasterizes every tile
 // once with all the batches that touch it, in the order they were drawn, in the thread's tile memory.
-// Recorded work is bounded: past recorded_limit (kCachedRecordedBytes at most for a single-sample target), the work
-// recorded so far is drawn before the next batch is set up, and a multisampled target then keeps full-size sample
-// planes so that the rest of the frame continues from them.
+// Recorded work is bounded (see part_limit in execute): past the bound, the work recorded so far is drawn before the
+// next batch is set up, and a multisampled target then keeps full-size sample planes so that the rest of the frame
+// continues from them.
 struct Renderer::Work {
   explicit Work(int threads)
       : pool(threads), scratch(static_cast<std::size_t>(pool.size())), memory(static_cast<std::size_t>(pool.size())) {}
@@ -261,15 +261,22 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
 
   const std::size_t tiles = static_cast<std::size_t>(target.tiles_x()) * target.tiles_y();
   const int samples = target.samples();
-  // sphere:707 at 1 sample, 2 threads: 17.3 ms a frame in parts of 2 MiB against 20.8 ms in one tile pass (medians
-  // of 5 alternated rounds); at 4 samples, parts (and the sample planes they need) were 2-6% slower.
-  const std::size_t part_limit = samples > 1 ? w.recorded_limit : std::min(w.recorded_limit, kCachedRecordedBytes);
+  const auto part_limit = [&] {
+    // Once the target has every plane a part continues from (always with one sample), parts cost only their tiles'
+    // loads and stores, and cache-sized ones read their set-up work back from the cache: sphere:707 at 1 sample,
+    // 2 threads, 17.3 ms a frame in parts of 2 MiB against 20.8 ms in one tile pass (medians of 5 alternated
+    // rounds). A multisampled target without sample planes records its whole frame up to the limit: holding the
+    // planes costs fresh memory (66 MB for 4 samples at 1920x1080), and cutting the frame into parts at the planes'
+    // weight left an 870k-triangle PLY's peak memory as it was and its draw up to 1.5x slower.
+    if (samples == 1 || target.holds_samples()) return std::min(w.recorded_limit, kCachedRecordedBytes);
+    return w.recorded_limit;
+  };
   for (std::size_t batch_first = 0, next_batch = 0; batch_first < count; batch_first = next_batch) {
     next_batch = batch_end(batch_first);
     const std::size_t batch_count = next_batch - batch_first;
     const std::size_t chunk_size = setup_chunk_size(batch_count);
     const std::size_t chunk_count = (batch_count + chunk_size - 1) / chunk_size;
-    if (w.recorded_bytes > part_limit && w.batch_count > 0) {
+    if (w.recorded_bytes > part_limit() && w.batch_count > 0) {
       // Too much recorded: draw it now, and go on recording the frame (the draws' copies stay). A whole-draw block
       // of varyings is still needed by this draw's later batches; a banded draw shades a new one below.
       if (samples > 1) target.hold_sample_planes();
