@@ -117,7 +117,7 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   const std::vector<std::uint32_t>& corner_indices = one_group ? out.groups[0].indices : source.indices;
   for (std::size_t g = 0; g < out.groups.size(); ++g) {
     if (!one_group) out.groups[g].indices.reserve(3 * group_size[g]);
-    out.groups[g].triangles.reserve(group_size[g]);
+    if (!one_group) out.groups[g].triangles.reserve(group_size[g]);
     if (has_face_colors) out.groups[g].face_colors.reserve(group_size[g]);
   }
   for (std::size_t t = 0; t < triangles; ++t) {
@@ -128,8 +128,10 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
     }
     TriangleGroup& g = out.groups[last_group];
     const std::uint32_t a = corner_indices[3 * t], b = corner_indices[3 * t + 1], c = corner_indices[3 * t + 2];
-    if (!one_group) g.indices.insert(g.indices.end(), {a, b, c});
-    g.triangles.push_back(static_cast<std::uint32_t>(t));
+    if (!one_group) {
+      g.indices.insert(g.indices.end(), {a, b, c});
+      g.triangles.push_back(static_cast<std::uint32_t>(t));
+    }
     if (has_face_colors) g.face_colors.push_back(mesh.face_colors[t]);
   }
 

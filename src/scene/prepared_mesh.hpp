@@ -20,7 +20,13 @@ namespace facet::detail {
 struct TriangleGroup {
   std::int32_t material = -1;  // -1: the default material
   std::vector<std::uint32_t> indices;
-  std::vector<std::uint32_t> triangles;  // the mesh's index of each triangle of the group
+  // The mesh's index of each triangle of the group; empty when the group is all the mesh's triangles in order (a
+  // mesh of one material), which saves 4 bytes a triangle of fresh memory in every render.
+  std::vector<std::uint32_t> triangles;
+  std::size_t triangle_count() const { return indices.size() / 3; }
+  std::uint32_t triangle(std::size_t k) const {
+    return triangles.empty() ? static_cast<std::uint32_t>(k) : triangles[k];
+  }
   std::vector<glm::vec3> face_normals;   // object space, unit length; by prepare_face_normals
   std::vector<glm::vec4> face_colors;    // empty when the mesh has none (or has vertex colours, which win)
 };

@@ -29,7 +29,7 @@ SurfaceIds Scene::render_ids(Renderer& renderer, Framebuffer& target, const View
   std::size_t keys = 0;
   for (const std::size_t i : order)
     for (const detail::TriangleGroup& group : impl_->prepared_of(impl_->instances[i]).groups)
-      keys += group.triangles.size();
+      keys += group.triangle_count();
   if (keys >= kNoSurface) throw std::length_error("render_ids: more triangles than 32-bit ids can number");
   key_instance.reserve(keys);
   key_triangle.reserve(keys);
@@ -53,10 +53,10 @@ SurfaceIds Scene::render_ids(Renderer& renderer, Framebuffer& target, const View
     for (const detail::TriangleGroup& group : prepared.groups) {
       if (detail::is_blended(*instance.mesh, group) != blended) continue;
       const glm::vec4* group_keys = key_colors.data() + key_colors.size();
-      for (const std::uint32_t t : group.triangles) {
+      for (std::size_t k = 0; k < group.triangle_count(); ++k) {
         key_colors.push_back(color_of_key(static_cast<std::uint32_t>(key_instance.size())));
         key_instance.push_back(static_cast<std::uint32_t>(i));
-        key_triangle.push_back(t);
+        key_triangle.push_back(group.triangle(k));
       }
       const Material& material = detail::material_of(*instance.mesh, group);
       RenderState state = detail::surface_state(options, material, transforms.mirrored);
@@ -107,9 +107,10 @@ std::vector<glm::vec3> Scene::camera_normals(const SurfaceIds& ids, const View& 
     auto [it, added] = corners_of.try_emplace(&prepared);
     if (added)
       for (const detail::TriangleGroup& group : prepared.groups) {
-        for (std::size_t k = 0; k < group.triangles.size(); ++k) {
-          if (it->second.size() <= group.triangles[k]) it->second.resize(group.triangles[k] + 1, nullptr);
-          it->second[group.triangles[k]] = &group.indices[3 * k];
+        for (std::size_t k = 0; k < group.triangle_count(); ++k) {
+          const std::uint32_t t = group.triangle(k);
+          if (it->second.size() <= t) it->second.resize(t + 1, nullptr);
+          it->second[t] = &group.indices[3 * k];
         }
       }
     return it->second;
