@@ -108,6 +108,26 @@ TEST(ImageIoPng, RgbWithoutAlpha) {
   for (std::size_t i = 0; i < pixels.size(); ++i) EXPECT_EQ(back[i], i % 4 == 3 ? 255 : pixels[i]) << i;
 }
 
+// The filter works on several pixels at a time: narrow images leave every kind of row end, in RGBA, RGB and grey.
+TEST(ImageIoPng, EveryRowEndRoundTrips) {
+  const std::filesystem::path path = scratch_dir() / "narrow.png";
+  for (int width = 1; width <= 11; ++width) {
+    const int height = 3;
+    const std::vector<std::uint8_t> pixels = random_bytes(static_cast<std::size_t>(width) * height * 4, 40 + width);
+    int w = 0, h = 0;
+    write_png(path, width, height, pixels, true);
+    ASSERT_EQ(read_png(path, w, h), pixels) << width;
+    write_png(path, width, height, pixels, false);
+    std::vector<std::uint8_t> opaque = pixels;
+    for (std::size_t i = 3; i < opaque.size(); i += 4) opaque[i] = 255;
+    ASSERT_EQ(read_png(path, w, h), opaque) << width;
+    const std::vector<std::uint8_t> grey(pixels.begin(), pixels.begin() + width * height);
+    write_png_gray(path, width, height, grey);
+    const std::vector<std::uint8_t> back = read_png(path, w, h);
+    for (std::size_t i = 0; i < grey.size(); ++i) ASSERT_EQ(back[4 * i], grey[i]) << width << ", pixel " << i;
+  }
+}
+
 TEST(ImageIoPng, FramebufferTopRowFirstAndOverwrite) {
   const std::filesystem::path path = scratch_dir() / "framebuffer.png";
   Framebuffer fb(4, 3);

@@ -50,24 +50,49 @@ struct Rows {
   std::size_t bytes() const { return width * channels; }  // per row in the file, without the filter byte
 };
 
+// The eight byte differences a[i] - b[i] (mod 256) of two 8-byte words at once, no borrow crossing a byte: each byte
+// of a with its top bit set minus each of b with it clear cannot borrow, and the top bits are then put right.
+std::uint64_t byte_differences(std::uint64_t a, std::uint64_t b) {
+  constexpr std::uint64_t kTop = 0x8080808080808080u;
+  return ((a | kTop) - (b & ~kTop)) ^ ((a ^ ~b) & kTop);
+}
+
+std::uint64_t load_u64(const std::uint8_t* p) {
+  std::uint64_t v;
+  std::memcpy(&v, p, sizeof v);
+  return v;
+}
+
 // Row y with the Up filter (type 2: the difference from the row above; the first row's "row above" is zero), its
-// filter byte first, in out[0 .. bytes()]. Samples of the source beyond `channels` are dropped.
+// filter byte first, in out[0 .. bytes()]. Samples of the source beyond `channels` are dropped. Eight bytes at a
+// time: the filter is a fifth of a 1920x1080 render's PNG time byte by byte (WusonOBJ), where zlib's run-length
+// pass is the rest.
 void filter_row(const Rows& rows, std::size_t y, std::uint8_t* out) {
   const std::size_t n = rows.channels, m = rows.source_channels, source_row = rows.width * m;
   const std::uint8_t* line = rows.pixels + y * source_row;
+  const std::uint8_t* above = y == 0 ? nullptr : line - source_row;
   out[0] = 2;
   ++out;
-  if (n == m) {
-    if (y == 0) {
-      std::memcpy(out, line, rows.bytes());
-    } else {
-      const std::uint8_t* above = line - source_row;
-      for (std::size_t i = 0; i < rows.bytes(); ++i) out[i] = static_cast<std::uint8_t>(line[i] - above[i]);
+  if (above && n == m) {
+    std::size_t i = 0;
+    for (; i + 8 <= rows.bytes(); i += 8) {
+      const std::uint64_t d = byte_differences(load_u64(line + i), load_u64(above + i));
+      std::memcpy(out + i, &d, sizeof d);
     }
+    for (; i < rows.bytes(); ++i) out[i] = static_cast<std::uint8_t>(line[i] - above[i]);
     return;
   }
-  const std::uint8_t* above = y == 0 ? nullptr : line - source_row;
-  for (std::size_t x = 0; x < rows.width; ++x)
+  std::size_t x = 0;  // pixels done
+  if (above && n == 3 && m == 4) {
+    // Two RGBA pixels a word; their six colour bytes are stored as eight, the last two rewritten by the next pair
+    // (so the loop leaves at least one pixel to the end).
+    for (; x + 3 <= rows.width; x += 2) {
+      const std::uint64_t d = byte_differences(load_u64(line + x * 4), load_u64(above + x * 4));
+      const std::uint64_t rgb = (d & 0xffffffu) | (d >> 8 & 0xffffff000000u);
+      std::memcpy(out + x * 3, &rgb, sizeof rgb);
+    }
+  }
+  for (; x < rows.width; ++x)
     for (std::size_t c = 0; c < n; ++c)
       out[x * n + c] = static_cast<std::uint8_t>(line[x * m + c] - (above ? above[x * m + c] : 0));
 }
