@@ -11,6 +11,7 @@
 
 #include "core/thread_pool.hpp"
 #include "facet/cpu_level.hpp"
+#include "facet/detail/bits.hpp"
 #include "facet/detail/multisample.hpp"
 #include "facet/detail/tile_memory.hpp"
 #include "core/setup/setup.hpp"
@@ -33,7 +34,10 @@ int resolve_thread_count(int threads) {
 // continues from them.
 struct Renderer::Work {
   explicit Work(int threads)
-      : pool(threads), scratch(static_cast<std::size_t>(pool.size())), memory(static_cast<std::size_t>(pool.size())) {}
+      : pool(threads),
+        scratch(static_cast<std::size_t>(pool.size())),
+        memory(static_cast<std::size_t>(pool.size())),
+        tile_sorts(static_cast<std::size_t>(pool.size())) {}
 
   detail::VertexOutputs prepare_vertex_outputs(const detail::DrawRequest& request, std::size_t held, std::size_t first,
                                                int width, int height);
@@ -50,7 +54,21 @@ struct Renderer::Work {
     std::size_t varyings = 0;  // its block of varying_blocks
     detail::TileRasterFn raster = nullptr;
     const void* draw = nullptr;  // the draw's copies of its shader and state, in `copies`
+    // Drawn farthest first, sorted per tile: the block of varying_blocks holding each primitive's depth key.
+    std::size_t keys = kUnsorted;
   };
+  static constexpr std::size_t kUnsorted = ~std::size_t{0};
+  // A tile's triangles of a sorted batch: (inverted depth key, primitive) above the reference, sorted ascending.
+  struct SortEntry {
+    std::uint64_t key;
+    std::uint32_t ref;
+    bool operator<(const SortEntry& other) const { return key != other.key ? key < other.key : ref < other.ref; }
+  };
+  struct TileSort {
+    std::vector<SortEntry> entries;
+    std::vector<std::uint32_t> refs;
+  };
+  const std::uint32_t* sort_tile(const Batch& batch, std::uint32_t tile, int thread, std::size_t& count);
   // The recorded draws' copies of their shaders and states: blocks that stay from frame to frame, so that steady
   // frames do not touch the heap, and the destructors to run when the frame is drawn.
   struct Copies {
@@ -96,6 +114,7 @@ struct Renderer::Work {
   std::vector<std::uint64_t> active_tiles;
   std::vector<detail::TileScratch> scratch;
   std::vector<detail::TileMemory> memory;
+  std::vector<TileSort> tile_sorts;  // per thread
 };
 
 Renderer::Renderer(int threads) {
@@ -222,6 +241,12 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   const std::size_t count = request.indices.size() / per_primitive;
   const RenderState& state = *request.state;
   const bool painter = triangles && state.order == DrawOrder::back_to_front;
+  // The painter's order is sorted per tile, in the tile pass, by each primitive's depth key (ties in index order),
+  // on every thread: the tile's triangles in the order a sort of the whole draw gives them, without that sort,
+  // which ran on one thread before setup. It needs the draw in one batch (the sort spans all its triangles); a draw
+  // of more chunks than a batch can reference (16.7 million triangles) is sorted whole instead.
+  const bool sort_per_tile =
+      painter && (count + setup_chunk_size(count) - 1) / setup_chunk_size(count) <= kMaxChunksPerBatch;
   stats_ = {};
   stats_.primitives = count;
 
@@ -234,7 +259,9 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   // A draw's last part shorter than a batch joins the batch before it: one batch boundary fewer, i.e. one round of
   // barriers, for at most twice a batch's setup memory at a time.
   const std::size_t batch = kSetupChunk * kChunksPerBatch;
-  const auto batch_end = [&](std::size_t first) { return count - first < 2 * batch ? count : first + batch; };
+  const auto batch_end = [&](std::size_t first) {
+    return sort_per_tile || count - first < 2 * batch ? count : first + batch;
+  };
   const std::size_t n = request.vertex_count;
   bool banded = !painter && batch_end(0) < count;
   VertexOutputs outputs{};
@@ -246,7 +273,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   if (!banded) shade_band(painter ? VertexRange{0, n} : w.batch_vertex_band(request, 0, count));
 
   const std::uint32_t* order = nullptr;
-  if (painter) {
+  if (painter && !sort_per_tile) {
     w.sort_keys.resize(count);
     setup_depth_keys(outputs.clip, n, request.indices, w.sort_keys);
     // Farthest first; equal depths keep index order. A total order lets std::sort (which, unlike stable_sort,
@@ -300,6 +327,12 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     }
     if (w.batch_count == 0) w.tile_load.assign(tiles, 0);  // the frame's first batch, or the first after a part
 
+    std::size_t keys = Work::kUnsorted;
+    if (sort_per_tile) {
+      keys = w.new_varying_block(count);
+      setup_depth_keys(outputs.clip, n, request.indices,
+                       std::span<float>(w.varying_blocks[keys].data(), count));
+    }
     if (w.batch_count == w.batches.size()) w.batches.emplace_back();
     Work::Batch& recorded = w.batches[w.batch_count++];
     if (recorded.chunks.size() < chunk_count) recorded.chunks.resize(chunk_count);
@@ -307,6 +340,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     recorded.varyings = w.current_block;
     recorded.raster = request.raster;
     recorded.draw = request.draw;
+    recorded.keys = keys;
     w.pool.parallel_for(chunk_count, [&](std::size_t c, int) {
       SetupChunk& chunk = recorded.chunks[c];
       chunk.reset();
@@ -396,6 +430,10 @@ void Renderer::draw_recorded_tiles() {
     const int x0 = (tile % target->tiles_x()) * kTileSize, y0 = (tile / target->tiles_x()) * kTileSize;
     for (std::uint32_t k = w.tile_first[tile]; k < w.tile_first[tile + 1]; ++k) {
       const Work::Batch& batch = w.batches[w.tile_batches[k]];
+      std::size_t sorted_count = 0;
+      const std::uint32_t* sorted =
+          batch.keys == Work::kUnsorted ? nullptr : w.sort_tile(batch, static_cast<std::uint32_t>(tile), thread,
+                                                                sorted_count);
       const TileWork work{.tile = tile,
                           .x0 = x0,
                           .y0 = y0,
@@ -407,6 +445,8 @@ void Renderer::draw_recorded_tiles() {
                           .depth_bounds = memory.bounds_of(0),
                           .chunks = batch.chunks.data(),
                           .chunk_count = batch.chunk_count,
+                          .sorted = sorted,
+                          .sorted_count = sorted_count,
                           .varyings = w.varying_blocks[batch.varyings].data(),
                           .scratch = &w.scratch[static_cast<std::size_t>(thread) * static_cast<std::size_t>(samples)],
                           .lazy_clear = &memory.lazy_clear,
@@ -417,6 +457,32 @@ void Renderer::draw_recorded_tiles() {
     }
     target->store_tile(tile, memory);
   });
+}
+
+// The tile's triangles of a batch drawn farthest first, in the order of a sort of the whole draw by (depth key
+// descending, primitive), which is the draw's order restricted to the tile; a clipped primitive's pieces keep the
+// order they were set up in (their references ascend). Keys map to unsigned integers of the same order (-0 as +0),
+// inverted so that the farthest sorts first.
+const std::uint32_t* Renderer::Work::sort_tile(const Batch& batch, std::uint32_t tile, int thread,
+                                               std::size_t& count) {
+  TileSort& sort = tile_sorts[static_cast<std::size_t>(thread)];
+  const float* keys = varying_blocks[batch.keys].data();
+  sort.entries.clear();
+  for (std::size_t c = 0; c < batch.chunk_count; ++c) {
+    const detail::SetupChunk& chunk = batch.chunks[c];
+    for (std::uint32_t i = chunk.first[tile]; i < chunk.first[tile + 1]; ++i) {
+      const std::uint32_t index = chunk.binned[i];
+      const std::uint32_t primitive = chunk.triangles[index].primitive;
+      const auto bits = detail::bit_cast<std::uint32_t>(keys[primitive] + 0.0f);
+      const std::uint32_t ordered = bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+      sort.entries.push_back({std::uint64_t{~ordered} << 32 | primitive, detail::triangle_ref(c, index)});
+    }
+  }
+  std::sort(sort.entries.begin(), sort.entries.end());
+  sort.refs.resize(sort.entries.size());
+  for (std::size_t k = 0; k < sort.entries.size(); ++k) sort.refs[k] = sort.entries[k].ref;
+  count = sort.refs.size();
+  return sort.refs.data();
 }
 
 void Renderer::release_batches() {

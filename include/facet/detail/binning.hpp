@@ -87,6 +87,8 @@ static_assert(2 * kChunksPerBatch << kTriangleIndexBits < kNoTriangle);  // a ba
 inline std::uint32_t triangle_ref(std::size_t chunk, std::uint32_t index) {
   return static_cast<std::uint32_t>(chunk) << kTriangleIndexBits | index;
 }
+// The most chunks one batch can hold, so that a reference never equals kNoTriangle.
+inline constexpr std::size_t kMaxChunksPerBatch = (kNoTriangle >> kTriangleIndexBits) - 1;
 
 // Deferred shading's per-thread copy of one tile: depth and, per pixel, the triangle that drew it last. Stored
 // block by block (8x8 blocks in row order, pixels in row order within a block), so each 8x2 strip of a block is
@@ -108,6 +110,10 @@ struct TileWork {
   float* depth_bounds;  // kTileBlocks, row-major over the tile's 8x8 blocks
   const SetupChunk* chunks;
   std::size_t chunk_count;
+  // The tile's triangles as references (triangle_ref) in the order to draw them, for a batch drawn farthest first
+  // (sorted in the tile pass); null for the bins' draw order.
+  const std::uint32_t* sorted = nullptr;
+  std::size_t sorted_count = 0;
   const float* varyings;  // post-transform varyings, indexed by TriangleSetup::vertex
   TileScratch* scratch;   // the running thread's, for deferred shading: one per sample
   // The tile memory's colour or depth planes that still hold nothing but the tile's pending clear and are not yet
@@ -139,9 +145,18 @@ inline void settle_clear(const TileWork& work, bool color, bool depth) {
   if (depth) clear.depth = false;
 }
 
-// Calls f(triangle, ref) for each triangle binned to the work's tile, in draw order (chunk by chunk).
+// Calls f(triangle, ref) for each triangle binned to the work's tile, in draw order (chunk by chunk), or in the
+// sorted order when the work has one.
 template <class F>
 [[gnu::always_inline]] inline void for_each_tile_triangle(const TileWork& work, F&& f) {
+  if (work.sorted) {
+    constexpr std::uint32_t kIndexMask = (std::uint32_t{1} << kTriangleIndexBits) - 1;
+    for (std::size_t k = 0; k < work.sorted_count; ++k) {
+      const std::uint32_t ref = work.sorted[k];
+      f(work.chunks[ref >> kTriangleIndexBits].triangles[ref & kIndexMask], ref);
+    }
+    return;
+  }
   for (std::size_t c = 0; c < work.chunk_count; ++c) {
     const SetupChunk& chunk = work.chunks[c];
     for (std::uint32_t i = chunk.first[work.tile]; i < chunk.first[work.tile + 1]; ++i) {
