@@ -58,17 +58,21 @@ struct Renderer::Work {
     std::size_t keys = kUnsorted;
   };
   static constexpr std::size_t kUnsorted = ~std::size_t{0};
-  // A tile's triangles of a sorted batch: (inverted depth key, primitive) above the reference, sorted ascending.
+  // A tile's triangle of a run of sorted batches: compared by its depth key mapped to an unsigned integer and
+  // inverted (farthest first), then by its batch's place in the run, its primitive and its reference.
   struct SortEntry {
-    std::uint64_t key;
-    std::uint32_t ref;
-    bool operator<(const SortEntry& other) const { return key != other.key ? key < other.key : ref < other.ref; }
+    std::uint32_t depth, batch, primitive, ref;
+    bool operator<(const SortEntry& o) const {
+      if (depth != o.depth) return depth < o.depth;
+      if (batch != o.batch) return batch < o.batch;
+      return primitive != o.primitive ? primitive < o.primitive : ref < o.ref;
+    }
   };
   struct TileSort {
     std::vector<SortEntry> entries;
-    std::vector<std::uint32_t> refs;
+    std::vector<std::uint32_t> refs;  // the entries' references, in their order
   };
-  const std::uint32_t* sort_tile(const Batch& batch, std::uint32_t tile, int thread, std::size_t& count);
+  void sort_tile(const std::uint32_t* run, std::size_t run_size, std::uint32_t tile, TileSort& sort) const;
   // The recorded draws' copies of their shaders and states: blocks that stay from frame to frame, so that steady
   // frames do not touch the heap, and the destructors to run when the frame is drawn.
   struct Copies {
@@ -289,6 +293,10 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   const std::size_t tiles = static_cast<std::size_t>(target.tiles_x()) * target.tiles_y();
   const int samples = target.samples();
   const auto part_limit = [&] {
+    // Draws in the painter's order that follow each other are composited together per tile, which needs them in
+    // one part: only the limit itself cuts them.
+    if (sort_per_tile && w.batch_count > 0 && w.batches[w.batch_count - 1].keys != Work::kUnsorted)
+      return w.recorded_limit;
     // Once the target has every plane a part continues from (always with one sample), parts cost only their tiles'
     // loads and stores, and cache-sized ones read their set-up work back from the cache: sphere:707 at 1 sample,
     // 2 threads, 17.3 ms a frame in parts of 2 MiB against 20.8 ms in one tile pass (medians of 5 alternated
@@ -420,6 +428,18 @@ void Renderer::draw_recorded_tiles() {
     if (w.tile_load[t]) w.active_tiles.push_back(std::uint64_t{~w.tile_load[t]} << 32 | t);
   std::sort(w.active_tiles.begin(), w.active_tiles.end());
 
+  // A tile's sort holds at most its binned primitives: room for the heaviest tile's, and half again, reserved here
+  // so that steady frames, whose tiles go to threads in no fixed way, do not grow them.
+  const bool any_sorted = std::any_of(w.batches.begin(), w.batches.begin() + static_cast<std::ptrdiff_t>(w.batch_count),
+                                      [](const Work::Batch& b) { return b.keys != Work::kUnsorted; });
+  if (any_sorted && !w.active_tiles.empty()) {
+    const std::size_t heaviest = ~(w.active_tiles.front() >> 32) & 0xffffffffu;
+    for (Work::TileSort& sort : w.tile_sorts)
+      if (sort.entries.capacity() < heaviest) {
+        sort.entries.reserve(heaviest + heaviest / 2);
+        sort.refs.reserve(heaviest + heaviest / 2);
+      }
+  }
   const std::size_t scratch_needed = static_cast<std::size_t>(w.pool.size()) * static_cast<std::size_t>(samples);
   if (w.scratch.size() < scratch_needed) w.scratch.resize(scratch_needed);
   // One owner per tile: no two threads ever write the same pixel, so the tile pass needs no locks.
@@ -428,12 +448,7 @@ void Renderer::draw_recorded_tiles() {
     TileMemory& memory = w.memory[static_cast<std::size_t>(thread)];
     target->load_tile(tile, memory);
     const int x0 = (tile % target->tiles_x()) * kTileSize, y0 = (tile / target->tiles_x()) * kTileSize;
-    for (std::uint32_t k = w.tile_first[tile]; k < w.tile_first[tile + 1]; ++k) {
-      const Work::Batch& batch = w.batches[w.tile_batches[k]];
-      std::size_t sorted_count = 0;
-      const std::uint32_t* sorted =
-          batch.keys == Work::kUnsorted ? nullptr : w.sort_tile(batch, static_cast<std::uint32_t>(tile), thread,
-                                                                sorted_count);
+    const auto raster = [&](const Work::Batch& batch, const std::uint32_t* sorted, std::size_t sorted_count) {
       const TileWork work{.tile = tile,
                           .x0 = x0,
                           .y0 = y0,
@@ -454,35 +469,54 @@ void Renderer::draw_recorded_tiles() {
                           .sample_stride = TileMemory::kPixels,
                           .bounds_stride = kTileBlocks};
       batch.raster(batch.draw, work);
+    };
+    const std::uint32_t* const listed = w.tile_batches.data();
+    for (std::uint32_t k = w.tile_first[tile], last = w.tile_first[tile + 1]; k < last;) {
+      if (w.batches[listed[k]].keys == Work::kUnsorted) {
+        raster(w.batches[listed[k++]], nullptr, 0);
+        continue;
+      }
+      // Consecutive batches in the painter's order are composited together: their triangles that touch the tile,
+      // farthest first across all of them, each stretch of one batch's triangles rasterized with its shader.
+      std::uint32_t end = k + 1;
+      while (end < last && w.batches[listed[end]].keys != Work::kUnsorted) ++end;
+      Work::TileSort& sort = w.tile_sorts[static_cast<std::size_t>(thread)];
+      w.sort_tile(listed + k, end - k, static_cast<std::uint32_t>(tile), sort);
+      for (std::size_t first = 0, stretch = 0; first < sort.entries.size(); first = stretch) {
+        const std::uint32_t batch = sort.entries[first].batch;
+        for (stretch = first + 1; stretch < sort.entries.size() && sort.entries[stretch].batch == batch;) ++stretch;
+        raster(w.batches[listed[k + batch]], sort.refs.data() + first, stretch - first);
+      }
+      k = end;
     }
     target->store_tile(tile, memory);
   });
 }
 
-// The tile's triangles of a batch drawn farthest first, in the order of a sort of the whole draw by (depth key
-// descending, primitive), which is the draw's order restricted to the tile; a clipped primitive's pieces keep the
-// order they were set up in (their references ascend). Keys map to unsigned integers of the same order (-0 as +0),
-// inverted so that the farthest sorts first.
-const std::uint32_t* Renderer::Work::sort_tile(const Batch& batch, std::uint32_t tile, int thread,
-                                               std::size_t& count) {
-  TileSort& sort = tile_sorts[static_cast<std::size_t>(thread)];
-  const float* keys = varying_blocks[batch.keys].data();
+// The tile's triangles of a run of batches drawn farthest first (run lists them by index in `batches`), in the
+// order of a sort of all of them by (depth key descending, batch, primitive). For one draw that is the order a sort
+// of the whole draw gives, restricted to the tile; a clipped primitive's pieces keep the order they were set up in
+// (their references ascend). Keys map to unsigned integers of the same order (-0 as +0).
+void Renderer::Work::sort_tile(const std::uint32_t* run, std::size_t run_size, std::uint32_t tile,
+                               TileSort& sort) const {
   sort.entries.clear();
-  for (std::size_t c = 0; c < batch.chunk_count; ++c) {
-    const detail::SetupChunk& chunk = batch.chunks[c];
-    for (std::uint32_t i = chunk.first[tile]; i < chunk.first[tile + 1]; ++i) {
-      const std::uint32_t index = chunk.binned[i];
-      const std::uint32_t primitive = chunk.triangles[index].primitive;
-      const auto bits = detail::bit_cast<std::uint32_t>(keys[primitive] + 0.0f);
-      const std::uint32_t ordered = bits & 0x80000000u ? ~bits : bits | 0x80000000u;
-      sort.entries.push_back({std::uint64_t{~ordered} << 32 | primitive, detail::triangle_ref(c, index)});
+  for (std::size_t b = 0; b < run_size; ++b) {
+    const Batch& batch = batches[run[b]];
+    const float* keys = varying_blocks[batch.keys].data();
+    for (std::size_t c = 0; c < batch.chunk_count; ++c) {
+      const detail::SetupChunk& chunk = batch.chunks[c];
+      for (std::uint32_t i = chunk.first[tile]; i < chunk.first[tile + 1]; ++i) {
+        const std::uint32_t index = chunk.binned[i];
+        const std::uint32_t primitive = chunk.triangles[index].primitive;
+        const auto bits = detail::bit_cast<std::uint32_t>(keys[primitive] + 0.0f);
+        const std::uint32_t ordered = bits & 0x80000000u ? ~bits : bits | 0x80000000u;
+        sort.entries.push_back({~ordered, static_cast<std::uint32_t>(b), primitive, detail::triangle_ref(c, index)});
+      }
     }
   }
   std::sort(sort.entries.begin(), sort.entries.end());
   sort.refs.resize(sort.entries.size());
   for (std::size_t k = 0; k < sort.entries.size(); ++k) sort.refs[k] = sort.entries[k].ref;
-  count = sort.refs.size();
-  return sort.refs.data();
 }
 
 void Renderer::release_batches() {

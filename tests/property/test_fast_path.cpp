@@ -109,6 +109,55 @@ TEST(FastPath, PainterOrderSortedPerTileMatchesTheWholeDrawSort) {
   }
 }
 
+// Draws in the painter's order that follow each other are composited together per tile: two meshes of tilted,
+// shifted layers whose depths interleave come out as one draw of both does (ties in draw order, as in index order),
+// not as the second mesh painted over the first; at 1 and 4 samples, on 1 to 3 threads.
+TEST(FastPath, ConsecutivePainterDrawsCompositeTogether) {
+  const int width = 150, height = 110;
+  const glm::mat4 proj = glm::perspective(glm::radians(60.0f), float(width) / height, 0.1f, 20.0f);
+  ClipMesh layers[2], both;
+  for (int i = 0; i < 6; ++i) {
+    ClipMesh& m = layers[i % 2];
+    const float z = -2.0f - 0.7f * i, shift = 0.25f * i - 0.6f;
+    for (const glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+      m.clip.push_back(proj * glm::vec4(c * 1.4f + glm::vec2(shift, 0.1f * i), z + 0.8f * c.x, 1));
+      m.color.emplace_back(0.15f * i, 1.0f - 0.15f * i, i % 2 ? 0.9f : 0.1f);
+    }
+    const auto b = static_cast<std::uint32_t>(m.clip.size() - 4);
+    m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
+  }
+  both = layers[0];
+  for (const std::uint32_t i : layers[1].indices) both.indices.push_back(i + static_cast<std::uint32_t>(both.clip.size()));
+  both.clip.insert(both.clip.end(), layers[1].clip.begin(), layers[1].clip.end());
+  both.color.insert(both.color.end(), layers[1].color.begin(), layers[1].color.end());
+  RenderState painter = no_depth_no_cull();
+  painter.order = DrawOrder::back_to_front;
+  const auto draw = [&](int samples, int threads, bool together, bool separate_frames) {
+    Framebuffer fb(width, height, samples);
+    Renderer renderer(threads);
+    renderer.clear(fb, glm::vec4(0.1f, 0.1f, 0.15f, 1.0f));
+    const std::vector<ColorShader::Vertex> a = color_vertices(layers[0]), b = color_vertices(layers[1]),
+                                           ab = color_vertices(both);
+    if (together) {
+      renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(ab), both.indices, painter);
+    } else {
+      renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(a), layers[0].indices, painter);
+      if (separate_frames) renderer.finish(fb);
+      renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(b), layers[1].indices, painter);
+    }
+    renderer.finish(fb);
+    return fb;
+  };
+  for (const int samples : {1, 4}) {
+    const Framebuffer whole = draw(samples, 1, true, false);
+    EXPECT_FALSE(std::ranges::equal(draw(samples, 1, false, true).color(), whole.color()))  // the layers interleave
+        << samples << " samples";
+    for (const int threads : {1, 2, 3})
+      EXPECT_TRUE(std::ranges::equal(draw(samples, threads, false, false).color(), whole.color()))
+          << samples << " samples, " << threads << " threads";
+  }
+}
+
 TEST(FastPath, OutOfRangeIndicesSkipTheirTriangle) {
   ClipMesh m = jittered_grid(2, 2, 1, false);
   const std::size_t good = m.indices.size() / 3;
