@@ -240,7 +240,7 @@ void add_look_options(CLI::App& app, LookArgs& args) {
       ->type_name("N");
   app.add_option("--samples", args.samples,
                  "Anti-aliasing samples per pixel: 1 (none), 2, 4 or 8 (default 4); depth, normals, ids and mask "
-                 "take sample 0")
+                 "are taken at pixel centres")
       ->check(CLI::IsMember({1, 2, 4, 8}))
       ->type_name("N");
 }

@@ -17,7 +17,9 @@ inline constexpr float kMaxPointSize = 256.0f;  // pixels; what the scene and jo
 
 enum class DrawOrder {
   as_given,       // index order, as OpenGL draws
-  back_to_front,  // the painter's algorithm: triangles sorted by depth, farthest first (use with depth_test off)
+  // The painter's algorithm: triangles by mean NDC depth, farthest first, ties in index order (use with depth_test
+  // off). Sorted per tile; consecutive draws in this order are sorted together, ties in draw order.
+  back_to_front,
 };
 
 struct RenderState {
