@@ -121,8 +121,9 @@ def test_rgba_alpha_is_zero_only_where_the_background_shows(sphere):
 
 @pytest.mark.parametrize("samples", [2, 4, 8])
 def test_multisampling_blends_only_the_silhouette(sphere, samples):
-    """Anti-aliased, alpha is each pixel's covered fraction; depth is sample 0's, so it is set wherever every sample
-    is covered, unset wherever none is, and either way on the silhouette."""
+    """Anti-aliased, alpha is each pixel's covered fraction; depth is taken at the pixel's centre, so it is set
+    wherever every sample is covered (the centre lies among them), unset wherever none is, and either way on the
+    silhouette."""
     scene = sphere_scene(sphere, facet.PerspectiveCamera(yfov=0.8), look_at((0, 0, 4)), bg_color=(0.2, 0.3, 0.4, 0.0))
     color, depth = facet.OffscreenRenderer(64, 48, threads=2, samples=samples).render(scene, facet.RenderFlags.RGBA)
     alpha = color[..., 3].astype(int)

@@ -127,7 +127,8 @@ TEST(FastPath, ConsecutivePainterDrawsCompositeTogether) {
     m.indices.insert(m.indices.end(), {b, b + 1, b + 2, b, b + 2, b + 3});
   }
   both = layers[0];
-  for (const std::uint32_t i : layers[1].indices) both.indices.push_back(i + static_cast<std::uint32_t>(both.clip.size()));
+  const auto offset = static_cast<std::uint32_t>(both.clip.size());
+  for (const std::uint32_t i : layers[1].indices) both.indices.push_back(i + offset);
   both.clip.insert(both.clip.end(), layers[1].clip.begin(), layers[1].clip.end());
   both.color.insert(both.color.end(), layers[1].color.begin(), layers[1].color.end());
   RenderState painter = no_depth_no_cull();
