@@ -107,13 +107,26 @@ class Framebuffer {
   // The colour of one sample of every pixel, not averaged, after finish(). With one sample, color(); with several,
   // keep_samples(true) must have been set before the frame (std::logic_error otherwise).
   std::span<const std::uint32_t> sample_color(int sample) const;
-  // Depth of every pixel (sample 0's with several samples). Valid after Renderer::finish().
-  std::span<const float> depth() const { return depth_; }
+  // Whether the depth outlives the frame, for depth(), depth_at() and a next frame drawn without a depth clear. On
+  // by default. Off, a frame's depth lives in the tile pass's memory only: a frame drawn in one tile pass never
+  // writes the depth plane (a single 1920x1080 render touches 8 MB less fresh memory), one drawn in parts keeps it
+  // between them, and finish() discards it: depth() and depth_at() then throw std::logic_error, and the next frame
+  // starts from depth 1 unless it clears the depth itself.
+  void keep_depth(bool keep) { keep_depth_ = keep; }
+  bool keeps_depth() const { return keep_depth_; }
+  // Depth of every pixel (sample 0's with several samples). Valid after Renderer::finish(), if kept.
+  std::span<const float> depth() const {
+    if (!keep_depth_) throw_depth_discarded();
+    return depth_;
+  }
   // depth() for writing: draws recorded and not yet drawn are drawn first; also voids the hierarchical depth bounds
   // (they become "unknown") and the kept clear.
   std::span<float> mutable_depth();
   std::uint32_t pixel(int x, int y) const { return color_[static_cast<std::size_t>(y) * width_ + x]; }
-  float depth_at(int x, int y) const { return depth_[static_cast<std::size_t>(y) * width_ + x]; }
+  float depth_at(int x, int y) const {
+    if (!keep_depth_) throw_depth_discarded();
+    return depth_[static_cast<std::size_t>(y) * width_ + x];
+  }
 
   // The colour as bytes R, G, B, A per pixel, top row first (what PNG writers take).
   std::vector<std::uint8_t> rgba8() const;
@@ -143,7 +156,14 @@ class Framebuffer {
   // tile's pending clear, or else its contents (every kept sample, or the resolved colour and depth in each
   // sample); store_tile writes the tile's final pixels back (the resolve with several samples, and kept samples).
   void load_tile(int tile_index, detail::TileMemory& memory);
-  void store_tile(int tile_index, const detail::TileMemory& memory);
+  // store_depth false: the tile's depth is not written back (the last part of a frame whose depth is not kept).
+  void store_tile(int tile_index, const detail::TileMemory& memory, bool store_depth = true);
+  // At finish() of a frame whose depth is not kept, after its tiles are stored: the clears still pending then
+  // apply to colour only (skip_pending_depth), and afterwards the depth is left pending as a clear to 1 in every
+  // tile (discard_depth), so its plane is written only if someone reads it.
+  void skip_pending_depth() { pending_.depth = false; }
+  void discard_depth();
+  [[noreturn]] static void throw_depth_discarded();
 
   // Hierarchical depth: one upper bound on the stored depth per 8x8 block; a triangle whose nearest point in a
   // block is behind the bound is rejected for the whole block without a per-pixel test. Each tile's kTileBlocks
@@ -172,6 +192,7 @@ class Framebuffer {
   Plane<float> sample_depth_;
   std::vector<float, CacheAlignedAllocator<float>> sample_bounds_;
   bool keep_samples_ = false;
+  bool keep_depth_ = true;
   detail::PendingClear pending_;
   std::vector<std::uint8_t> tile_needs_clear_;
   // Per tile: it holds `held_` (a colour and depth clear) in every pixel. Tiles drawn into lose the mark.

@@ -120,7 +120,8 @@ class Renderer {
   void flush_recorded();
   // Forgets the recorded frame: its batches, varyings and copies.
   void drop_recorded();
-  void draw_recorded_tiles();
+  // store_depth false: the frame's last tile pass, for a target that does not keep its depth.
+  void draw_recorded_tiles(bool store_depth);
   void release_batches();
 
   // The thread pool and the frame's work buffers (post-transform vertices, the recorded batches, tile order,

@@ -149,6 +149,7 @@ Framebuffer& Framebuffer::operator=(Framebuffer&& other) {
   sample_depth_ = std::move(other.sample_depth_);
   sample_bounds_ = std::move(other.sample_bounds_);
   keep_samples_ = other.keep_samples_;
+  keep_depth_ = other.keep_depth_;
   pending_ = other.pending_;
   tile_needs_clear_ = std::move(other.tile_needs_clear_);
   tile_holds_clear_ = std::move(other.tile_holds_clear_);
@@ -230,9 +231,9 @@ std::span<const std::uint32_t> Framebuffer::sample_color(int sample) const {
 }
 
 void Framebuffer::request_clear(glm::vec4 color, float depth, bool clear_color, bool clear_depth) {
-  // A clear of other channels than the pending one cannot be merged into it: apply the old one first.
+  // A clear that leaves a channel of the pending one alone cannot replace it: apply the old one first.
   const bool any_pending = std::find(tile_needs_clear_.begin(), tile_needs_clear_.end(), 1) != tile_needs_clear_.end();
-  if (any_pending && (pending_.color != clear_color || pending_.depth != clear_depth)) resolve_all_clears();
+  if (any_pending && ((pending_.color && !clear_color) || (pending_.depth && !clear_depth))) resolve_all_clears();
   pending_ = {clear_color, clear_depth, pack_rgba8(color), depth};
   // Tiles keep their mark only for a clear of both channels to the very values they hold, and only if nobody
   // could have written to them since. Depths compare bit for bit.
@@ -316,6 +317,18 @@ void Framebuffer::resolve_all_clears() {
   pending_ = {};
 }
 
+void Framebuffer::discard_depth() {
+  pending_ = {false, true, 0, 1.0f};
+  held_ = {};
+  std::fill(tile_holds_clear_.begin(), tile_holds_clear_.end(), std::uint8_t{0});
+  std::fill(tile_needs_clear_.begin(), tile_needs_clear_.end(), std::uint8_t{1});
+}
+
+void Framebuffer::throw_depth_discarded() {
+  throw std::logic_error("depth: the framebuffer does not keep its depth after finish(); call keep_depth(true) "
+                         "before drawing the frame");
+}
+
 void Framebuffer::load_tile(int tile_index, detail::TileMemory& memory) {
   const int x0 = (tile_index % tiles_x_) * kTileSize, y0 = (tile_index / tiles_x_) * kTileSize;
   const int columns = std::min(kTileSize, width_ - x0), rows = std::min(kTileSize, height_ - y0);
@@ -346,7 +359,7 @@ void Framebuffer::load_tile(int tile_index, detail::TileMemory& memory) {
   tile_holds_clear_[tile_index] = 0;
 }
 
-void Framebuffer::store_tile(int tile_index, const detail::TileMemory& memory) {
+void Framebuffer::store_tile(int tile_index, const detail::TileMemory& memory, bool store_depth) {
   const int x0 = (tile_index % tiles_x_) * kTileSize, y0 = (tile_index / tiles_x_) * kTileSize;
   const int columns = std::min(kTileSize, width_ - x0), rows = std::min(kTileSize, height_ - y0);
   const std::size_t first = static_cast<std::size_t>(y0) * width_ + x0;
@@ -356,8 +369,8 @@ void Framebuffer::store_tile(int tile_index, const detail::TileMemory& memory) {
   if (lazy.color) fill_color(color_.data() + first, width_, rows, columns, lazy.color_value);
   else if (samples_ == 1) stream_rect(memory.color_of(0), color_.data() + first, width_, rows, columns);
   else resolve_rect(memory.color_of(0), color_.data() + first, width_, rows, columns, samples_);
-  if (lazy.depth) fill_depth(depth_.data() + first, width_, rows, columns, lazy.depth_value);
-  else stream_rect(memory.depth_of(0), depth_.data() + first, width_, rows, columns);
+  if (store_depth && lazy.depth) fill_depth(depth_.data() + first, width_, rows, columns, lazy.depth_value);
+  else if (store_depth) stream_rect(memory.depth_of(0), depth_.data() + first, width_, rows, columns);
   std::copy_n(memory.bounds_of(0), detail::kTileBlocks, block_max_depth_.data() + bounds);
   if (holds_samples())
     for (int s = 0; s < samples_; ++s) {
@@ -365,6 +378,7 @@ void Framebuffer::store_tile(int tile_index, const detail::TileMemory& memory) {
       float* depth = sample_depth_.data() + static_cast<std::size_t>(s) * pixel_count() + first;
       if (lazy.color) fill_color(color, width_, rows, columns, lazy.color_value);
       else copy_rect(memory.color_of(s), kTileSize, color, width_, rows, columns);
+      if (!store_depth) continue;
       if (lazy.depth) fill_depth(depth, width_, rows, columns, lazy.depth_value);
       else copy_rect(memory.depth_of(s), kTileSize, depth, width_, rows, columns);
       std::copy_n(memory.bounds_of(s), detail::kTileBlocks, sample_bounds_.data() + s * bounds_per_sample() + bounds);

@@ -178,10 +178,17 @@ void Renderer::clear(Framebuffer& target, glm::vec4 color, float depth) {
 }
 
 void Renderer::finish(Framebuffer& target) {
-  flush_recorded();
+  // A depth not kept is not stored by the frame's last tile pass, nor cleared in the tiles no draw touched.
+  const bool discard = !target.keeps_depth();
+  if (work_->target) {
+    draw_recorded_tiles(!(discard && work_->target == &target));
+    drop_recorded();
+  }
+  if (discard) target.skip_pending_depth();
   work_->pool.parallel_for(static_cast<std::size_t>(target.tiles_y()),
                            [&](std::size_t row, int) { target.resolve_clear_tile_row(static_cast<int>(row)); });
   target.resolve_all_clears();
+  if (discard) target.discard_depth();
 }
 
 detail::VertexOutputs Renderer::Work::prepare_vertex_outputs(const detail::DrawRequest& request, std::size_t held,
@@ -315,7 +322,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
       // Too much recorded: draw it now, and go on recording the frame (the draws' copies stay). A whole-draw block
       // of varyings is still needed by this draw's later batches; a banded draw shades a new one below.
       if (samples > 1) target.hold_sample_planes();
-      draw_recorded_tiles();
+      draw_recorded_tiles(true);
       const std::size_t kept = w.current_block;
       release_batches();
       if (!banded) {
@@ -399,11 +406,11 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
 
 void Renderer::flush_recorded() {
   if (!work_->target) return;
-  draw_recorded_tiles();
+  draw_recorded_tiles(true);
   drop_recorded();
 }
 
-void Renderer::draw_recorded_tiles() {
+void Renderer::draw_recorded_tiles(bool store_depth) {
   using namespace detail;
   Work& w = *work_;
   Framebuffer* const target = w.target;
@@ -489,7 +496,7 @@ void Renderer::draw_recorded_tiles() {
       }
       k = end;
     }
-    target->store_tile(tile, memory);
+    target->store_tile(tile, memory, store_depth);
   });
 }
 

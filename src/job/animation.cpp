@@ -48,6 +48,7 @@ void check_video_size(const RenderJob& job, int frames, const char* flag) {
 void draw_frames(const RenderJob& job, int count, double seconds_per_frame, glm::vec4 clear,
                  const AnimationSource& source, Renderer& renderer, RenderTimings* timings) {
   Framebuffer target(job.width, job.height, job.samples);
+  target.keep_depth(false);  // draw_buffers keeps it for a frame whose outputs read it
   const bool video = is_video(job);
   std::vector<std::vector<std::uint8_t>> frames;  // a video's, encoded together at the end
   RenderTimings spent;

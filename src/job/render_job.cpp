@@ -82,6 +82,8 @@ FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene,
   const bool surface_pass = request.normal || request.ids;
   if (surface_pass && (options.wireframe || options.edges))
     throw std::invalid_argument("normal and id outputs show surfaces: not with wireframe or edges");
+  // The colour pass's depth is read only for a 1-sample depth or mask; otherwise it stays in tile memory.
+  target.keep_depth((request.depth || request.mask) && target.samples() == 1);
   renderer.clear(target, clear, 1.0f);
   scene.render(renderer, target, view, options);
   renderer.finish(target);
@@ -211,6 +213,7 @@ void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timin
     for (int c = 0; c < 4; ++c)
       sheet[p + static_cast<std::size_t>(c)] = static_cast<std::uint8_t>(std::lround(frame.clear[c] * 255.0f));
   Framebuffer cell(job.width, job.height, job.samples);
+  cell.keep_depth(false);
   const int scale = job.width >= 480 ? 2 : 1;
   for (int k = 0; k < n; ++k) {
     const SheetView view = job.views[static_cast<std::size_t>(k)];

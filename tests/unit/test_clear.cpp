@@ -114,5 +114,58 @@ TEST(Clear, RepeatedClearsMatchAFreshTarget) {
   }
 }
 
+// A framebuffer that does not keep its depth draws the same colours, whether its frame is one tile pass or several
+// parts (which keep the depth between them), at 1 and 4 samples; after finish() its depth is discarded: reading it
+// throws, and the next frame, drawn without a clear, starts from depth 1 (a far quad shows everywhere).
+TEST(Clear, DiscardedDepthKeepsTheImageAndStartsTheNextFrameFar) {
+  const int width = 300, height = 200;
+  ClipMesh near_triangles = triangle_soup(300, 7);
+  ClipMesh far_quad;
+  for (const glm::vec2 c : {glm::vec2(-1, -1), glm::vec2(1, -1), glm::vec2(1, 1), glm::vec2(-1, 1)}) {
+    far_quad.clip.emplace_back(c, 0.98f, 1.0f);
+    far_quad.color.emplace_back(0.0f, 1.0f, 0.0f);
+  }
+  far_quad.indices = {0, 1, 2, 0, 2, 3};
+  const std::vector<ColorShader::Vertex> near_vertices = color_vertices(near_triangles),
+                                         far_vertices = color_vertices(far_quad);
+  RenderState state;
+  state.cull = CullMode::none;
+  for (const int samples : {1, 4})
+    for (const std::size_t limit : {Renderer::kDefaultRecordedBytes, std::size_t{0}}) {
+      const auto draw = [&](bool keep) {
+        Framebuffer fb(width, height, samples);
+        fb.keep_depth(keep);
+        Renderer renderer(2);
+        renderer.set_recorded_bytes_limit(limit);
+        renderer.clear(fb, glm::vec4(0.1f, 0.1f, 0.15f, 1.0f));
+        const std::span<const std::uint32_t> indices(near_triangles.indices);
+        for (std::size_t first = 0; first < indices.size(); first += 150)  // several draws: parts at limit 0
+          renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(near_vertices),
+                        indices.subspan(first, 150), state);
+        renderer.finish(fb);
+        std::vector<std::uint32_t> image(fb.color().begin(), fb.color().end());
+        renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(far_vertices), far_quad.indices, state);
+        renderer.finish(fb);
+        return std::pair{std::move(image), std::move(fb)};
+      };
+      const auto [kept_image, kept] = draw(true);
+      const auto [image, discarded] = draw(false);
+      EXPECT_EQ(image, kept_image) << samples << " samples, limit " << limit;
+      EXPECT_THROW((void)discarded.depth(), std::logic_error);
+      EXPECT_THROW((void)discarded.depth_at(0, 0), std::logic_error);
+      const std::uint32_t green = pack_rgba8(glm::vec4(0.0f, 1.0f, 0.0f, 1.0f));
+      EXPECT_TRUE(std::ranges::all_of(discarded.color(), [&](std::uint32_t c) { return c == green; }));
+      EXPECT_FALSE(std::ranges::all_of(kept.color(), [&](std::uint32_t c) { return c == green; }));
+    }
+  Framebuffer fb(width, height);
+  fb.keep_depth(false);
+  Renderer renderer(2);
+  renderer.clear(fb, glm::vec4(0.0f), 0.25f);
+  renderer.draw(fb, ColorShader{}, std::span<const ColorShader::Vertex>(near_vertices), near_triangles.indices, state);
+  renderer.finish(fb);
+  const std::span<const float> depth = fb.mutable_depth();  // writable access settles the discarded depth
+  EXPECT_TRUE(std::ranges::all_of(depth, [](float z) { return z == 1.0f; }));
+}
+
 }  // namespace
 }  // namespace facet::test
