@@ -116,8 +116,8 @@ class Renderer {
   void record_destructor(void* object, void (*destroy)(void*));
   // Records one draw's batches (see Work).
   void execute(Framebuffer& target, const detail::DrawRequest& request);
-  // The tile pass over the frame recorded so far, then drop_recorded.
-  void flush_recorded();
+  // The tile pass over the frame recorded so far (see draw_recorded_tiles for store_depth), then drop_recorded.
+  void flush_recorded(bool store_depth = true);
   // Forgets the recorded frame: its batches, varyings and copies.
   void drop_recorded();
   // store_depth false: the frame's last tile pass, for a target that does not keep its depth.

@@ -180,10 +180,7 @@ void Renderer::clear(Framebuffer& target, glm::vec4 color, float depth) {
 void Renderer::finish(Framebuffer& target) {
   // A depth not kept is not stored by the frame's last tile pass, nor cleared in the tiles no draw touched.
   const bool discard = !target.keeps_depth();
-  if (work_->target) {
-    draw_recorded_tiles(!(discard && work_->target == &target));
-    drop_recorded();
-  }
+  flush_recorded(!(discard && work_->target == &target));
   if (discard) target.skip_pending_depth();
   work_->pool.parallel_for(static_cast<std::size_t>(target.tiles_y()),
                            [&](std::size_t row, int) { target.resolve_clear_tile_row(static_cast<int>(row)); });
@@ -404,9 +401,9 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
   }
 }
 
-void Renderer::flush_recorded() {
+void Renderer::flush_recorded(bool store_depth) {
   if (!work_->target) return;
-  draw_recorded_tiles(true);
+  draw_recorded_tiles(store_depth);
   drop_recorded();
 }
 
