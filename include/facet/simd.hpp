@@ -354,6 +354,16 @@ FACET_LANES_INLINE unsigned lane_bits(const MaskT<L>& m) {
   for (int q = 0; q < kLanes / 4; ++q) bits |= static_cast<unsigned>(wasm_i32x4_bitmask(quarters[q])) << (4 * q);
   return bits;
 #else
+#if defined(__SSE2__)
+  // GCC 12's vectoriser leaves the loop below scalar for 128-bit parts: one movmskps per part instead.
+  if constexpr (L::width == 4) {
+    unsigned bits = 0;
+    for (int i = 0; i < L::parts; ++i)
+      bits |= static_cast<unsigned>(__builtin_ia32_movmskps(reinterpret_cast<native::Vector<float, 4>>(m.part[i])))
+              << (4 * i);
+    return bits;
+  }
+#endif
   unsigned bits = 0;
   for (int i = 0; i < L::parts; ++i) {
 #pragma GCC unroll 1  // a loop for the vectoriser: one mask extraction at each level

@@ -47,16 +47,20 @@ namespace facet::detail {
   }
 }
 
-// The bits of the lanes of a strip whose triangle reference is `ref` (a loop, vectorised in each level's ISA).
+// The bits of the lanes of a strip whose triangle reference is `ref`: a compare and a mask extraction in the
+// layout L's registers. GCC 12 turns the lane types' compare into vector code for 128-bit parts only; for wider
+// ones, a loop, which its vectoriser compiles to one compare in each level's ISA.
+template <class L = simd::Whole>
 [[gnu::always_inline]] inline unsigned strip_lanes_equal(const std::uint32_t* refs, std::uint32_t ref) {
-#if defined(__clang__)
-  return simd::lane_bits(simd::load<simd::UInt>(refs) == ref);  // Clang keeps the loop below scalar
-#else
-  unsigned bits = 0;
+#if !defined(__clang__)  // Clang keeps the loop scalar
+  if constexpr (L::parts < 4) {
+    unsigned bits = 0;
 #pragma GCC unroll 1  // kept a loop for the vectoriser: fully unrolled early, it would stay 16 scalar compares
-  for (int k = 0; k < simd::kLanes; ++k) bits |= static_cast<unsigned>(refs[k] == ref) << k;
-  return bits;
+    for (int k = 0; k < simd::kLanes; ++k) bits |= static_cast<unsigned>(refs[k] == ref) << k;
+    return bits;
+  }
 #endif
+  return simd::lane_bits(simd::load<simd::UIntT<L>>(refs) == ref);
 }
 
 // One lane per triangle of the strip, for the loop over its triangles: the lanes that start a run of one triangle in
@@ -83,6 +87,114 @@ inline const TriangleSetup& triangle_at(const TileWork& work, std::uint32_t ref)
   return work.chunks[ref >> kTriangleIndexBits].triangles[ref & ((1u << kTriangleIndexBits) - 1)];
 }
 
+// The parts (native vectors) of a layout's lanes that hold some of the lanes in `lanes`, a bit per part.
+template <class L>
+constexpr unsigned parts_with_lanes(unsigned lanes) {
+  constexpr unsigned kPartLanes = (1u << L::width) - 1u;
+  unsigned parts = 0;
+  for (int i = 0; i < L::parts; ++i) parts |= ((lanes >> (i * L::width)) & kPartLanes) != 0 ? 1u << i : 0u;
+  return parts;
+}
+
+// The lanes of the 2x2 quads that have some of the lanes in `lanes` (lane k is pixel (k % 8, k / 8)).
+constexpr unsigned quad_lanes(unsigned lanes) {
+  unsigned columns = (lanes | lanes >> 8) & 0xffu;
+  columns |= (columns >> 1 & 0x55u) | (columns << 1 & 0xaau);
+  return columns | columns << 8;
+}
+
+// prepare_strip_lanes' interpolation of one triangle, for layouts of two or four parts: only the parts that hold
+// the triangle's lanes (`lanes`), or with derivatives those of its quads, are computed. A small triangle covers
+// one or two of a strip's four 128-bit parts (measured on the 200k-triangle OBJ: 1.7 of 4 parts, and 1.5 of 2
+// halves), so the lower levels skip half of their interpolation. Each part's lanes get the same operations as with
+// the whole layout, so every level's image is the same. The strip's first triangle (kFirst) clears the parts it does
+// not compute, so that no lane is left unset; later ones blend their lanes into the parts they compute. `offset`
+// is the depth offset, or null where the strip's depth comes from the visibility pass.
+template <LaneShader S, class L, bool kFirst>
+[[gnu::always_inline]] inline void interpolate_parts(const TriangleSetup& tri, const TileWork& work, std::uint32_t ref,
+                                                     unsigned lanes, const float* offset, const simd::UIntT<L>& refs,
+                                                     FragmentLanes<typename S::Varyings, L>& fragment) {
+  using namespace simd;
+  using Float = FloatT<L>;
+  using Part = typename Float::Part;
+  using IntPart = typename IntT<L>::Part;
+  constexpr bool kDerivatives = ShaderTraits<S>::needs_derivatives;
+  constexpr std::size_t kFloats = float_count_v<typename S::Varyings>;
+  const unsigned parts = parts_with_lanes<L>(kDerivatives ? quad_lanes(lanes) : lanes);
+  const auto each_part = [&](auto op) __attribute__((always_inline)) {
+#pragma GCC unroll 4
+    for (int i = 0; i < L::parts; ++i)
+      if (parts >> i & 1u) op(i);
+  };
+  const auto put = [&]<class Lanes>(Lanes& slot, int i, const typename Lanes::Part& value)
+                       __attribute__((always_inline)) {
+    if constexpr (kFirst) {
+      slot.part[i] = value;
+    } else {
+      using Bits = IntPart;
+      const Bits mine = reinterpret_cast<Bits>(refs.part[i] == ref);
+      slot.part[i] = reinterpret_cast<typename Lanes::Part>((reinterpret_cast<Bits>(value) & mine) |
+                                                            (reinterpret_cast<Bits>(slot.part[i]) & ~mine));
+    }
+  };
+  if constexpr (kFirst) {
+    // Parts without the first triangle: zero until a later triangle blends its lanes in.
+    const auto clear = [&](auto& slot) __attribute__((always_inline)) {
+      for (int i = 0; i < L::parts; ++i)
+        if (!(parts >> i & 1u)) slot.part[i] = typename std::remove_reference_t<decltype(slot)>::Part{};
+    };
+    if (offset) clear(fragment.depth);
+    if constexpr (ShaderTraits<S>::lanes_read_primitive) clear(fragment.primitive), clear(fragment.front_facing);
+    for (std::size_t f = 0; f < kFloats; ++f) {
+      clear(fragment.varyings[f]);
+      if constexpr (kDerivatives) clear(fragment.ddx[f]), clear(fragment.ddy[f]);
+    }
+  }
+  const float* v0 = work.varyings + std::size_t{tri.vertex[0]} * kFloats;
+  const float* v1 = work.varyings + std::size_t{tri.vertex[1]} * kFloats;
+  const float* v2 = work.varyings + std::size_t{tri.vertex[2]} * kFloats;
+  Float b0{}, b1{}, b2{};
+  each_part([&](int i) __attribute__((always_inline)) {
+    const Part dx = fragment.screen_x.part[i] - tri.origin_x, dy = fragment.screen_y.part[i] - tri.origin_y;
+    const auto at = [&](const Plane& p) __attribute__((always_inline)) {
+      return p.at_origin + p.ddx * dx + p.ddy * dy;
+    };
+    if (offset) {
+      const Part z = at(tri.depth) + *offset;
+      // std::clamp(z, 0, 1), as simd::clamp: NaN stays NaN.
+      const IntPart below = z < 0.0f, above = 1.0f < z;
+      const IntPart bits = reinterpret_cast<IntPart>(z);
+      const IntPart zero = reinterpret_cast<IntPart>(Part{} + 0.0f), one = reinterpret_cast<IntPart>(Part{} + 1.0f);
+      put(fragment.depth, i, reinterpret_cast<Part>((below & zero) | (~below & ((above & one) | (~above & bits)))));
+    }
+    if constexpr (ShaderTraits<S>::lanes_read_primitive) {
+      put(fragment.primitive, i, typename UIntT<L>::Part{} + tri.primitive);
+      put(fragment.front_facing, i, IntPart{} + (tri.front_facing ? -1 : 0));
+    }
+    // Perspective-correct weights of the source vertices: b/w and 1/w are linear in screen space.
+    const Part w = 1.0f / at(tri.inv_w);
+    b1.part[i] = at(tri.b1_over_w) * w, b2.part[i] = at(tri.b2_over_w) * w;
+    b0.part[i] = 1.0f - b1.part[i] - b2.part[i];
+  });
+  for (std::size_t f = 0; f < kFloats; ++f) {
+    Float value{};
+    each_part([&](int i) __attribute__((always_inline)) {
+      value.part[i] = b0.part[i] * v0[f] + b1.part[i] * v1[f] + b2.part[i] * v2[f];
+      put(fragment.varyings[f], i, value.part[i]);
+    });
+    if constexpr (kDerivatives) {
+      // Coarse derivatives: within each 2x2 quad, right minus left and bottom minus top of the top-left pixel. The
+      // parts computed hold whole quads, so every lane a put reads is the triangle's own.
+      const Float origin = quad_top_left(value);
+      const Float ddx = quad_top_right(value) - origin, ddy = quad_bottom_left(value) - origin;
+      each_part([&](int i) __attribute__((always_inline)) {
+        put(fragment.ddx[f], i, ddx.part[i]);
+        put(fragment.ddy[f], i, ddy.part[i]);
+      });
+    }
+  }
+}
+
 // Shading pass, one strip of a LaneShader: one fragment_lanes call for all 16 pixels, whichever triangles drew
 // them. Each triangle of the strip interpolates its varyings at all 16 centres, exactly as shade_quad would (its
 // quads' helper pixels included, so derivatives are its own), and its lanes take those values. Dense meshes put
@@ -104,20 +216,19 @@ template <LaneShader S, class L>
   fragment.screen_y = to_float(kLaneYT<L> + py) + 0.5f;
   const float offset = ctx.state->depth_offset;
   // kFirst: the strip's first triangle fills every lane, so that none is left unset; later ones blend theirs in.
+  // Layouts of several parts interpolate part by part (interpolate_parts); this is the whole layout's way.
   const UInt strip_refs = load<UInt>(refs);
 #if defined(__clang__)
   constexpr bool kBlendLanes = true;
 #else
-  constexpr bool kBlendLanes = L::parts == 4;
+  constexpr bool kBlendLanes = false;
 #endif
   const auto interpolate = [&]<bool kFirst>(std::uint32_t ref) __attribute__((always_inline)) {
     const TriangleSetup& tri = triangle_at(work, ref);
-    // The lanes of this triangle take its value. With 256- and 512-bit vectors, a plain loop over the lanes, for the
-    // vectoriser (as strip_lanes_equal): each level compiles it to one compare per triangle and one masked move or
-    // blend per slot, which the AVX-512 copy folds into the value's last addition (GCC 12 lowers `mask ? a : b` on
-    // the lane types lane by lane here, and a bitwise blend costs two instructions, or three per half). With
-    // 128-bit vectors GCC 12 leaves that loop scalar, and Clang does at every level: there, the lane types' bitwise
-    // blend.
+    // The lanes of this triangle take its value. With GCC, a plain loop over the lanes, for the vectoriser (as
+    // strip_lanes_equal): the AVX-512 copy compiles it to one compare per triangle and one masked move per slot,
+    // folded into the value's last addition (GCC 12 lowers `mask ? a : b` on the lane types lane by lane here).
+    // Clang leaves that loop scalar: there, the lane types' bitwise blend.
     const auto put = [&](auto& slot, const auto& value) __attribute__((always_inline)) {
       if constexpr (kFirst) {
         slot = value;
@@ -132,29 +243,34 @@ template <LaneShader S, class L>
         for (int k = 0; k < kLanes; ++k) lanes[k] = refs[k] == ref ? values[k] : lanes[k];
       }
     };
-    const Float dx = fragment.screen_x - tri.origin_x, dy = fragment.screen_y - tri.origin_y;
-    const auto at = [&](const Plane& p) __attribute__((always_inline)) {
-      return p.at_origin + p.ddx * dx + p.ddy * dy;
-    };
-    if (!depth) put(fragment.depth, clamp(at(tri.depth) + offset, 0.0f, 1.0f));
-    if constexpr (ShaderTraits<S>::lanes_read_primitive) {
-      put(fragment.primitive, UInt{} | tri.primitive);
-      put(fragment.front_facing, Mask{} | (tri.front_facing ? -1 : 0));
-    }
-    // Perspective-correct weights of the source vertices: b/w and 1/w are linear in screen space.
-    const Float w = 1.0f / at(tri.inv_w);
-    const Float b1 = at(tri.b1_over_w) * w, b2 = at(tri.b2_over_w) * w, b0 = 1.0f - b1 - b2;
-    const float* v0 = work.varyings + std::size_t{tri.vertex[0]} * kFloats;
-    const float* v1 = work.varyings + std::size_t{tri.vertex[1]} * kFloats;
-    const float* v2 = work.varyings + std::size_t{tri.vertex[2]} * kFloats;
-    for (std::size_t f = 0; f < kFloats; ++f) {
-      const Float value = b0 * v0[f] + b1 * v1[f] + b2 * v2[f];
-      put(fragment.varyings[f], value);
-      if constexpr (ShaderTraits<S>::needs_derivatives) {
-        // Coarse derivatives: within each 2x2 quad, right minus left and bottom minus top of the top-left pixel.
-        const Float origin = quad_top_left(value);
-        put(fragment.ddx[f], quad_top_right(value) - origin);
-        put(fragment.ddy[f], quad_bottom_left(value) - origin);
+    if constexpr (L::parts > 1) {
+      interpolate_parts<S, L, kFirst>(tri, work, ref, lane_bits(strip_refs == ref), depth ? nullptr : &offset,
+                                      strip_refs, fragment);
+    } else {
+      const Float dx = fragment.screen_x - tri.origin_x, dy = fragment.screen_y - tri.origin_y;
+      const auto at = [&](const Plane& p) __attribute__((always_inline)) {
+        return p.at_origin + p.ddx * dx + p.ddy * dy;
+      };
+      if (!depth) put(fragment.depth, clamp(at(tri.depth) + offset, 0.0f, 1.0f));
+      if constexpr (ShaderTraits<S>::lanes_read_primitive) {
+        put(fragment.primitive, UInt{} | tri.primitive);
+        put(fragment.front_facing, Mask{} | (tri.front_facing ? -1 : 0));
+      }
+      // Perspective-correct weights of the source vertices: b/w and 1/w are linear in screen space.
+      const Float w = 1.0f / at(tri.inv_w);
+      const Float b1 = at(tri.b1_over_w) * w, b2 = at(tri.b2_over_w) * w, b0 = 1.0f - b1 - b2;
+      const float* v0 = work.varyings + std::size_t{tri.vertex[0]} * kFloats;
+      const float* v1 = work.varyings + std::size_t{tri.vertex[1]} * kFloats;
+      const float* v2 = work.varyings + std::size_t{tri.vertex[2]} * kFloats;
+      for (std::size_t f = 0; f < kFloats; ++f) {
+        const Float value = b0 * v0[f] + b1 * v1[f] + b2 * v2[f];
+        put(fragment.varyings[f], value);
+        if constexpr (ShaderTraits<S>::needs_derivatives) {
+          // Coarse derivatives: within each 2x2 quad, right minus left and bottom minus top of the top-left pixel.
+          const Float origin = quad_top_left(value);
+          put(fragment.ddx[f], quad_top_right(value) - origin);
+          put(fragment.ddy[f], quad_bottom_left(value) - origin);
+        }
       }
     }
   };
@@ -257,6 +373,20 @@ template <class Copy>
       });
 }
 
+// Asks memory for the varyings of every source vertex of the tile's triangles, before the visibility pass: the
+// shading pass reads them in the order its strips come, each a chain of loads (reference, triangle, vertex) that
+// would otherwise wait on memory for every vertex the tile has not read yet.
+template <Shader S>
+[[gnu::always_inline]] inline void prefetch_tile_varyings(const TileWork& work) {
+  constexpr std::size_t kBytes = float_count_v<typename S::Varyings> * sizeof(float);
+  for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t) __attribute__((always_inline)) {
+    for (std::uint32_t vertex : tri.vertex) {
+      const char* row = reinterpret_cast<const char*>(work.varyings) + vertex * kBytes;
+      for (std::size_t line = 0; line < kBytes; line += 64) __builtin_prefetch(row + line);
+    }
+  });
+}
+
 // L: the lane layout of this CPU level's copy (detail/dispatch.hpp).
 template <Shader S, class L>
 [[gnu::always_inline]] inline void raster_tile_deferred(const ShadeContext<S>& ctx, const TileWork& work, L) {
@@ -265,6 +395,7 @@ template <Shader S, class L>
   const int width = work.x1 - work.x0, height = work.y1 - work.y0;
 
   begin_tile_scratch(work, state.depth_test);
+  if constexpr (ShaderTraits<S>::fragment_lanes) prefetch_tile_varyings<S>(work);
 
   raster_tile_visibility(state, work);
 
@@ -282,7 +413,7 @@ template <Shader S, class L>
         const std::size_t at = scratch_index(block_x, block_y) + static_cast<std::size_t>(strip) * simd::kLanes;
         const std::uint32_t* refs = scratch.triangle + at;
         const float* depth = depth_resolved ? scratch.depth + at : nullptr;
-        const unsigned covered = ~strip_lanes_equal(refs, kNoTriangle) & 0xffffu;
+        const unsigned covered = ~strip_lanes_equal<L>(refs, kNoTriangle) & 0xffffu;
         const int px = work.x0 + block_x * kScratchBlock, py = work.y0 + block_y * kScratchBlock + 2 * strip;
         const unsigned fill = work.lazy_clear->color ? strip_inside(work, px, py) & ~covered : 0u;
         // A lane shader's strip stores the clear colour with its shaded pixels; otherwise it is stored first.
@@ -305,7 +436,7 @@ template <Shader S, class L>
           // One triangle at a time, a quad at a time; ctx's state has the depth test off: it is resolved.
           for (unsigned pending = covered; pending;) {
             const std::uint32_t ref = refs[std::countr_zero(pending)];
-            const unsigned same = strip_lanes_equal(refs, ref);
+            const unsigned same = strip_lanes_equal<L>(refs, ref);
             pending &= ~same;
             shade_block_quads(shade, triangle_at(work, ref), work, px, py, std::uint64_t{same});
           }

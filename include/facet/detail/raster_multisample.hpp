@@ -120,7 +120,7 @@ template <Shader S, class L>
         [[maybe_unused]] unsigned waiting = 0;
         for (int s = 0; s < n; ++s) {
           refs[s] = planes[s].scratch->triangle + at;
-          covered[s] = pending[s] = ~strip_lanes_equal(refs[s], kNoTriangle) & 0xffffu;
+          covered[s] = pending[s] = ~strip_lanes_equal<L>(refs[s], kNoTriangle) & 0xffffu;
           waiting |= covered[s];
         }
         if constexpr (ShaderTraits<S>::fragment_lanes) {
@@ -186,7 +186,7 @@ template <Shader S, class L>
             const unsigned shaded = covered[s] & ~copied;
             for (unsigned pending = shaded; pending;) {
               const std::uint32_t ref = refs[s][std::countr_zero(pending)];
-              const unsigned same = strip_lanes_equal(refs[s], ref) & shaded;
+              const unsigned same = strip_lanes_equal<L>(refs[s], ref) & shaded;
               pending &= ~same;
               shade_block_quads(shade, triangle_at(work, ref), plane, px, py, std::uint64_t{same});
             }
