@@ -355,12 +355,16 @@ FACET_LANES_INLINE unsigned lane_bits(const MaskT<L>& m) {
   return bits;
 #else
 #if defined(__SSE2__)
-  // GCC 12's vectoriser leaves the loop below scalar for 128-bit parts: one movmskps per part instead.
-  if constexpr (L::width == 4) {
+  // GCC 12's vectoriser leaves the loop below scalar for 128-bit parts, and makes it a chain of shifts and ors for
+  // 256-bit ones: one SSE movmskps per 128 bits instead (the AVX one would not compile in the baseline code that
+  // may use a layout of halves too).
+  if constexpr (L::width <= 8) {
+    using Quarter = native::Vector<float, 4>;
+    Quarter quarters[kLanes / 4];
+    std::memcpy(quarters, m.part, sizeof quarters);
     unsigned bits = 0;
-    for (int i = 0; i < L::parts; ++i)
-      bits |= static_cast<unsigned>(__builtin_ia32_movmskps(reinterpret_cast<native::Vector<float, 4>>(m.part[i])))
-              << (4 * i);
+    for (int q = 0; q < kLanes / 4; ++q)
+      bits |= static_cast<unsigned>(__builtin_ia32_movmskps(quarters[q])) << (4 * q);
     return bits;
   }
 #endif

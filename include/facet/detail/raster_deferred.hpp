@@ -48,12 +48,12 @@ namespace facet::detail {
 }
 
 // The bits of the lanes of a strip whose triangle reference is `ref`: a compare and a mask extraction in the
-// layout L's registers. GCC 12 turns the lane types' compare into vector code for 128-bit parts only; for wider
-// ones, a loop, which its vectoriser compiles to one compare in each level's ISA.
+// layout L's registers. For the whole layout GCC 12 compiles the lane types' compare badly when inlined from the
+// baseline: there, a loop, which its vectoriser compiles to one compare and one mask move with AVX-512.
 template <class L = simd::Whole>
 [[gnu::always_inline]] inline unsigned strip_lanes_equal(const std::uint32_t* refs, std::uint32_t ref) {
 #if !defined(__clang__)  // Clang keeps the loop scalar
-  if constexpr (L::parts < 4) {
+  if constexpr (L::parts == 1) {
     unsigned bits = 0;
 #pragma GCC unroll 1  // kept a loop for the vectoriser: fully unrolled early, it would stay 16 scalar compares
     for (int k = 0; k < simd::kLanes; ++k) bits |= static_cast<unsigned>(refs[k] == ref) << k;
