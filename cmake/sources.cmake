@@ -46,6 +46,7 @@ set(FACET_SCENE_SOURCES
   src/scene/shaders/untextured_pbr_instance.cpp
   src/scene/shaders/untextured_surface_instance.cpp
   src/scene/shadows.cpp
+  src/scene/splats.cpp
   src/scene/surface_ids.cpp
   src/scene/texture/image_decode.cpp
   src/scene/texture/sampling.cpp
@@ -64,6 +65,7 @@ set(FACET_JOB_SOURCES
   src/job/io/obj_parse.cpp
   src/job/io/ply_header.cpp
   src/job/io/ply_loader.cpp
+  src/job/io/splat_ply.cpp
   src/job/io/references.cpp
   src/job/io/stl_loader.cpp
   src/job/io/xyz_loader.cpp

@@ -35,7 +35,25 @@ seed() {  # seed FIND-ARGS...: copies matching files under 1000 KiB into the cor
 }
 case $target in
   obj) seed -iname '*.obj' ;;
-  ply) seed -iname '*.ply' ;;
+  ply)
+    seed -iname '*.ply'
+    # No Gaussian splat scenes among the test models: the paper's layout in binary (degree 1) and ASCII (degree 0).
+    python3 - "$corpus" <<'PY'
+import struct, sys
+out = sys.argv[1]
+def splats(encoding, rest, rows):
+    names = ["x", "y", "z", "f_dc_0", "f_dc_1", "f_dc_2"] + [f"f_rest_{k}" for k in range(rest)] + \
+        ["opacity", "scale_0", "scale_1", "scale_2", "rot_0", "rot_1", "rot_2", "rot_3"]
+    head = f"ply\nformat {encoding} 1.0\nelement vertex {len(rows)}\n" + \
+        "".join(f"property float {n}\n" for n in names) + "end_header\n"
+    row = lambda i: [i, 0.5, -1, 0.2, 0.4, 0.6] + [0.1] * rest + [1.5, -3, -2.5, -4, 1, 0.1, 0, 0]
+    if encoding == "ascii":
+        return head.encode() + "".join(" ".join(str(v) for v in row(i)) + "\n" for i in rows).encode()
+    return head.encode() + b"".join(struct.pack(f"<{len(row(i))}f", *row(i)) for i in rows)
+open(f"{out}/splats-binary", "wb").write(splats("binary_little_endian", 9, [0, 1, 2]))
+open(f"{out}/splats-ascii", "wb").write(splats("ascii", 0, [0, 1]))
+PY
+    ;;
   stl) seed -iname '*.stl' ;;
   gltf) seed \( -iname '*.gltf' -o -iname '*.glb' \) ;;
   xyz)

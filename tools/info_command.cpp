@@ -12,6 +12,7 @@
 #include "facet/mesh.hpp"
 #include "facet/model.hpp"
 #include "facet/model_io.hpp"
+#include "facet/splats.hpp"
 
 namespace facet::cli {
 namespace {
@@ -71,6 +72,8 @@ int run_info(const InfoArgs& args) {
   std::printf("render vertices: %zu\n", mesh.vertex_count());
   std::printf("triangles: %zu\n", mesh.triangle_count());
   std::printf("points: %zu\n", mesh.point_count());
+  std::printf("gaussian splats: %zu\n", mesh.splats ? mesh.splats->size() : 0);
+  if (mesh.splats) std::printf("spherical harmonics degree: %d\n", mesh.splats->sh_degree);
   std::printf("edges: %zu\n", unique_edges(weld).size());
   std::printf("materials: %zu\n", mesh.materials.size());
   std::size_t textured = 0;

@@ -19,6 +19,8 @@
 
 namespace facet {
 
+struct GaussianSplats;
+
 class Texture;
 
 // How a material's alpha is used (glTF alphaMode; the other readers give opaque).
@@ -128,6 +130,9 @@ struct Mesh {
   // Where each triangle came from, for --output-ids. Empty, or one per triangle:
   std::vector<std::uint32_t> face_ids;      // the file's face number (a polygon's triangles share it); empty: t
   std::vector<std::uint32_t> instance_ids;  // the file's node (instance) the triangle was placed by; empty: 0
+  // 3D Gaussian splats (facet/splats.hpp) drawn with the mesh, composited over its surfaces by depth; positions then
+  // holds their centres too, which frame the model. Null for a mesh without.
+  std::shared_ptr<const GaussianSplats> splats;
   std::vector<ModelCamera> cameras;         // in the order the scene's nodes place them
   std::vector<Light> lights;                // world space, in the order the scene's nodes place them
 

@@ -19,10 +19,10 @@ void check_resolution(const RenderJob& job) {
     throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
 }
 
-// Whether the mesh has points, or a triangle that spans an area (a model of collinear or coincident corners draws
+// Whether the mesh has points or splats, or a triangle that spans an area (a model of collinear or coincident corners draws
 // no pixel).
 bool drawable(const Mesh& mesh) {
-  if (!mesh.points.empty()) return true;
+  if (!mesh.points.empty() || mesh.splats) return true;
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
     const glm::vec3 a = mesh.positions[mesh.indices[t]], b = mesh.positions[mesh.indices[t + 1]];
     const glm::vec3 c = mesh.positions[mesh.indices[t + 2]];

@@ -13,6 +13,7 @@
 #include "facet/camera.hpp"
 #include "facet/error.hpp"
 #include "facet/projection.hpp"
+#include "facet/splats.hpp"
 
 namespace facet {
 namespace {
@@ -126,6 +127,13 @@ Framing framing_of(const Mesh& mesh, const std::string& source) {
   // The sphere about the box centre through the farthest vertex: at most the box's half diagonal, and often much
   // tighter, so the model fills more of the frame.
   for (const glm::vec3& p : mesh.positions) framing.radius = std::max(framing.radius, glm::distance(p, framing.center));
+  // Gaussian splats reach three standard deviations past their centres, as far as the rasterizer draws them.
+  if (mesh.splats)
+    for (std::size_t i = 0; i < mesh.splats->size(); ++i) {
+      const glm::vec3 s = mesh.splats->scales[i];
+      const float reach = 3.0f * std::max(s.x, std::max(s.y, s.z));
+      framing.radius = std::max(framing.radius, glm::distance(mesh.splats->positions[i], framing.center) + reach);
+    }
   // Coordinates near the float limit overflow the camera distance; such a model cannot be framed.
   if (!std::isfinite(framing.radius) || !std::isfinite(glm::length(framing.center)) || framing.radius > 1e30f)
     throw InputError(source, "coordinates too large to frame (bounding radius " + format(framing.radius) + ")");

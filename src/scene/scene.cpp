@@ -6,6 +6,7 @@
 #include <stdexcept>
 #include <utility>
 
+#include "facet/splats.hpp"
 #include "scene/scene_impl.hpp"
 
 namespace facet {
@@ -156,6 +157,13 @@ std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& v
   }
   if (options.environment_background && options.environment && options.shading == Shading::automatic)
     detail::draw_environment_background(renderer, target, frame);
+  // Splats composite over the surfaces by depth: the target keeps its depth for them when the scene has both.
+  bool splats = false, surfaces = false;
+  for (const Instance& instance : impl_->instances) {
+    splats |= instance.mesh->splats && instance.mesh->splats->size() > 0;
+    surfaces |= !instance.mesh->indices.empty() || !instance.mesh->points.empty();
+  }
+  if (splats && surfaces) target.keep_depth(true);
   const std::vector<std::size_t> order = impl_->visible(frame);
   for (const std::size_t i : order) {
     const Mesh& mesh = *impl_->instances[i].mesh;
@@ -171,6 +179,9 @@ std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& v
     detail::draw_instance(renderer, target, frame, instance, impl_->prepared_of(instance), detail::DrawPass::blended);
   }
   renderer.finish(target);
+  if (splats)
+    for (const Instance& instance : impl_->instances)
+      if (instance.mesh->splats) render_splats(renderer, target, view, *instance.mesh->splats, instance.world_from_object);
   return order.size();
 }
 

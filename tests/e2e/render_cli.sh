@@ -148,6 +148,27 @@ for i in range(2000):
     t = i * 0.01
     print(f"{math.cos(t * 7):.4f} {math.sin(t * 7):.4f} {t / 20 - 0.5:.4f} {rgb!r}")' >"$scratch/helix.pcd"
 run cloud_pcd image 320 240 inside -- render "$scratch/helix.pcd" --resolution 320,240 --point-size 3
+# A Gaussian splat scene in the 3D Gaussian Splatting paper's PLY layout: 2,000 Gaussians on a sphere, coloured by
+# where they are (degree 0: f_dc = (colour - 0.5) / 0.2821), in a turntable too.
+python3 -c 'import math, random, struct, sys
+random.seed(1)
+props = ["x", "y", "z", "f_dc_0", "f_dc_1", "f_dc_2", "opacity", "scale_0", "scale_1", "scale_2",
+         "rot_0", "rot_1", "rot_2", "rot_3"]
+out = sys.stdout.buffer
+out.write(("ply\nformat binary_little_endian 1.0\nelement vertex 2000\n" +
+           "".join(f"property float {p}\n" for p in props) + "end_header\n").encode())
+for i in range(2000):
+    u, v = random.random() * 2 * math.pi, math.acos(2 * random.random() - 1)
+    p = (math.sin(v) * math.cos(u), math.sin(v) * math.sin(u), math.cos(v))
+    out.write(struct.pack("<14f", *p, *[(0.5 + 0.5 * c - 0.5) / 0.28209479 for c in p], 2.0,
+                          *[math.log(0.05)] * 3, 1, 0, 0, 0))' >"$scratch/splats.ply"
+run splats_ply image 320 240 inside -- render "$scratch/splats.ply" --resolution 320,240
+if "$facet" render "$scratch/splats.ply" --turntable 4 --resolution 96,72 --output "$scratch/splats.gif" \
+  2>"$scratch/splats.err" && msg=$(python3 "$e2e_lib/gif.py" "$scratch/splats.gif" 96 72 4 75 2>&1); then
+  ok "splat turntable GIF: $msg"
+else
+  bad "splat turntable GIF" "${msg:-$(cat "$scratch/splats.err")}"
+fi
 for bad_points in "--point-size 0" "--point-size 300" "--point-shape star"; do
   # shellcheck disable=SC2086  # the flags are meant to split
   if "$facet" render "$scratch/helix.xyz" $bad_points --output "$scratch/bad_points.png" 2>"$scratch/bad_points.log"; then

@@ -14,6 +14,7 @@
 #include "facet/error.hpp"
 #include "job/io/loaders.hpp"
 #include "job/io/ply_header.hpp"
+#include "job/io/splat_ply.hpp"
 #include "job/io/text_scan.hpp"
 
 namespace facet {
@@ -573,6 +574,7 @@ Mesh load_ply(std::string_view bytes, const std::string& source, int threads, st
   const Element* vertex = find(header, "vertex");
   const Element* face = find(header, "face");
   if (!vertex) throw InputError(source, "PLY file has no 'vertex' element");
+  if ((!face || face->count == 0) && is_splat_layout(*vertex)) return load_splat_ply(bytes, header, *vertex, source);
   // Without faces the file is a point cloud: every vertex is a point. Its body is read against a face element of
   // no entries, which takes no bytes.
   const Element no_faces{"face", 0, {ply::Property{"vertex_indices", ply::Type::kInt32, true, ply::Type::kUInt8}}};

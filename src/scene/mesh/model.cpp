@@ -6,6 +6,7 @@
 #include <utility>
 
 #include "facet/error.hpp"
+#include "facet/splats.hpp"
 
 namespace facet {
 
@@ -40,7 +41,7 @@ bool is_identity(const glm::mat4& m) { return m == glm::mat4(1.0f); }
 }  // namespace
 
 Mesh flatten(Model model, const std::string& source) {
-  std::size_t vertices = 0, triangles = 0, points = 0;
+  std::size_t vertices = 0, triangles = 0, points = 0, splats = 0;
   bool all_normals = true, any_uvs = false, any_uvs1 = false, any_tangents = false, any_colors = false;
   bool any_face_colors = false;
   bool any_ids = false;
@@ -54,6 +55,7 @@ Mesh flatten(Model model, const std::string& source) {
     vertices += mesh.vertex_count();
     triangles += mesh.triangle_count();
     points += mesh.point_count();
+    splats += mesh.splats ? mesh.splats->size() : 0;
     all_normals = all_normals && !mesh.normals.empty();
     any_uvs = any_uvs || !mesh.uvs.empty();
     any_uvs1 = any_uvs1 || !mesh.uvs1.empty();
@@ -62,7 +64,8 @@ Mesh flatten(Model model, const std::string& source) {
     any_face_colors = any_face_colors || !mesh.face_colors.empty();
     any_ids = any_ids || instance.id != 0;
   }
-  if (triangles == 0 && points == 0) throw InputError(source, "the model places no triangles and no points");
+  if (triangles == 0 && points == 0 && splats == 0)
+    throw InputError(source, "the model places no triangles and no points");
 
   // One mesh placed once, as it is: the common case of every single-mesh format, moved rather than copied.
   if (model.instances.size() == 1 && is_identity(model.instances[0].world_from_object) && !any_ids) {
@@ -72,6 +75,8 @@ Mesh flatten(Model model, const std::string& source) {
     return out;
   }
 
+  // Splats are placed by Scene instances, not merged: only a model of one mesh, placed once as it is, has them.
+  if (splats > 0) throw InputError(source, "Gaussian splats in a model of several placed meshes are not read");
   Mesh out;
   out.positions.reserve(vertices);
   if (all_normals) out.normals.reserve(vertices);

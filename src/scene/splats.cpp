@@ -1,0 +1,292 @@
+// splats.cpp - render_splats(): Gaussians projected to 2D, listed per 16x16 tile by depth, blended front to back.
+#include "facet/splats.hpp"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <glm/gtc/matrix_inverse.hpp>
+#include <glm/mat2x2.hpp>
+#include <glm/mat3x3.hpp>
+
+#include "facet/camera.hpp"
+#include "facet/error.hpp"
+#include "facet/framebuffer.hpp"
+#include "facet/renderer.hpp"
+
+namespace facet {
+namespace {
+
+// The paper's rasterizer constants.
+constexpr int kTile = 16;                     // pixels a side of a tile
+constexpr float kLowPass = 0.3f;              // pixel^2 added to each 2D covariance's diagonal
+constexpr float kMaxAlpha = 0.99f;            // no Gaussian is fully opaque
+constexpr float kMinAlpha = 1.0f / 255.0f;    // contributions below are skipped
+constexpr float kMinTransmittance = 1e-4f;    // a pixel stops before its transmittance falls below
+constexpr float kFrustumLimit = 1.3f;         // the Jacobian is taken at most 1.3 times the view's half-extent out
+// The most (tile, Gaussian) pairs a frame lists: 1 GiB of indices.
+constexpr std::size_t kMaxTileEntries = std::size_t{1} << 28;
+
+// The real spherical harmonics' constants of degrees 0 to 3, in the paper's order.
+constexpr float kSh0 = 0.28209479177387814f;
+constexpr float kSh1 = 0.4886025119029199f;
+constexpr float kSh2[] = {1.0925484305920792f, -1.0925484305920792f, 0.31539156525252005f, -1.0925484305920792f,
+                          0.5462742152960396f};
+constexpr float kSh3[] = {-0.5900435899266435f, 2.890611442640554f, -0.4570457994644658f, 0.3731763325901154f,
+                          -0.4570457994644658f, 1.445305721320277f, -0.5900435899266435f};
+
+// One Gaussian as the tiles see it.
+struct Projected {
+  float x = 0.0f, y = 0.0f;                  // centre, in screen pixels (facet's: pixel i's centre is i + 0.5)
+  float conic_a = 0.0f, conic_b = 0.0f, conic_c = 0.0f;  // the inverse of the 2D covariance [[a, b], [b, c]]
+  float opacity = 0.0f;
+  glm::vec3 color{0.0f};
+  float depth = 0.0f;     // along the view direction: the sort key
+  float window_z = 0.0f;  // 0..1, against the target's depth
+  int first_row = 0, last_row = -1;          // pixel rows it reaches
+  int tile_x0 = 0, tile_y0 = 0, tile_x1 = -1, tile_y1 = -1;  // tiles it reaches, inclusive; none when x1 < x0
+};
+
+// d(screen)/d(view-space point) at `q`, the projection's Jacobian (2x3, glm's column-major: J[column][row]).
+glm::mat3x2 screen_jacobian(const glm::mat4& clip_from_view, glm::vec3 q, int width, int height) {
+  const glm::vec4 clip = clip_from_view * glm::vec4(q, 1.0f);
+  const float w2 = clip.w * clip.w;
+  glm::mat3x2 j;
+  for (int c = 0; c < 3; ++c) {
+    const glm::vec4 column = clip_from_view[c];
+    j[c][0] = 0.5f * static_cast<float>(width) * (column.x * clip.w - clip.x * column.w) / w2;
+    j[c][1] = -0.5f * static_cast<float>(height) * (column.y * clip.w - clip.y * column.w) / w2;
+  }
+  return j;
+}
+
+// The view-space point at q's depth whose normalised x and y are q's clamped to +-kFrustumLimit, as the paper clamps
+// before taking the Jacobian (so that Gaussians far off screen get no huge footprint). For the projections whose x
+// and y rows do not mix x and y and whose w depends on depth alone (perspective, off-centre or not, and
+// orthographic); q itself for any other.
+glm::vec3 clamp_to_frustum(const glm::mat4& p, glm::vec3 q) {
+  if (p[1][0] != 0.0f || p[0][1] != 0.0f || p[0][3] != 0.0f || p[1][3] != 0.0f || p[0][0] == 0.0f ||
+      p[1][1] == 0.0f)
+    return q;
+  const float w = p[2][3] * q.z + p[3][3];
+  const float ndc_x = (p[0][0] * q.x + p[2][0] * q.z + p[3][0]) / w;
+  const float ndc_y = (p[1][1] * q.y + p[2][1] * q.z + p[3][1]) / w;
+  const float x = std::clamp(ndc_x, -kFrustumLimit, kFrustumLimit), y = std::clamp(ndc_y, -kFrustumLimit, kFrustumLimit);
+  if (x != ndc_x) q.x = (x * w - p[2][0] * q.z - p[3][0]) / p[0][0];
+  if (y != ndc_y) q.y = (y * w - p[2][1] * q.z - p[3][1]) / p[1][1];
+  return q;
+}
+
+// Projects Gaussian i; a culled one reaches no tile.
+Projected project(const GaussianSplats& splats, std::size_t i, const glm::mat4& view_from_object,
+                  const glm::mat4& world_from_object, const glm::mat4& clip_from_view, glm::vec3 eye, int width,
+                  int height, int tiles_x, int tiles_y) {
+  Projected g;
+  const glm::vec3 q = glm::vec3(view_from_object * glm::vec4(splats.positions[i], 1.0f));
+  const glm::vec4 clip = clip_from_view * glm::vec4(q, 1.0f);
+  if (!(clip.w > 0.0f)) return g;
+  const glm::vec3 ndc = glm::vec3(clip) / clip.w;
+  if (!(ndc.z >= -1.0f && ndc.z <= 1.0f)) return g;  // before the near plane or past the far one
+  g.x = (1.0f + ndc.x) * 0.5f * static_cast<float>(width);
+  g.y = (1.0f - ndc.y) * 0.5f * static_cast<float>(height);
+  g.window_z = ndc.z * 0.5f + 0.5f;
+  g.depth = -q.z;
+
+  // Covariance: 3D in object space, R S S^T R^T, carried to view space and through the projection's Jacobian.
+  const glm::mat3 rotation = glm::mat3_cast(splats.rotations[i]);
+  const glm::vec3 s = splats.scales[i];
+  const glm::mat3 m = rotation * glm::mat3(s.x, 0.0f, 0.0f, 0.0f, s.y, 0.0f, 0.0f, 0.0f, s.z);
+  const glm::mat3 t3 = glm::mat3(view_from_object) * m;  // view-space axes of the Gaussian, scaled
+  const glm::mat3x2 j = screen_jacobian(clip_from_view, clamp_to_frustum(clip_from_view, q), width, height);
+  const glm::mat3x2 t = j * t3;  // 2x3: the Gaussian's axes on screen
+  const float a = glm::dot(glm::vec3(t[0][0], t[1][0], t[2][0]), glm::vec3(t[0][0], t[1][0], t[2][0])) + kLowPass;
+  const float b = glm::dot(glm::vec3(t[0][0], t[1][0], t[2][0]), glm::vec3(t[0][1], t[1][1], t[2][1]));
+  const float c = glm::dot(glm::vec3(t[0][1], t[1][1], t[2][1]), glm::vec3(t[0][1], t[1][1], t[2][1])) + kLowPass;
+  const float det = a * c - b * b;
+  if (!(det > 0.0f) || !std::isfinite(det)) return g;
+  g.conic_a = c / det;
+  g.conic_b = -b / det;
+  g.conic_c = a / det;
+  // Three standard deviations along the larger axis.
+  const float mid = 0.5f * (a + c);
+  const float largest = mid + std::sqrt(std::max(0.1f, mid * mid - det));
+  const float radius = std::ceil(3.0f * std::sqrt(largest));
+  // In the paper's pixel coordinates (facet's minus 0.5), as its rasterizer bounds them.
+  const float px = g.x - 0.5f, py = g.y - 0.5f;
+  if (!(px + radius >= 0.0f && py + radius >= 0.0f && px - radius < static_cast<float>(width) &&
+        py - radius < static_cast<float>(height)))
+    return g;
+  g.tile_x0 = std::max(0, static_cast<int>(std::floor((px - radius) / kTile)));
+  g.tile_y0 = std::max(0, static_cast<int>(std::floor((py - radius) / kTile)));
+  g.tile_x1 = std::min(tiles_x - 1, static_cast<int>(std::floor((px + radius) / kTile)));
+  g.tile_y1 = std::min(tiles_y - 1, static_cast<int>(std::floor((py + radius) / kTile)));
+  g.first_row = std::max(0, static_cast<int>(std::floor(py - radius)));
+  g.last_row = std::min(height - 1, static_cast<int>(std::ceil(py + radius)));
+  g.opacity = splats.opacities[i];
+  const glm::vec3 centre = glm::vec3(world_from_object * glm::vec4(splats.positions[i], 1.0f));
+  const glm::vec3 to_centre = centre - eye;
+  const float length = glm::length(to_centre);
+  g.color = splat_color(splats, i, length > 0.0f ? to_centre / length : glm::vec3(0.0f, 0.0f, -1.0f));
+  return g;
+}
+
+// Blends the tile's Gaussians (indices into `gs`, sorted front to back) into its pixels of `color`.
+void blend_tile(const std::vector<Projected>& gs, const std::vector<std::uint32_t>& order, int x0, int y0, int width,
+                int height, std::uint32_t* color, const float* depth) {
+  const int x1 = std::min(width, x0 + kTile), y1 = std::min(height, y0 + kTile);
+  const int n = x1 - x0;
+  for (int y = y0; y < y1; ++y) {
+    float transmittance[kTile], red[kTile] = {}, green[kTile] = {}, blue[kTile] = {}, surface[kTile];
+    bool active[kTile];
+    const float row_y = static_cast<float>(y) + 0.5f;
+    for (int k = 0; k < kTile; ++k) {
+      transmittance[k] = 1.0f;
+      active[k] = k < n;
+      surface[k] = depth && k < n ? depth[static_cast<std::size_t>(y) * width + x0 + k] : 2.0f;
+    }
+    int left = n;
+    for (const std::uint32_t index : order) {
+      const Projected& g = gs[index];
+      if (y < g.first_row || y > g.last_row) continue;
+      const float dy = g.y - row_y;
+      for (int k = 0; k < n; ++k) {
+        if (!active[k] || !(g.window_z < surface[k])) continue;
+        const float dx = g.x - (static_cast<float>(x0 + k) + 0.5f);
+        const float power = -0.5f * (g.conic_a * dx * dx + g.conic_c * dy * dy) - g.conic_b * dx * dy;
+        if (power > 0.0f) continue;
+        const float alpha = std::min(kMaxAlpha, g.opacity * std::exp(power));
+        if (alpha < kMinAlpha) continue;
+        const float next = transmittance[k] * (1.0f - alpha);
+        if (next < kMinTransmittance) {
+          active[k] = false;
+          --left;
+          continue;
+        }
+        const float weight = alpha * transmittance[k];
+        red[k] += g.color.r * weight;
+        green[k] += g.color.g * weight;
+        blue[k] += g.color.b * weight;
+        transmittance[k] = next;
+      }
+      if (left == 0) break;
+    }
+    std::uint32_t* row = color + static_cast<std::size_t>(y) * width + x0;
+    for (int k = 0; k < n; ++k) {
+      const glm::vec4 under = unpack_rgba8(row[k]);
+      const float t = transmittance[k];
+      row[k] = pack_rgba8(glm::vec4(red[k] + t * under.r, green[k] + t * under.g, blue[k] + t * under.b,
+                                    (1.0f - t) + t * under.a));
+    }
+  }
+}
+
+}  // namespace
+
+void check_splats(const GaussianSplats& splats, const std::string& source) {
+  const std::size_t n = splats.size();
+  if (n > kMaxSplats)
+    throw InputError(source, std::to_string(n) + " Gaussians: more than the " + std::to_string(kMaxSplats) +
+                                 " a scene may hold");
+  if (splats.sh_degree < 0 || splats.sh_degree > 3)
+    throw InputError(source, "spherical-harmonics degree " + std::to_string(splats.sh_degree) + ": must be 0..3");
+  if (splats.scales.size() != n || splats.rotations.size() != n || splats.opacities.size() != n ||
+      splats.sh.size() != n * splats.coefficients())
+    throw InputError(source, "the Gaussians' arrays disagree in size with their " + std::to_string(n) + " centres");
+  const auto finite = [](glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  for (std::size_t i = 0; i < n; ++i) {
+    const std::string which = "Gaussian " + std::to_string(i);
+    const glm::quat r = splats.rotations[i];
+    if (!finite(splats.positions[i])) throw InputError(source, which + " has a position that is not finite");
+    const glm::vec3 s = splats.scales[i];
+    if (!finite(s) || s.x < 0.0f || s.y < 0.0f || s.z < 0.0f)
+      throw InputError(source, which + " has a scale that is negative or not finite");
+    if (!(splats.opacities[i] >= 0.0f && splats.opacities[i] <= 1.0f))
+      throw InputError(source, which + " has an opacity outside 0..1");
+    const float norm = r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z;
+    if (!(std::abs(norm - 1.0f) < 1e-3f)) throw InputError(source, which + " has a rotation that is not a unit quaternion");
+  }
+  for (const glm::vec3& c : splats.sh)
+    if (!finite(c)) throw InputError(source, "a spherical-harmonics coefficient is not finite");
+}
+
+glm::vec3 splat_color(const GaussianSplats& splats, std::size_t index, glm::vec3 d) {
+  const glm::vec3* sh = splats.sh.data() + index * splats.coefficients();
+  glm::vec3 result = kSh0 * sh[0];
+  if (splats.sh_degree > 0) {
+    const float x = d.x, y = d.y, z = d.z;
+    result = result - kSh1 * y * sh[1] + kSh1 * z * sh[2] - kSh1 * x * sh[3];
+    if (splats.sh_degree > 1) {
+      const float xx = x * x, yy = y * y, zz = z * z, xy = x * y, yz = y * z, xz = x * z;
+      result = result + kSh2[0] * xy * sh[4] + kSh2[1] * yz * sh[5] + kSh2[2] * (2.0f * zz - xx - yy) * sh[6] +
+               kSh2[3] * xz * sh[7] + kSh2[4] * (xx - yy) * sh[8];
+      if (splats.sh_degree > 2)
+        result = result + kSh3[0] * y * (3.0f * xx - yy) * sh[9] + kSh3[1] * xy * z * sh[10] +
+                 kSh3[2] * y * (4.0f * zz - xx - yy) * sh[11] + kSh3[3] * z * (2.0f * zz - 3.0f * xx - 3.0f * yy) * sh[12] +
+                 kSh3[4] * x * (4.0f * zz - xx - yy) * sh[13] + kSh3[5] * z * (xx - yy) * sh[14] +
+                 kSh3[6] * x * (xx - 3.0f * yy) * sh[15];
+    }
+  }
+  return glm::max(result + 0.5f, glm::vec3(0.0f));
+}
+
+void render_splats(Renderer& renderer, Framebuffer& target, const View& view, const GaussianSplats& splats,
+                   const glm::mat4& world_from_object) {
+  check_splats(splats, "splats");
+  const int width = target.width(), height = target.height();
+  const int tiles_x = (width + kTile - 1) / kTile, tiles_y = (height + kTile - 1) / kTile;
+  const glm::mat4 view_from_object = view.view_from_world * world_from_object;
+  const glm::vec3 eye = glm::vec3(glm::inverse(view.view_from_world)[3]);
+
+  // Projection, a chunk of Gaussians per task.
+  const std::size_t n = splats.size();
+  std::vector<Projected> gs(n);
+  constexpr std::size_t kChunk = 4096;
+  renderer.parallel_for((n + kChunk - 1) / kChunk, [&](std::size_t chunk) {
+    for (std::size_t i = chunk * kChunk; i < std::min(n, (chunk + 1) * kChunk); ++i)
+      gs[i] = project(splats, i, view_from_object, world_from_object, view.clip_from_view, eye, width, height,
+                      tiles_x, tiles_y);
+  });
+
+  // Each tile's list, Gaussians in index order (sorted by depth in the tile pass).
+  const std::size_t tiles = static_cast<std::size_t>(tiles_x) * tiles_y;
+  std::vector<std::size_t> first(tiles + 1, 0);
+  for (const Projected& g : gs)
+    for (int ty = g.tile_y0; ty <= g.tile_y1; ++ty)
+      for (int tx = g.tile_x0; tx <= g.tile_x1; ++tx) ++first[static_cast<std::size_t>(ty) * tiles_x + tx + 1];
+  for (std::size_t t = 0; t < tiles; ++t) first[t + 1] += first[t];
+  if (first[tiles] > kMaxTileEntries)
+    throw std::invalid_argument("splats: the Gaussians reach " + std::to_string(first[tiles]) +
+                                " tiles in all, more than the " + std::to_string(kMaxTileEntries) +
+                                " a frame may list");
+  std::vector<std::uint32_t> entries(first[tiles]);
+  {
+    std::vector<std::size_t> at(first.begin(), first.end() - 1);
+    for (std::size_t i = 0; i < n; ++i) {
+      const Projected& g = gs[i];
+      for (int ty = g.tile_y0; ty <= g.tile_y1; ++ty)
+        for (int tx = g.tile_x0; tx <= g.tile_x1; ++tx)
+          entries[at[static_cast<std::size_t>(ty) * tiles_x + tx]++] = static_cast<std::uint32_t>(i);
+    }
+  }
+
+  std::uint32_t* color = target.mutable_color().data();
+  const float* depth = target.keeps_depth() ? target.depth().data() : nullptr;
+  renderer.parallel_for(tiles, [&](std::size_t tile) {
+    if (first[tile] == first[tile + 1]) return;
+    std::vector<std::uint32_t> order(entries.begin() + static_cast<std::ptrdiff_t>(first[tile]),
+                                     entries.begin() + static_cast<std::ptrdiff_t>(first[tile + 1]));
+    // Front to back; equal depths in index order, so the image never depends on the threads.
+    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+      return gs[a].depth < gs[b].depth || (gs[a].depth == gs[b].depth && a < b);
+    });
+    const int tx = static_cast<int>(tile % static_cast<std::size_t>(tiles_x));
+    const int ty = static_cast<int>(tile / static_cast<std::size_t>(tiles_x));
+    blend_tile(gs, order, tx * kTile, ty * kTile, width, height, color, depth);
+  });
+}
+
+}  // namespace facet
