@@ -14,9 +14,13 @@
 #include <glm/mat3x3.hpp>
 
 #include "facet/camera.hpp"
+#include "facet/detail/bits.hpp"
+#include "facet/detail/dispatch.hpp"
 #include "facet/error.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/renderer.hpp"
+#include "facet/simd.hpp"
+#include "facet/simd_vectors.hpp"
 
 namespace facet {
 namespace {
@@ -40,15 +44,26 @@ constexpr float kSh3[] = {-0.5900435899266435f, 2.890611442640554f, -0.457045799
                           -0.4570457994644658f, 1.445305721320277f, -0.5900435899266435f};
 
 // One Gaussian as the tiles see it.
-struct Projected {
+struct Footprint {
   float x = 0.0f, y = 0.0f;                  // centre, in screen pixels (facet's: pixel i's centre is i + 0.5)
   float conic_a = 0.0f, conic_b = 0.0f, conic_c = 0.0f;  // the inverse of the 2D covariance [[a, b], [b, c]]
   float opacity = 0.0f;
   glm::vec3 color{0.0f};
-  float depth = 0.0f;     // along the view direction: the sort key
-  float window_z = 0.0f;  // 0..1, against the target's depth
+  float window_z = 0.0f;                     // 0..1, against the target's depth
   int first_row = 0, last_row = -1;          // pixel rows it reaches
-  int tile_x0 = 0, tile_y0 = 0, tile_x1 = -1, tile_y1 = -1;  // tiles it reaches, inclusive; none when x1 < x0
+};
+
+// Which tiles a Gaussian reaches, inclusive; none when x1 < x0 (culled).
+struct TileRect {
+  std::uint16_t x0 = 1, y0 = 1, x1 = 0, y1 = 0;
+  bool empty() const { return x1 < x0; }
+};
+
+// A projected Gaussian: its footprint, its tiles and its view depth (the sort key).
+struct Projected {
+  Footprint footprint;
+  TileRect tiles;
+  float depth = 0.0f;
 };
 
 // d(screen)/d(view-space point) at `q`, the projection's Jacobian (2x3, glm's column-major: J[column][row]).
@@ -85,16 +100,17 @@ glm::vec3 clamp_to_frustum(const glm::mat4& p, glm::vec3 q) {
 Projected project(const GaussianSplats& splats, std::size_t i, const glm::mat4& view_from_object,
                   const glm::mat4& world_from_object, const glm::mat4& clip_from_view, glm::vec3 eye, int width,
                   int height, int tiles_x, int tiles_y) {
-  Projected g;
+  Projected projected;
+  Footprint& g = projected.footprint;
   const glm::vec3 q = glm::vec3(view_from_object * glm::vec4(splats.positions[i], 1.0f));
   const glm::vec4 clip = clip_from_view * glm::vec4(q, 1.0f);
-  if (!(clip.w > 0.0f)) return g;
+  if (!(clip.w > 0.0f)) return projected;
   const glm::vec3 ndc = glm::vec3(clip) / clip.w;
-  if (!(ndc.z >= -1.0f && ndc.z <= 1.0f)) return g;  // before the near plane or past the far one
+  if (!(ndc.z >= -1.0f && ndc.z <= 1.0f)) return projected;  // before the near plane or past the far one
   g.x = (1.0f + ndc.x) * 0.5f * static_cast<float>(width);
   g.y = (1.0f - ndc.y) * 0.5f * static_cast<float>(height);
   g.window_z = ndc.z * 0.5f + 0.5f;
-  g.depth = -q.z;
+  projected.depth = -q.z;
 
   // Covariance: 3D in object space, R S S^T R^T, carried to view space and through the projection's Jacobian.
   const glm::mat3 rotation = glm::mat3_cast(splats.rotations[i]);
@@ -107,7 +123,7 @@ Projected project(const GaussianSplats& splats, std::size_t i, const glm::mat4& 
   const float b = glm::dot(glm::vec3(t[0][0], t[1][0], t[2][0]), glm::vec3(t[0][1], t[1][1], t[2][1]));
   const float c = glm::dot(glm::vec3(t[0][1], t[1][1], t[2][1]), glm::vec3(t[0][1], t[1][1], t[2][1])) + kLowPass;
   const float det = a * c - b * b;
-  if (!(det > 0.0f) || !std::isfinite(det)) return g;
+  if (!(det > 0.0f) || !std::isfinite(det)) return projected;
   g.conic_a = c / det;
   g.conic_b = -b / det;
   g.conic_c = a / det;
@@ -119,11 +135,12 @@ Projected project(const GaussianSplats& splats, std::size_t i, const glm::mat4& 
   const float px = g.x - 0.5f, py = g.y - 0.5f;
   if (!(px + radius >= 0.0f && py + radius >= 0.0f && px - radius < static_cast<float>(width) &&
         py - radius < static_cast<float>(height)))
-    return g;
-  g.tile_x0 = std::max(0, static_cast<int>(std::floor((px - radius) / kTile)));
-  g.tile_y0 = std::max(0, static_cast<int>(std::floor((py - radius) / kTile)));
-  g.tile_x1 = std::min(tiles_x - 1, static_cast<int>(std::floor((px + radius) / kTile)));
-  g.tile_y1 = std::min(tiles_y - 1, static_cast<int>(std::floor((py + radius) / kTile)));
+    return projected;
+  TileRect& rect = projected.tiles;
+  rect.x0 = static_cast<std::uint16_t>(std::max(0, static_cast<int>(std::floor((px - radius) / kTile))));
+  rect.y0 = static_cast<std::uint16_t>(std::max(0, static_cast<int>(std::floor((py - radius) / kTile))));
+  rect.x1 = static_cast<std::uint16_t>(std::min(tiles_x - 1, static_cast<int>(std::floor((px + radius) / kTile))));
+  rect.y1 = static_cast<std::uint16_t>(std::min(tiles_y - 1, static_cast<int>(std::floor((py + radius) / kTile))));
   g.first_row = std::max(0, static_cast<int>(std::floor(py - radius)));
   g.last_row = std::min(height - 1, static_cast<int>(std::ceil(py + radius)));
   g.opacity = splats.opacities[i];
@@ -131,57 +148,107 @@ Projected project(const GaussianSplats& splats, std::size_t i, const glm::mat4& 
   const glm::vec3 to_centre = centre - eye;
   const float length = glm::length(to_centre);
   g.color = splat_color(splats, i, length > 0.0f ? to_centre / length : glm::vec3(0.0f, 0.0f, -1.0f));
-  return g;
+  return projected;
 }
 
-// Blends the tile's Gaussians (indices into `gs`, sorted front to back) into its pixels of `color`.
-void blend_tile(const std::vector<Projected>& gs, const std::vector<std::uint32_t>& order, int x0, int y0, int width,
-                int height, std::uint32_t* color, const float* depth) {
+// exp(x) for x <= 0 in lanes, from exact operations (so every CPU level rounds alike): 2^(x log2 e) as a power of
+// two times a degree-6 polynomial of the fraction (relative error under 1e-5, far below an 8-bit step). Below -30
+// it is exp(-30), which any opacity makes an alpha under 1/255.
+template <class L>
+FACET_LANES_INLINE simd::FloatT<L> exp_nonpositive(simd::FloatT<L> x) {
+  using namespace simd;
+  x = select(x > -30.0f, x, splat<L>(-30.0f));
+  const FloatT<L> t = x * 1.44269504f, whole = simd::floor(t), f = t - whole;
+  const FloatT<L> p =
+      1.0f + f * (0.693147181f + f * (0.240226507f + f * (0.0555041087f + f * (0.00961812911f +
+                                                                                f * (0.00133335581f + f * 0.000154035304f)))));
+  return p * bit_cast<FloatT<L>>((truncate(whole) + 127) << 23);
+}
+
+// Blends the tile's Gaussians (front to back) into its pixels of `color`. Each row of 16 pixels is one lane value
+// per quantity, and each Gaussian visits only the rows it reaches; a row whose pixels are all done is skipped, and
+// the tile stops when every row is. Each pixel sees the same operations in the same order as one looping over its
+// own list.
+template <class L>
+FACET_LANES_INLINE void blend_tile(const Footprint* tile_gs, std::size_t count, int x0, int y0, int width, int height,
+                                   std::uint32_t* color, const float* depth) {
+  using namespace simd;
+  FACET_LANE_TYPES(L);
+  static_assert(kTile == kLanes);
   const int x1 = std::min(width, x0 + kTile), y1 = std::min(height, y0 + kTile);
-  const int n = x1 - x0;
-  for (int y = y0; y < y1; ++y) {
-    float transmittance[kTile], red[kTile] = {}, green[kTile] = {}, blue[kTile] = {}, surface[kTile];
-    bool active[kTile];
-    const float row_y = static_cast<float>(y) + 0.5f;
-    for (int k = 0; k < kTile; ++k) {
-      transmittance[k] = 1.0f;
-      active[k] = k < n;
-      surface[k] = depth && k < n ? depth[static_cast<std::size_t>(y) * width + x0 + k] : 2.0f;
-    }
-    int left = n;
-    for (const std::uint32_t index : order) {
-      const Projected& g = gs[index];
-      if (y < g.first_row || y > g.last_row) continue;
-      const float dy = g.y - row_y;
-      for (int k = 0; k < n; ++k) {
-        if (!active[k] || !(g.window_z < surface[k])) continue;
-        const float dx = g.x - (static_cast<float>(x0 + k) + 0.5f);
-        const float power = -0.5f * (g.conic_a * dx * dx + g.conic_c * dy * dy) - g.conic_b * dx * dy;
-        if (power > 0.0f) continue;
-        const float alpha = std::min(kMaxAlpha, g.opacity * std::exp(power));
-        if (alpha < kMinAlpha) continue;
-        const float next = transmittance[k] * (1.0f - alpha);
-        if (next < kMinTransmittance) {
-          active[k] = false;
-          --left;
-          continue;
-        }
-        const float weight = alpha * transmittance[k];
-        red[k] += g.color.r * weight;
-        green[k] += g.color.g * weight;
-        blue[k] += g.color.b * weight;
-        transmittance[k] = next;
-      }
-      if (left == 0) break;
-    }
-    std::uint32_t* row = color + static_cast<std::size_t>(y) * width + x0;
-    for (int k = 0; k < n; ++k) {
-      const glm::vec4 under = unpack_rgba8(row[k]);
-      const float t = transmittance[k];
-      row[k] = pack_rgba8(glm::vec4(red[k] + t * under.r, green[k] + t * under.g, blue[k] + t * under.b,
-                                    (1.0f - t) + t * under.a));
+  const int n = x1 - x0, rows = y1 - y0;
+  const Float px = to_float(kLaneIndexT<L> + x0) + 0.5f;
+  Float transmittance[kTile], red[kTile], green[kTile], blue[kTile], surface[kTile];
+  Mask active[kTile];
+  std::uint32_t alive = 0;  // a bit per row with a pixel still taking Gaussians
+  for (int r = 0; r < rows; ++r) {
+    alignas(64) float surface_row[kLanes];
+    for (int k = 0; k < kLanes; ++k)
+      surface_row[k] = depth && k < n ? depth[static_cast<std::size_t>(y0 + r) * width + x0 + k] : 2.0f;
+    surface[r] = load<Float>(surface_row);
+    transmittance[r] = splat<L>(1.0f), red[r] = green[r] = blue[r] = splat<L>(0.0f);
+    active[r] = kLaneIndexT<L> < n;
+    alive |= 1u << r;
+  }
+  for (std::size_t e = 0; e < count && alive; ++e) {
+    const Footprint& g = tile_gs[e];
+    const int first = std::max(g.first_row - y0, 0), last = std::min(g.last_row - y0, rows - 1);
+    const Float dx = g.x - px;
+    for (int r = first; r <= last; ++r) {
+      if (!(alive >> r & 1u)) continue;
+      // The paper's operations in its order: d = centre - pixel, power = -(a dx^2 + c dy^2) / 2 - b dx dy.
+      const float dy = g.y - (static_cast<float>(y0 + r) + 0.5f);
+      const Float power = -0.5f * (g.conic_a * dx * dx + g.conic_c * (dy * dy)) - g.conic_b * dx * dy;
+      const Float raw = g.opacity * exp_nonpositive<L>(power);
+      const Float alpha = select(raw < kMaxAlpha, raw, splat<L>(kMaxAlpha));
+      const Float next = transmittance[r] * (1.0f - alpha);
+      Mask takes = active[r] & ~(power > 0.0f) & ~(alpha < kMinAlpha) & (surface[r] > g.window_z);
+      const Mask stops = takes & (next < kMinTransmittance);
+      active[r] = active[r] & ~stops;
+      takes = takes & ~stops;
+      const Float weight = alpha * transmittance[r];
+      red[r] = select(takes, red[r] + g.color.r * weight, red[r]);
+      green[r] = select(takes, green[r] + g.color.g * weight, green[r]);
+      blue[r] = select(takes, blue[r] + g.color.b * weight, blue[r]);
+      transmittance[r] = select(takes, next, transmittance[r]);
+      if (lane_bits(active[r]) == 0) alive &= ~(1u << r);
     }
   }
+  for (int r = 0; r < rows; ++r) {
+    alignas(64) float cr[kLanes], cg[kLanes], cb[kLanes], t[kLanes];
+    store(cr, red[r]), store(cg, green[r]), store(cb, blue[r]), store(t, transmittance[r]);
+    std::uint32_t* row = color + static_cast<std::size_t>(y0 + r) * width + x0;
+    for (int k = 0; k < n; ++k) {
+      const glm::vec4 under = unpack_rgba8(row[k]);
+      row[k] = pack_rgba8(glm::vec4(cr[k] + t[k] * under.r, cg[k] + t[k] * under.g, cb[k] + t[k] * under.b,
+                                    (1.0f - t[k]) + t[k] * under.a));
+    }
+  }
+}
+
+// Gaussian indices ordered by view depth, nearest first, equal depths in index order: a stable radix sort on the
+// depths' bits, made monotonic (negative depths, behind an orthographic camera's eye, first). Culled ones are left
+// out.
+std::vector<std::uint32_t> depth_order(const std::vector<float>& depths, const std::vector<TileRect>& rects) {
+  std::vector<std::uint64_t> keys, spare;
+  keys.reserve(depths.size());
+  for (std::size_t i = 0; i < depths.size(); ++i) {
+    if (rects[i].empty()) continue;
+    std::uint32_t bits = detail::bit_cast<std::uint32_t>(depths[i]);
+    bits = bits >> 31 ? ~bits : bits | 0x80000000u;
+    keys.push_back(std::uint64_t{bits} << 32 | i);
+  }
+  spare.resize(keys.size());
+  for (int shift = 32; shift < 64; shift += 16) {
+    std::vector<std::size_t> start(65537, 0);
+    for (const std::uint64_t k : keys) ++start[((k >> shift) & 0xffffu) + 1];
+    for (std::size_t d = 0; d < 65536; ++d) start[d + 1] += start[d];
+    for (const std::uint64_t k : keys) spare[start[(k >> shift) & 0xffffu]++] = k;
+    keys.swap(spare);
+  }
+  std::vector<std::uint32_t> order(keys.size());
+  for (std::size_t i = 0; i < keys.size(); ++i) order[i] = static_cast<std::uint32_t>(keys[i]);
+  return order;
 }
 
 }  // namespace
@@ -198,16 +265,16 @@ void check_splats(const GaussianSplats& splats, const std::string& source) {
     throw InputError(source, "the Gaussians' arrays disagree in size with their " + std::to_string(n) + " centres");
   const auto finite = [](glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
   for (std::size_t i = 0; i < n; ++i) {
-    const std::string which = "Gaussian " + std::to_string(i);
+    const auto which = [&] { return "Gaussian " + std::to_string(i); };
     const glm::quat r = splats.rotations[i];
-    if (!finite(splats.positions[i])) throw InputError(source, which + " has a position that is not finite");
+    if (!finite(splats.positions[i])) throw InputError(source, which() + " has a position that is not finite");
     const glm::vec3 s = splats.scales[i];
     if (!finite(s) || s.x < 0.0f || s.y < 0.0f || s.z < 0.0f)
-      throw InputError(source, which + " has a scale that is negative or not finite");
+      throw InputError(source, which() + " has a scale that is negative or not finite");
     if (!(splats.opacities[i] >= 0.0f && splats.opacities[i] <= 1.0f))
-      throw InputError(source, which + " has an opacity outside 0..1");
+      throw InputError(source, which() + " has an opacity outside 0..1");
     const float norm = r.w * r.w + r.x * r.x + r.y * r.y + r.z * r.z;
-    if (!(std::abs(norm - 1.0f) < 1e-3f)) throw InputError(source, which + " has a rotation that is not a unit quaternion");
+    if (!(std::abs(norm - 1.0f) < 1e-3f)) throw InputError(source, which() + " has a rotation that is not a unit quaternion");
   }
   for (const glm::vec3& c : splats.sh)
     if (!finite(c)) throw InputError(source, "a spherical-harmonics coefficient is not finite");
@@ -241,22 +308,28 @@ void render_splats(Renderer& renderer, Framebuffer& target, const View& view, co
   const glm::mat4 view_from_object = view.view_from_world * world_from_object;
   const glm::vec3 eye = glm::vec3(glm::inverse(view.view_from_world)[3]);
 
-  // Projection, a chunk of Gaussians per task.
+  // Projection, a chunk of Gaussians per task, into three arrays: what the tiles blend, the tiles each reaches
+  // and the depth each is sorted by.
   const std::size_t n = splats.size();
-  std::vector<Projected> gs(n);
+  std::vector<Footprint> footprints(n);
+  std::vector<TileRect> rects(n);
+  std::vector<float> depths(n);
   constexpr std::size_t kChunk = 4096;
   renderer.parallel_for((n + kChunk - 1) / kChunk, [&](std::size_t chunk) {
-    for (std::size_t i = chunk * kChunk; i < std::min(n, (chunk + 1) * kChunk); ++i)
-      gs[i] = project(splats, i, view_from_object, world_from_object, view.clip_from_view, eye, width, height,
-                      tiles_x, tiles_y);
+    for (std::size_t i = chunk * kChunk; i < std::min(n, (chunk + 1) * kChunk); ++i) {
+      const Projected p = project(splats, i, view_from_object, world_from_object, view.clip_from_view, eye, width,
+                                  height, tiles_x, tiles_y);
+      footprints[i] = p.footprint, rects[i] = p.tiles, depths[i] = p.depth;
+    }
   });
 
-  // Each tile's list, Gaussians in index order (sorted by depth in the tile pass).
+  // Each tile's list, front to back: the Gaussians binned in depth order.
+  const std::vector<std::uint32_t> order = depth_order(depths, rects);
   const std::size_t tiles = static_cast<std::size_t>(tiles_x) * tiles_y;
   std::vector<std::size_t> first(tiles + 1, 0);
-  for (const Projected& g : gs)
-    for (int ty = g.tile_y0; ty <= g.tile_y1; ++ty)
-      for (int tx = g.tile_x0; tx <= g.tile_x1; ++tx) ++first[static_cast<std::size_t>(ty) * tiles_x + tx + 1];
+  for (const TileRect& r : rects)
+    for (int ty = r.y0; ty <= r.y1; ++ty)
+      for (int tx = r.x0; tx <= r.x1; ++tx) ++first[static_cast<std::size_t>(ty) * tiles_x + tx + 1];
   for (std::size_t t = 0; t < tiles; ++t) first[t + 1] += first[t];
   if (first[tiles] > kMaxTileEntries)
     throw std::invalid_argument("splats: the Gaussians reach " + std::to_string(first[tiles]) +
@@ -265,11 +338,10 @@ void render_splats(Renderer& renderer, Framebuffer& target, const View& view, co
   std::vector<std::uint32_t> entries(first[tiles]);
   {
     std::vector<std::size_t> at(first.begin(), first.end() - 1);
-    for (std::size_t i = 0; i < n; ++i) {
-      const Projected& g = gs[i];
-      for (int ty = g.tile_y0; ty <= g.tile_y1; ++ty)
-        for (int tx = g.tile_x0; tx <= g.tile_x1; ++tx)
-          entries[at[static_cast<std::size_t>(ty) * tiles_x + tx]++] = static_cast<std::uint32_t>(i);
+    for (const std::uint32_t i : order) {
+      const TileRect& r = rects[i];
+      for (int ty = r.y0; ty <= r.y1; ++ty)
+        for (int tx = r.x0; tx <= r.x1; ++tx) entries[at[static_cast<std::size_t>(ty) * tiles_x + tx]++] = i;
     }
   }
 
@@ -277,15 +349,16 @@ void render_splats(Renderer& renderer, Framebuffer& target, const View& view, co
   const float* depth = target.keeps_depth() ? target.depth().data() : nullptr;
   renderer.parallel_for(tiles, [&](std::size_t tile) {
     if (first[tile] == first[tile + 1]) return;
-    std::vector<std::uint32_t> order(entries.begin() + static_cast<std::ptrdiff_t>(first[tile]),
-                                     entries.begin() + static_cast<std::ptrdiff_t>(first[tile + 1]));
-    // Front to back; equal depths in index order, so the image never depends on the threads.
-    std::sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
-      return gs[a].depth < gs[b].depth || (gs[a].depth == gs[b].depth && a < b);
-    });
     const int tx = static_cast<int>(tile % static_cast<std::size_t>(tiles_x));
     const int ty = static_cast<int>(tile / static_cast<std::size_t>(tiles_x));
-    blend_tile(gs, order, tx * kTile, ty * kTile, width, height, color, depth);
+    // The tile's Gaussians side by side, as the paper's rasterizer loads them into shared memory: gathered from the
+    // whole list they would miss the cache at every visit.
+    thread_local std::vector<Footprint> tile_gs;
+    tile_gs.clear();
+    for (std::size_t e = first[tile]; e < first[tile + 1]; ++e) tile_gs.push_back(footprints[entries[e]]);
+    detail::at_cpu_level([&]<class L>(L) __attribute__((always_inline)) {
+      blend_tile<L>(tile_gs.data(), tile_gs.size(), tx * kTile, ty * kTile, width, height, color, depth);
+    });
   });
 }
 
