@@ -50,7 +50,7 @@ struct Footprint {
   float opacity = 0.0f;
   glm::vec3 color{0.0f};
   float window_z = 0.0f;                     // 0..1, against the target's depth
-  int first_row = 0, last_row = -1;          // pixel rows it reaches
+  int first_row = 0, last_row = -1;  // the rows whose alpha can reach 1/255, a pixel of margin added
 };
 
 // Which tiles a Gaussian reaches, inclusive; none when x1 < x0 (culled).
@@ -141,9 +141,14 @@ Projected project(const GaussianSplats& splats, std::size_t i, const glm::mat4& 
   rect.y0 = static_cast<std::uint16_t>(std::max(0, static_cast<int>(std::floor((py - radius) / kTile))));
   rect.x1 = static_cast<std::uint16_t>(std::min(tiles_x - 1, static_cast<int>(std::floor((px + radius) / kTile))));
   rect.y1 = static_cast<std::uint16_t>(std::min(tiles_y - 1, static_cast<int>(std::floor((py + radius) / kTile))));
-  g.first_row = std::max(0, static_cast<int>(std::floor(py - radius)));
-  g.last_row = std::min(height - 1, static_cast<int>(std::ceil(py + radius)));
+  // A pixel takes the Gaussian where opacity * exp(-q / 2) >= 1/255, q = d^T cov^-1 d: inside the ellipse q = k2,
+  // k2 = 2 ln(255 opacity), which reaches sqrt(k2 c) up and down. Rows of the listed tiles outside it would add
+  // nothing: they are not visited.
   g.opacity = splats.opacities[i];
+  if (!(g.opacity * 255.0f >= 1.0f)) return Projected{};
+  const float reach_y = std::sqrt(2.0f * std::log(255.0f * g.opacity) * c) + 1.0f;
+  g.first_row = std::max(0, static_cast<int>(std::floor(py - reach_y)));
+  g.last_row = std::min(height - 1, static_cast<int>(std::ceil(py + reach_y)));
   const glm::vec3 centre = glm::vec3(world_from_object * glm::vec4(splats.positions[i], 1.0f));
   const glm::vec3 to_centre = centre - eye;
   const float length = glm::length(to_centre);
