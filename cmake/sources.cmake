@@ -65,7 +65,7 @@ set(FACET_JOB_SOURCES
   src/job/io/obj_parse.cpp
   src/job/io/ply_header.cpp
   src/job/io/ply_loader.cpp
-  src/job/io/splat_ply.cpp
+  src/job/io/splat_loader.cpp
   src/job/io/references.cpp
   src/job/io/stl_loader.cpp
   src/job/io/xyz_loader.cpp

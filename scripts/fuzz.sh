@@ -8,7 +8,7 @@
 # A finding, once fixed, joins tests/fuzz/regressions/FORMAT/, which every test run reads through the same reader.
 set -euo pipefail
 cd "$(dirname "${BASH_SOURCE[0]}")/.."
-targets=(obj ply stl gltf xyz pcd image environment batch)
+targets=(obj ply stl gltf xyz pcd splat image environment batch)
 if [ "${1:-}" = --list ]; then
   printf '%s\n' "${targets[@]}"
   exit 0
@@ -87,6 +87,16 @@ lzf = b"".join(bytes([len(by_field[i:i + 32]) - 1]) + by_field[i:i + 32] for i i
 with open(f"{out}/compressed", "wb") as f:
     f.write(header("x y z", "4 4 4", "F F F", "1 1 1", 3, "binary_compressed") +
             struct.pack("<II", len(lzf), len(by_field)) + lzf)
+PY
+    ;;
+  splat)
+    # No .splat files among the test models: three Gaussians, one with a zero rotation, written here.
+    python3 - "$corpus" <<'PY'
+import struct, sys
+rows = [((0, 0, 0), (0.1, 0.2, 0.3), (255, 128, 0, 200), (255, 128, 128, 128)),
+        ((1, 0, -1), (0.5, 0.5, 0.5), (0, 0, 255, 255), (200, 160, 100, 128)),
+        ((0, 1, 0), (0.2, 0.2, 0.2), (10, 20, 30, 40), (128, 128, 128, 128))]
+open(f"{sys.argv[1]}/three", "wb").write(b"".join(struct.pack("<6f8B", *p, *s, *c, *r) for p, s, c, r in rows))
 PY
     ;;
   image) seed \( -iname '*.png' -o -iname '*.jpg' -o -iname '*.jpeg' -o -iname '*.tga' -o -iname '*.bmp' \) ;;

@@ -42,7 +42,7 @@ set(FACET_LIGHT_TEST_SOURCES
   unit/test_hostile_files.cpp
   unit/test_xyz_loader.cpp
   unit/test_pcd_loader.cpp
-  unit/test_splat_ply.cpp
+  unit/test_splat_loader.cpp
   unit/test_splats.cpp
   unit/test_image_io.cpp
   unit/test_mesh.cpp

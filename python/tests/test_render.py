@@ -274,3 +274,23 @@ def test_bad_point_clouds_and_point_sizes_raise_value_error():
     scene.add(facet.PerspectiveCamera(yfov=1.0), pose=look_at((0, 0, 3)))
     with pytest.raises(ValueError, match="point size"):
         facet.OffscreenRenderer(16, 12, point_size=0.0, threads=1).render(scene)
+
+
+def test_a_gaussian_splat_file_shows_its_gaussian_where_the_camera_projects_it(tmp_path):
+    # One Gaussian in the 3D Gaussian Splatting paper's PLY layout: colour (1, 0.5, 0), opacity sigmoid(2).
+    names = ["x", "y", "z", "f_dc_0", "f_dc_1", "f_dc_2", "opacity", "scale_0", "scale_1", "scale_2",
+             "rot_0", "rot_1", "rot_2", "rot_3"]
+    dc = [(c - 0.5) / 0.28209479177387814 for c in (1.0, 0.5, 0.0)]
+    values = np.array([0.0, 0.0, -2.0, *dc, 2.0, *[np.log(0.05)] * 3, 1.0, 0.0, 0.0, 0.0], dtype="<f4")
+    path = tmp_path / "one.ply"
+    header = "ply\nformat binary_little_endian 1.0\nelement vertex 1\n"
+    path.write_bytes((header + "".join(f"property float {n}\n" for n in names) + "end_header\n").encode() +
+                     values.tobytes())
+    scene = facet.Scene.from_file(str(path), bg_color=[0, 0, 0])
+    scene.add(facet.IntrinsicsCamera(100.0, 100.0, 60.0, 45.0, znear=0.1, zfar=10.0), pose=np.eye(4))
+    color, _ = facet.OffscreenRenderer(120, 90, threads=1, samples=1).render(scene)
+    # On the axis, so at pixel (60, 45)'s centre (OpenCV's convention, the paper's too): alpha is the opacity.
+    alpha = 1.0 / (1.0 + np.exp(-2.0))
+    np.testing.assert_allclose(color[45, 60], np.array([1.0, 0.5, 0.0]) * alpha * 255.0, atol=1.0)
+    # 2.5 pixels of standard deviation (0.05 at depth 2, 100 px a unit at depth 1): faded 10 pixels out.
+    assert color[45, 70].max() < color[45, 60].max() / 10

@@ -137,6 +137,13 @@ Framing framing_of(const Mesh& mesh, const std::string& source) {
   // Coordinates near the float limit overflow the camera distance; such a model cannot be framed.
   if (!std::isfinite(framing.radius) || !std::isfinite(glm::length(framing.center)) || framing.radius > 1e30f)
     throw InputError(source, "coordinates too large to frame (bounding radius " + format(framing.radius) + ")");
+  // A camera a few radii from the centre must differ from it in float: a model whose size (1 where it is a point) is
+  // under 1e-6 of its distance from the origin (a few float steps) cannot be seen from nearby.
+  const glm::vec3 far_out = glm::abs(framing.center);
+  const float distance = std::max(far_out.x, std::max(far_out.y, far_out.z));
+  if ((framing.radius > 0.0f ? framing.radius : 1.0f) < 1e-6f * distance)
+    throw InputError(source, "the model is too small for its distance from the origin to be framed (bounding radius " +
+                                 format(framing.radius) + " at " + format(distance) + ")");
   return framing;
 }
 

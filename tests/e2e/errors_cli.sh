@@ -79,7 +79,7 @@ expect huge_coordinates 1 render "$scratch/huge.obj"
 expect no_faces 1 render "$scratch/no_faces.obj"
 expect unsupported_format 1 render "$scratch/model.dat"
 expect_message unsupported_format \
-  "unsupported model format '.dat' (supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts, .pcd and the formats Assimp reads)"
+  "unsupported model format '.dat' (supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts, .pcd, .splat and the formats Assimp reads)"
 expect xyz_short_row 1 render "$scratch/short_row.xyz"
 expect_message xyz_short_row "line 2: 2 numbers where the first point has 3"
 expect empty_stl 1 render "$scratch/empty_solid.stl"

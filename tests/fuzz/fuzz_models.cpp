@@ -1,5 +1,5 @@
-// fuzz_models.cpp - libFuzzer targets for the model readers (OBJ with MTL, PLY, STL, glTF and GLB, XYZ, PCD), one
-// per format, chosen at compile time by FACET_FUZZ_FORMAT.
+// fuzz_models.cpp - libFuzzer targets for the model readers (OBJ with MTL, PLY, STL, glTF and GLB, XYZ, PCD, .splat),
+// one per format, chosen at compile time by FACET_FUZZ_FORMAT.
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
@@ -7,7 +7,12 @@
 #include <string_view>
 
 #include "fuzz_input.hpp"
+#include "facet/framebuffer.hpp"
+#include "facet/renderer.hpp"
+#include "facet/splats.hpp"
+#include "facet/view_spec.hpp"
 #include "job/io/loaders.hpp"
+#include "job/io/splat_loader.hpp"
 
 namespace {
 
@@ -42,8 +47,19 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     (void)facet::load_xyz(bytes, source);
 #elif FACET_FUZZ_FORMAT == 6
     (void)facet::load_pcd(bytes, source);
+#elif FACET_FUZZ_FORMAT == 7
+    // The Gaussians are drawn too, into a small frame that sees them all: hostile scales, rotations and opacities
+    // reach the rasterizer.
+    const facet::Mesh mesh = facet::load_splat(bytes, source);
+    const facet::Framing framing = facet::framing_of(mesh, source);
+    const facet::View view = facet::make_view(facet::CameraSpec{}, framing, 4.0f / 3.0f);
+    static facet::Renderer renderer(1);
+    facet::Framebuffer target(64, 48);
+    renderer.clear(target, glm::vec4(0.0f), 1.0f);
+    renderer.finish(target);
+    facet::render_splats(renderer, target, view, *mesh.splats);
 #else
-#error "FACET_FUZZ_FORMAT: 1 OBJ, 2 PLY, 3 STL, 4 glTF, 5 XYZ, 6 PCD"
+#error "FACET_FUZZ_FORMAT: 1 OBJ, 2 PLY, 3 STL, 4 glTF, 5 XYZ, 6 PCD, 7 .splat"
 #endif
   });
 }

@@ -38,9 +38,11 @@ inline std::string load_problem(const std::filesystem::path& p) {
   return {};
 }
 
-// Every prefix of a valid file, written to path, loads into a valid mesh or throws InputError; never anything
-// else. Warnings (skipped lines, dropped faces) are captured rather than printed.
-inline void expect_every_prefix_loads_or_throws(const std::filesystem::path& path, const std::string& bytes) {
+// Every prefix of a valid file, written to path, loads into a valid mesh (with triangles, or with Gaussian splats
+// where `splats` is set) or throws InputError; never anything else. Warnings (skipped lines, dropped faces) are
+// captured rather than printed.
+inline void expect_every_prefix_loads_or_throws(const std::filesystem::path& path, const std::string& bytes,
+                                                bool splats = false) {
   int loaded = 0, refused = 0;
   testing::internal::CaptureStderr();
   for (std::size_t n = 1; n < bytes.size(); ++n) {
@@ -48,7 +50,8 @@ inline void expect_every_prefix_loads_or_throws(const std::filesystem::path& pat
     try {
       const Mesh m = load_model(path);
       validate(m, path.string());
-      EXPECT_GT(m.triangle_count(), 0u);
+      if (splats) EXPECT_TRUE(m.splats);
+      else EXPECT_GT(m.triangle_count(), 0u);
       ++loaded;
     } catch (const InputError& e) {
       EXPECT_EQ(e.source(), path.string());

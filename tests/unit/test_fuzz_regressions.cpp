@@ -15,7 +15,9 @@
 #include <nlohmann/json.hpp>
 
 #include "facet/error.hpp"
+#include "facet/view_spec.hpp"
 #include "job/io/loaders.hpp"
+#include "job/io/splat_loader.hpp"
 #include "scene/texture/decode.hpp"
 
 namespace facet {
@@ -59,6 +61,7 @@ void read_as(const std::string& format, const fs::path& input) {
   else if (format == "stl") (void)load_stl(bytes, source);
   else if (format == "gltf") (void)load_gltf(input, bytes, source, options);
   else if (format == "pcd") (void)load_pcd(bytes, source);
+  else if (format == "splat") (void)framing_of(load_splat(bytes, source), source);  // what refused the far one
   else if (format == "image")
     (void)decode_texture_file(std::span(reinterpret_cast<const unsigned char*>(bytes.data()), bytes.size()),
                               TexelEncoding::srgb, input);

@@ -236,7 +236,7 @@ TEST_F(PlyLoader, ChosenByContentWhenTheExtensionSaysNothing) {
       load_model(write("model.txt", "# an OBJ by another name\nv 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n")).triangle_count(),
       1u);
   const std::string supported =
-      "supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts, .pcd and the formats Assimp reads)";
+      "supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts, .pcd, .splat and the formats Assimp reads)";
   EXPECT_EQ(problem(write("model.dat", "hello\n")), "unsupported model format '.dat' (" + supported);
   EXPECT_EQ(problem(write("noext", "hello\n")), "unsupported model format (no file extension; " + supported);
 }

@@ -11,6 +11,7 @@
 #include "facet/error.hpp"
 #include "core/file_util.hpp"
 #include "job/io/loaders.hpp"
+#include "job/io/splat_loader.hpp"
 #include "job/io/text_scan.hpp"
 
 namespace facet {
@@ -28,14 +29,14 @@ void warn(const std::string& source, const std::string& message) { warn(source +
 
 namespace {
 
-enum class Format { kObj, kPly, kStl, kGltf, kXyz, kPcd, kAssimp, kUnknown };
+enum class Format { kObj, kPly, kStl, kGltf, kXyz, kPcd, kSplat, kAssimp, kUnknown };
 
 // A build without Assimp (the browser page's, FACET_NO_ASSIMP) reads facet's own formats alone.
 #ifndef FACET_NO_ASSIMP
 constexpr const char* kSupported =
-    "supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts, .pcd and the formats Assimp reads";
+    "supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts, .pcd, .splat and the formats Assimp reads";
 #else
-constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts and .pcd";
+constexpr const char* kSupported = "supported: .obj, .ply, .stl, .gltf, .glb, .xyz, .pts, .pcd and .splat";
 #endif
 
 Format format_of_extension(const std::string& extension) {
@@ -45,6 +46,7 @@ Format format_of_extension(const std::string& extension) {
   if (extension == ".gltf" || extension == ".glb") return Format::kGltf;
   if (extension == ".xyz" || extension == ".pts") return Format::kXyz;
   if (extension == ".pcd") return Format::kPcd;
+  if (extension == ".splat") return Format::kSplat;
 #ifndef FACET_NO_ASSIMP
   if (assimp_reads(extension)) return Format::kAssimp;
 #endif
@@ -108,7 +110,7 @@ Model read_any_model(const fs::path& path, std::string& format_name, const LoadO
   Format format = format_of_extension(lower_extension(path));
   FileBytes bytes = read_regular_file(path, kMaxModelFileBytes, source);
   if (format == Format::kUnknown) format = format_of_content(bytes);
-  constexpr const char* kNames[] = {"OBJ", "PLY", "STL", "glTF", "XYZ", "PCD", "Assimp", ""};
+  constexpr const char* kNames[] = {"OBJ", "PLY", "STL", "glTF", "XYZ", "PCD", "splat", "Assimp", ""};
   format_name = kNames[static_cast<int>(format)];
   if (format == Format::kGltf && is_gltf_binary(bytes)) format_name = "GLB";
   if (format == Format::kAssimp) format_name += " (" + printable(extension.substr(1)) + ")";
@@ -120,6 +122,7 @@ Model read_any_model(const fs::path& path, std::string& format_name, const LoadO
       case Format::kGltf: return load_gltf(path, bytes, source, options);
       case Format::kXyz: return one_mesh(load_xyz(bytes, source));
       case Format::kPcd: return one_mesh(load_pcd(bytes, source));
+      case Format::kSplat: return one_mesh(load_splat(bytes, source));
 #ifndef FACET_NO_ASSIMP
       case Format::kAssimp: return load_with_assimp(path, bytes, source, options);
 #else

@@ -14,7 +14,7 @@
 #include "facet/error.hpp"
 #include "job/io/loaders.hpp"
 #include "job/io/ply_header.hpp"
-#include "job/io/splat_ply.hpp"
+#include "job/io/splat_loader.hpp"
 #include "job/io/text_scan.hpp"
 
 namespace facet {

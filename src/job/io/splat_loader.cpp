@@ -1,5 +1,5 @@
-// splat_ply.cpp - Gaussian splat scenes in the PLY layout of the 3D Gaussian Splatting paper's training code.
-#include "job/io/splat_ply.hpp"
+// splat_loader.cpp - Gaussian splat scenes: the 3D Gaussian Splatting paper's PLY layout and the .splat format.
+#include "job/io/splat_loader.hpp"
 
 #include <cmath>
 #include <cstdint>
@@ -93,6 +93,23 @@ void read_binary_entry(const char* at, const std::vector<std::size_t>& offsets, 
 
 float sigmoid(double v) { return static_cast<float>(1.0 / (1.0 + std::exp(-v))); }
 
+// The constant term's coefficient of the real spherical harmonics: a degree-0 colour is kSh0 * dc + 0.5.
+constexpr float kSh0 = 0.28209479177387814f;
+
+// The mesh of a reader's Gaussians, after warning of those it skipped.
+Mesh splat_mesh(std::shared_ptr<GaussianSplats> splats, std::size_t unplaced, std::size_t unrotated,
+                const std::string& source) {
+  if (unplaced)
+    warn(source, "skipped " + std::to_string(unplaced) + " Gaussians with a value that is not finite or negative");
+  if (unrotated) warn(source, "skipped " + std::to_string(unrotated) + " Gaussians with a zero rotation");
+  if (splats->size() == 0) throw InputError(source, "nothing to draw (no Gaussian has finite values)");
+  check_splats(*splats, source);
+  Mesh mesh;
+  mesh.positions = splats->positions;
+  mesh.splats = std::move(splats);
+  return mesh;
+}
+
 }  // namespace
 
 bool is_splat_layout(const ply::Element& vertex) {
@@ -181,15 +198,54 @@ Mesh load_splat_ply(std::string_view bytes, const ply::Header& header, const ply
       add();
     }
   }
-  if (unplaced) warn(source, "skipped " + std::to_string(unplaced) + " Gaussians with a value that is not finite");
-  if (unrotated) warn(source, "skipped " + std::to_string(unrotated) + " Gaussians with a zero rotation");
   if (unscaled) warn(source, "skipped " + std::to_string(unscaled) + " Gaussians with a scale too large for a float");
-  if (splats->size() == 0) throw InputError(source, "nothing to draw (no Gaussian has finite values)");
-  check_splats(*splats, source);
-  Mesh mesh;
-  mesh.positions = splats->positions;
-  mesh.splats = std::move(splats);
-  return mesh;
+  return splat_mesh(std::move(splats), unplaced, unrotated, source);
+}
+
+Mesh load_splat(std::string_view bytes, const std::string& source) {
+  constexpr std::size_t kRecord = 32;
+  if (bytes.size() % kRecord != 0)
+    throw InputError(source, std::to_string(bytes.size()) + " bytes: not a whole number of 32-byte Gaussians");
+  const std::size_t n = bytes.size() / kRecord;
+  if (n > kMaxSplats)
+    throw InputError(source, std::to_string(n) + " Gaussians: more than the " + std::to_string(kMaxSplats) +
+                                 " a scene may hold");
+  auto splats = std::make_shared<GaussianSplats>();
+  splats->positions.reserve(n), splats->scales.reserve(n), splats->rotations.reserve(n);
+  splats->opacities.reserve(n), splats->sh.reserve(n);
+  std::size_t unplaced = 0, unrotated = 0;
+  for (std::size_t i = 0; i < n; ++i) {
+    const char* at = bytes.data() + i * kRecord;
+    float f[6];
+    for (int k = 0; k < 6; ++k) {
+      std::uint32_t bits;
+      std::memcpy(&bits, at + 4 * k, sizeof bits);
+      if constexpr (!detail::kLittleEndian) bits = __builtin_bswap32(bits);
+      f[k] = detail::bit_cast<float>(bits);
+    }
+    const auto byte = [&](int k) { return static_cast<float>(static_cast<unsigned char>(at[24 + k])); };
+    const glm::vec3 position(f[0], f[1], f[2]), scale(f[3], f[4], f[5]);
+    glm::quat rotation((byte(4) - 128.0f) / 128.0f, (byte(5) - 128.0f) / 128.0f, (byte(6) - 128.0f) / 128.0f,
+                       (byte(7) - 128.0f) / 128.0f);
+    const float norm = std::sqrt(rotation.w * rotation.w + rotation.x * rotation.x + rotation.y * rotation.y +
+                                 rotation.z * rotation.z);
+    const auto finite = [](glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+    if (!finite(position) || !finite(scale) || scale.x < 0.0f || scale.y < 0.0f || scale.z < 0.0f) {
+      ++unplaced;
+      continue;
+    }
+    if (!(norm > 0.0f)) {
+      ++unrotated;
+      continue;
+    }
+    splats->positions.push_back(position);
+    splats->scales.push_back(scale);
+    splats->rotations.push_back(rotation * (1.0f / norm));
+    splats->opacities.push_back(byte(3) / 255.0f);
+    // The colour as shown is the degree-0 term plus 0.5.
+    splats->sh.push_back((glm::vec3(byte(0), byte(1), byte(2)) / 255.0f - 0.5f) / kSh0);
+  }
+  return splat_mesh(std::move(splats), unplaced, unrotated, source);
 }
 
 }  // namespace facet

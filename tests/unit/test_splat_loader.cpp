@@ -1,4 +1,4 @@
-// test_splat_ply.cpp - the 3D Gaussian Splatting paper's PLY layout: activations, encodings and bad input.
+// test_splat_loader.cpp - splat scenes: the paper's PLY layout (activations, encodings, bad input) and .splat.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -134,24 +134,45 @@ TEST_F(SplatPly, BadFilesAreRefusedOnOneLineAndBadGaussiansSkipped) {
 
 TEST_F(SplatPly, EveryPrefixLoadsOrIsRefused) {
   const std::string bytes = splat_ply({entry(0, 0, 1), entry(1, 0, 1), entry(2, 0, 1)}, 9, "binary_little_endian");
-  const std::filesystem::path path = dir / "prefix.ply";
-  int loaded = 0, refused = 0;
+  test::expect_every_prefix_loads_or_throws(dir / "prefix.ply", bytes, true);
+  const std::string text = splat_ply({entry(0, 0, 1), entry(1, 0, 1)}, 9, "ascii");
+  test::expect_every_prefix_loads_or_throws(dir / "prefix_text.ply", text, true);
+}
+
+// One .splat record: position and linear scales as float32, colour and opacity bytes, rotation bytes q * 128 + 128.
+std::string splat_record(glm::vec3 p, glm::vec3 scale, const unsigned char rgba[4], const unsigned char rotation[4]) {
+  std::string out;
+  for (float v : {p.x, p.y, p.z, scale.x, scale.y, scale.z}) out.append(reinterpret_cast<const char*>(&v), 4);
+  out.append(reinterpret_cast<const char*>(rgba), 4);
+  out.append(reinterpret_cast<const char*>(rotation), 4);
+  return out;
+}
+
+TEST_F(SplatPly, SplatFilesDecodeColourOpacityAndRotation) {
+  const unsigned char orange[4] = {255, 128, 0, 204}, identity[4] = {255, 128, 128, 128}, none[4] = {128, 128, 128, 128};
+  const std::string bytes = splat_record({1, 2, 3}, {0.5f, 0.25f, 0.125f}, orange, identity) +
+                            splat_record({4, 5, 6}, {1, 1, 1}, orange, none);
   testing::internal::CaptureStderr();
-  for (std::size_t n = 1; n < bytes.size(); ++n) {
-    std::ofstream(path, std::ios::binary | std::ios::trunc) << bytes.substr(0, n);
-    try {
-      const Mesh m = load_model(path);
-      ASSERT_TRUE(m.splats);
-      check_splats(*m.splats, path.string());
-      ++loaded;
-    } catch (const InputError& e) {
-      EXPECT_EQ(e.source(), path.string());
-      ++refused;
-    }
-  }
-  testing::internal::GetCapturedStderr();
-  EXPECT_EQ(loaded, 0);  // a binary body is all there or refused
-  EXPECT_EQ(refused, static_cast<int>(bytes.size()) - 1);
+  const Mesh mesh = load_model(test::write_file(dir, "scene.splat", bytes));
+  const std::string warnings = testing::internal::GetCapturedStderr();
+  ASSERT_TRUE(mesh.splats);
+  const GaussianSplats& s = *mesh.splats;
+  ASSERT_EQ(s.size(), 1u);  // the zero rotation is skipped
+  EXPECT_NE(warnings.find("zero rotation"), std::string::npos) << warnings;
+  EXPECT_EQ(s.positions[0], glm::vec3(1, 2, 3));
+  EXPECT_EQ(s.scales[0], glm::vec3(0.5f, 0.25f, 0.125f));
+  EXPECT_NEAR(s.opacities[0], 0.8f, 1e-6f);
+  EXPECT_NEAR(s.rotations[0].w, 1.0f, 1e-6f);
+  EXPECT_EQ(s.sh_degree, 0);
+  // The displayed colour, seen from anywhere, is the file's bytes over 255.
+  const glm::vec3 shown = splat_color(s, 0, glm::vec3(0, 0, -1));
+  EXPECT_NEAR(shown.r, 1.0f, 1e-6f);
+  EXPECT_NEAR(shown.g, 128.0f / 255.0f, 1e-6f);
+  EXPECT_NEAR(shown.b, 0.0f, 1e-6f);
+
+  EXPECT_NE(test::load_problem(test::write_file(dir, "cut.splat", bytes.substr(0, 40))).find("32-byte"),
+            std::string::npos);
+  EXPECT_FALSE(test::load_problem(test::write_file(dir, "empty.splat", "")).empty());
 }
 
 }  // namespace

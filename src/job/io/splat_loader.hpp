@@ -1,4 +1,4 @@
-// splat_ply.hpp - the 3D Gaussian Splatting paper's PLY layout, told apart from other PLY files and read.
+// splat_loader.hpp - Gaussian splat scenes: the 3D Gaussian Splatting paper's PLY layout and the .splat format.
 #pragma once
 
 #include <string>
@@ -19,5 +19,12 @@ bool is_splat_layout(const ply::Element& vertex);
 // The mesh holds the Gaussians (Mesh::splats) and their centres as positions. Throws InputError(source, ...).
 Mesh load_splat_ply(std::string_view bytes, const ply::Header& header, const ply::Element& vertex,
                     const std::string& source);
+
+// A .splat file (the web viewers' compact format, converted from the paper's PLY): 32 bytes per Gaussian, x y z and
+// three linear scales as little-endian float32, then r g b (the displayed colour) and alpha (the opacity) as bytes,
+// then the rotation w x y z as bytes q * 128 + 128. Degree 0. Gaussians with a non-finite or negative value or a
+// zero rotation are skipped with a warning. Throws InputError(source, ...), for one whose size is not a multiple of
+// 32 bytes too.
+Mesh load_splat(std::string_view bytes, const std::string& source);
 
 }  // namespace facet
