@@ -52,8 +52,9 @@ glm::vec3 splat_color(const GaussianSplats& splats, std::size_t index, glm::vec3
 // is left of the transmittance shows the target's colour. A pixel's centre is where the Gaussian is evaluated (the
 // paper's pixel coordinate i is facet's i + 0.5). Where the target keeps depth, a Gaussian whose centre lies behind
 // a pixel's surface is left out there, so splats and meshes composite by depth. Gaussians with a centre behind the
-// near plane or a degenerate footprint are skipped. Runs on the renderer's threads; the image is the same at any
-// thread count. Throws like check_splats (source "splats").
+// near plane, a degenerate footprint or a value that is not finite are skipped. Runs on the renderer's threads;
+// the image is the same at any thread count. Throws InputError (source "splats") when the arrays disagree in size
+// or the degree is outside 0..3; the values are the reader's to check (check_splats), not every frame's.
 void render_splats(Renderer& renderer, Framebuffer& target, const View& view, const GaussianSplats& splats,
                    const glm::mat4& world_from_object = glm::mat4(1.0f));
 

@@ -49,6 +49,8 @@ glm::vec3 face_normal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c
 
 PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   PreparedMesh out;
+  // Nothing of a mesh without triangles or points goes through the pipeline (a splat scene's centres).
+  if (mesh.indices.empty() && mesh.points.empty()) return out;
   // A model without normals gets crease normals, computed on a copy because the caller's mesh is shared and const.
   // Splitting at creases appends vertices and re-points indices, so the vertices and triangles come from the copy;
   // the original vertices keep their indices and positions, so edges and bounds still come from the mesh itself

@@ -48,6 +48,7 @@ struct Footprint {
   float x = 0.0f, y = 0.0f;                  // centre, in screen pixels (facet's: pixel i's centre is i + 0.5)
   float conic_a = 0.0f, conic_b = 0.0f, conic_c = 0.0f;  // the inverse of the 2D covariance [[a, b], [b, c]]
   float opacity = 0.0f;
+  float least_power = 0.0f;  // ln(1 / (255 opacity)): below it, alpha is under 1/255
   glm::vec3 color{0.0f};
   float window_z = 0.0f;                     // 0..1, against the target's depth
   int first_row = 0, last_row = -1;  // the rows whose alpha can reach 1/255, a pixel of margin added
@@ -131,24 +132,30 @@ Projected project(const GaussianSplats& splats, std::size_t i, const glm::mat4& 
   const float mid = 0.5f * (a + c);
   const float largest = mid + std::sqrt(std::max(0.1f, mid * mid - det));
   const float radius = std::ceil(3.0f * std::sqrt(largest));
-  // In the paper's pixel coordinates (facet's minus 0.5), as its rasterizer bounds them.
-  const float px = g.x - 0.5f, py = g.y - 0.5f;
-  if (!(px + radius >= 0.0f && py + radius >= 0.0f && px - radius < static_cast<float>(width) &&
-        py - radius < static_cast<float>(height)))
-    return projected;
-  TileRect& rect = projected.tiles;
-  rect.x0 = static_cast<std::uint16_t>(std::max(0, static_cast<int>(std::floor((px - radius) / kTile))));
-  rect.y0 = static_cast<std::uint16_t>(std::max(0, static_cast<int>(std::floor((py - radius) / kTile))));
-  rect.x1 = static_cast<std::uint16_t>(std::min(tiles_x - 1, static_cast<int>(std::floor((px + radius) / kTile))));
-  rect.y1 = static_cast<std::uint16_t>(std::min(tiles_y - 1, static_cast<int>(std::floor((py + radius) / kTile))));
   // A pixel takes the Gaussian where opacity * exp(-q / 2) >= 1/255, q = d^T cov^-1 d: inside the ellipse q = k2,
-  // k2 = 2 ln(255 opacity), which reaches sqrt(k2 c) up and down. Rows of the listed tiles outside it would add
-  // nothing: they are not visited.
+  // k2 = 2 ln(255 opacity), which reaches sqrt(k2 a) across and sqrt(k2 c) up and down. The tiles the paper lists
+  // (three standard deviations of the larger axis) that lie wholly outside it would add nothing, and neither would
+  // the rows of a listed tile outside it: they are not visited.
   g.opacity = splats.opacities[i];
   if (!(g.opacity * 255.0f >= 1.0f)) return Projected{};
-  const float reach_y = std::sqrt(2.0f * std::log(255.0f * g.opacity) * c) + 1.0f;
-  g.first_row = std::max(0, static_cast<int>(std::floor(py - reach_y)));
-  g.last_row = std::min(height - 1, static_cast<int>(std::ceil(py + reach_y)));
+  g.least_power = -std::log(255.0f * g.opacity);
+  const float k2 = -2.0f * g.least_power;
+  const float reach_x = std::sqrt(k2 * a) + 1.0f, reach_y = std::sqrt(k2 * c) + 1.0f;
+  const float span_x = std::min(radius, reach_x), span_y = std::min(radius, reach_y);
+  // In the paper's pixel coordinates (facet's minus 0.5), as its rasterizer bounds them.
+  const float px = g.x - 0.5f, py = g.y - 0.5f;
+  if (!(px + span_x >= 0.0f && py + span_y >= 0.0f && px - span_x < static_cast<float>(width) &&
+        py - span_y < static_cast<float>(height)))
+    return Projected{};
+  // Bounds clamped as floats before they become integers (a footprint may be far larger than the target).
+  const auto clamped = [](float v, int last) { return static_cast<int>(std::clamp(v, 0.0f, static_cast<float>(last))); };
+  TileRect& rect = projected.tiles;
+  rect.x0 = static_cast<std::uint16_t>(clamped(std::floor((px - span_x) / kTile), tiles_x - 1));
+  rect.y0 = static_cast<std::uint16_t>(clamped(std::floor((py - span_y) / kTile), tiles_y - 1));
+  rect.x1 = static_cast<std::uint16_t>(clamped(std::floor((px + span_x) / kTile), tiles_x - 1));
+  rect.y1 = static_cast<std::uint16_t>(clamped(std::floor((py + span_y) / kTile), tiles_y - 1));
+  g.first_row = clamped(std::floor(py - reach_y), height - 1);
+  g.last_row = clamped(std::ceil(py + reach_y), height - 1);
   const glm::vec3 centre = glm::vec3(world_from_object * glm::vec4(splats.positions[i], 1.0f));
   const glm::vec3 to_centre = centre - eye;
   const float length = glm::length(to_centre);
@@ -204,6 +211,9 @@ FACET_LANES_INLINE void blend_tile(const Footprint* tile_gs, std::size_t count, 
       // The paper's operations in its order: d = centre - pixel, power = -(a dx^2 + c dy^2) / 2 - b dx dy.
       const float dy = g.y - (static_cast<float>(y0 + r) + 0.5f);
       const Float power = -0.5f * (g.conic_a * dx * dx + g.conic_c * (dy * dy)) - g.conic_b * dx * dy;
+      // Most rows a Gaussian reaches are its rim, where no lane's alpha reaches 1/255 (the margin keeps rounding out
+      // of it): the rest of the row's work is skipped there.
+      if (lane_bits(power > g.least_power - 1e-3f) == 0) continue;
       const Float raw = g.opacity * exp_nonpositive<L>(power);
       const Float alpha = select(raw < kMaxAlpha, raw, splat<L>(kMaxAlpha));
       const Float next = transmittance[r] * (1.0f - alpha);
@@ -256,9 +266,8 @@ std::vector<std::uint32_t> depth_order(const std::vector<float>& depths, const s
   return order;
 }
 
-}  // namespace
-
-void check_splats(const GaussianSplats& splats, const std::string& source) {
+// check_splats' checks of the arrays, not of their values.
+void check_splat_arrays(const GaussianSplats& splats, const std::string& source) {
   const std::size_t n = splats.size();
   if (n > kMaxSplats)
     throw InputError(source, std::to_string(n) + " Gaussians: more than the " + std::to_string(kMaxSplats) +
@@ -268,6 +277,13 @@ void check_splats(const GaussianSplats& splats, const std::string& source) {
   if (splats.scales.size() != n || splats.rotations.size() != n || splats.opacities.size() != n ||
       splats.sh.size() != n * splats.coefficients())
     throw InputError(source, "the Gaussians' arrays disagree in size with their " + std::to_string(n) + " centres");
+}
+
+}  // namespace
+
+void check_splats(const GaussianSplats& splats, const std::string& source) {
+  check_splat_arrays(splats, source);
+  const std::size_t n = splats.size();
   const auto finite = [](glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
   for (std::size_t i = 0; i < n; ++i) {
     const auto which = [&] { return "Gaussian " + std::to_string(i); };
@@ -307,7 +323,7 @@ glm::vec3 splat_color(const GaussianSplats& splats, std::size_t index, glm::vec3
 
 void render_splats(Renderer& renderer, Framebuffer& target, const View& view, const GaussianSplats& splats,
                    const glm::mat4& world_from_object) {
-  check_splats(splats, "splats");
+  check_splat_arrays(splats, "splats");
   const int width = target.width(), height = target.height();
   const int tiles_x = (width + kTile - 1) / kTile, tiles_y = (height + kTile - 1) / kTile;
   const glm::mat4 view_from_object = view.view_from_world * world_from_object;
