@@ -344,27 +344,44 @@ void render_splats(Renderer& renderer, Framebuffer& target, const View& view, co
     }
   });
 
-  // Each tile's list, front to back: the Gaussians binned in depth order.
+  // Each tile's list, front to back: the Gaussians binned in depth order, in kBinParts consecutive parts of that
+  // order on the threads. Each part counts its entries per tile, the counts give every part its place in every
+  // tile's list (a part's entries after those of the parts before it), and each part writes its own.
   const std::vector<std::uint32_t> order = depth_order(depths, rects);
   const std::size_t tiles = static_cast<std::size_t>(tiles_x) * tiles_y;
+  constexpr std::size_t kBinParts = 16;
+  const std::size_t part_size = (order.size() + kBinParts - 1) / kBinParts;
+  const auto for_each_tile_of = [&](std::size_t part, auto&& visit) {
+    const std::size_t end = std::min(order.size(), (part + 1) * part_size);
+    for (std::size_t k = part * part_size; k < end; ++k) {
+      const TileRect& r = rects[order[k]];
+      for (int ty = r.y0; ty <= r.y1; ++ty)
+        for (int tx = r.x0; tx <= r.x1; ++tx) visit(static_cast<std::size_t>(ty) * tiles_x + tx, order[k]);
+    }
+  };
+  std::vector<std::size_t> cursor(kBinParts * tiles, 0);  // part p's place in tile t's list: cursor[p * tiles + t]
+  renderer.parallel_for(kBinParts, [&](std::size_t part) {
+    for_each_tile_of(part, [&](std::size_t tile, std::uint32_t) { ++cursor[part * tiles + tile]; });
+  });
   std::vector<std::size_t> first(tiles + 1, 0);
-  for (const TileRect& r : rects)
-    for (int ty = r.y0; ty <= r.y1; ++ty)
-      for (int tx = r.x0; tx <= r.x1; ++tx) ++first[static_cast<std::size_t>(ty) * tiles_x + tx + 1];
-  for (std::size_t t = 0; t < tiles; ++t) first[t + 1] += first[t];
+  for (std::size_t t = 0; t < tiles; ++t) {
+    std::size_t at = first[t];
+    for (std::size_t part = 0; part < kBinParts; ++part) {
+      std::size_t& place = cursor[part * tiles + t];
+      const std::size_t count = place;
+      place = at;
+      at += count;
+    }
+    first[t + 1] = at;
+  }
   if (first[tiles] > kMaxTileEntries)
     throw std::invalid_argument("splats: the Gaussians reach " + std::to_string(first[tiles]) +
                                 " tiles in all, more than the " + std::to_string(kMaxTileEntries) +
                                 " a frame may list");
   std::vector<std::uint32_t> entries(first[tiles]);
-  {
-    std::vector<std::size_t> at(first.begin(), first.end() - 1);
-    for (const std::uint32_t i : order) {
-      const TileRect& r = rects[i];
-      for (int ty = r.y0; ty <= r.y1; ++ty)
-        for (int tx = r.x0; tx <= r.x1; ++tx) entries[at[static_cast<std::size_t>(ty) * tiles_x + tx]++] = i;
-    }
-  }
+  renderer.parallel_for(kBinParts, [&](std::size_t part) {
+    for_each_tile_of(part, [&](std::size_t tile, std::uint32_t i) { entries[cursor[part * tiles + tile]++] = i; });
+  });
 
   std::uint32_t* color = target.mutable_color().data();
   const float* depth = target.keeps_depth() ? target.depth().data() : nullptr;
