@@ -32,6 +32,7 @@ constexpr float kMaxAlpha = 0.99f;            // no Gaussian is fully opaque
 constexpr float kMinAlpha = 1.0f / 255.0f;    // contributions below are skipped
 constexpr float kMinTransmittance = 1e-4f;    // a pixel stops before its transmittance falls below
 constexpr float kFrustumLimit = 1.3f;         // the Jacobian is taken at most 1.3 times the view's half-extent out
+constexpr std::size_t kFootprintsAhead = 8;   // footprints a tile prefetches ahead of the one it blends
 // The most (tile, Gaussian) pairs a frame lists: 1 GiB of indices.
 constexpr std::size_t kMaxTileEntries = std::size_t{1} << 28;
 
@@ -182,8 +183,8 @@ FACET_LANES_INLINE simd::FloatT<L> exp_nonpositive(simd::FloatT<L> x) {
 // the tile stops when every row is. Each pixel sees the same operations in the same order as one looping over its
 // own list.
 template <class L>
-FACET_LANES_INLINE void blend_tile(const Footprint* tile_gs, std::size_t count, int x0, int y0, int width, int height,
-                                   std::uint32_t* color, const float* depth) {
+FACET_LANES_INLINE void blend_tile(const Footprint* footprints, const std::uint32_t* list, std::size_t count, int x0,
+                                   int y0, int width, int height, std::uint32_t* color, const float* depth) {
   using namespace simd;
   FACET_LANE_TYPES(L);
   static_assert(kTile == kLanes);
@@ -203,7 +204,9 @@ FACET_LANES_INLINE void blend_tile(const Footprint* tile_gs, std::size_t count, 
     alive |= 1u << r;
   }
   for (std::size_t e = 0; e < count && alive; ++e) {
-    const Footprint& g = tile_gs[e];
+    // Each footprint is read once per tile, from anywhere in the frame's: asked for a few ahead.
+    if (e + kFootprintsAhead < count) __builtin_prefetch(footprints + list[e + kFootprintsAhead]);
+    const Footprint& g = footprints[list[e]];
     const int first = std::max(g.first_row - y0, 0), last = std::min(g.last_row - y0, rows - 1);
     const Float dx = g.x - px;
     for (int r = first; r <= last; ++r) {
@@ -389,13 +392,9 @@ void render_splats(Renderer& renderer, Framebuffer& target, const View& view, co
     if (first[tile] == first[tile + 1]) return;
     const int tx = static_cast<int>(tile % static_cast<std::size_t>(tiles_x));
     const int ty = static_cast<int>(tile / static_cast<std::size_t>(tiles_x));
-    // The tile's Gaussians side by side, as the paper's rasterizer loads them into shared memory: gathered from the
-    // whole list they would miss the cache at every visit.
-    thread_local std::vector<Footprint> tile_gs;
-    tile_gs.clear();
-    for (std::size_t e = first[tile]; e < first[tile + 1]; ++e) tile_gs.push_back(footprints[entries[e]]);
     detail::at_cpu_level([&]<class L>(L) __attribute__((always_inline)) {
-      blend_tile<L>(tile_gs.data(), tile_gs.size(), tx * kTile, ty * kTile, width, height, color, depth);
+      blend_tile<L>(footprints.data(), entries.data() + first[tile], first[tile + 1] - first[tile], tx * kTile,
+                    ty * kTile, width, height, color, depth);
     });
   });
 }
