@@ -12,7 +12,7 @@ const statusText = document.getElementById('status');
 const errorText = document.getElementById('error');
 const params = new URLSearchParams(location.search);
 
-const kModelExtensions = ['.obj', '.gltf', '.glb', '.ply', '.stl'];
+const kModelExtensions = ['.obj', '.gltf', '.glb', '.ply', '.stl', '.xyz', '.pts', '.pcd', '.splat'];
 const kToggleBits = { w: 1, e: 2, c: 4, z: 8, p: 16, s: 32, o: 64, a: 128, ' ': 256 };
 
 // facet.js (loaded after this file) fills in this object and calls onRuntimeInitialized when the module is ready.

@@ -91,6 +91,22 @@ try {
   fs.writeFileSync(path.join(outDir, 'page_wuson.png'), Buffer.from(png.split(',')[1], 'base64'));
 
   const spider = fs.readFileSync('/usr/share/assimp/models/STL/Spider_binary.stl');
+  // Gaussian splats in the .splat format: a 20x20 grid of red to blue Gaussians, opacity 0.8.
+  const splats = Buffer.alloc(400 * 32);
+  for (let k = 0; k < 400; ++k) {
+    const at = k * 32, x = (k % 20) / 10 - 0.95, y = Math.floor(k / 20) / 10 - 0.95;
+    [x, y, 0, 0.06, 0.06, 0.06].forEach((v, i) => splats.writeFloatLE(v, at + 4 * i));
+    [Math.round(255 * (k % 20) / 19), 64, Math.round(255 - 255 * (k % 20) / 19), 204, 255, 128, 128, 128]
+      .forEach((v, i) => splats.writeUInt8(v, at + 24 + i));
+  }
+  await drop(page, 'grid.splat', splats);
+  await statusStarts(page, 'grid.splat');
+  await settle(page);
+  const splatted = await snapshot(page);
+  check(!(await visible(page, 'error')) && splatted.drawn > 0.2 && splatted.colours >= 16,
+        'a dropped .splat file shows its Gaussians', `${(100 * splatted.drawn).toFixed(1)}% drawn, ` +
+        `${splatted.colours} colours`);
+
   await drop(page, 'Spider_binary.stl', spider);
   await statusStarts(page, 'Spider_binary.stl');
   await settle(page);
