@@ -1,15 +1,18 @@
 // test_splats.cpp - render_splats against the 3D Gaussian Splatting paper's formulas, evaluated here independently.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <memory>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "facet/camera.hpp"
+#include "facet/cpu_level.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/renderer.hpp"
 #include "facet/scene.hpp"
@@ -156,6 +159,28 @@ TEST(Splats, TheImageIsTheSameAtAnyThreadCount) {
     const Framebuffer many = draw(s, perspective_view(), threads);
     EXPECT_TRUE(std::equal(one.color().begin(), one.color().end(), many.color().begin())) << threads << " threads";
   }
+}
+
+TEST(Splats, EveryCpuLevelBlendsTheSameBytes) {
+  std::mt19937 random(11);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), positive(0.02f, 0.2f), chance(0.0f, 1.0f);
+  GaussianSplats s;
+  for (int i = 0; i < 300; ++i)
+    add(s, glm::vec3(unit(random), unit(random), unit(random)), glm::vec3(positive(random), positive(random), 0.05f),
+        glm::normalize(glm::quat(unit(random), unit(random), unit(random), unit(random))), chance(random),
+        glm::vec3(chance(random), chance(random), chance(random)));
+  const std::string saved = cpu_level();
+  std::vector<std::uint32_t> first;
+  for (const std::string& level : cpu_levels()) {
+    set_cpu_level(level);
+    const Framebuffer target = draw(s, perspective_view());
+    const std::vector<std::uint32_t> bytes(target.color().begin(), target.color().end());
+    if (first.empty()) first = bytes;
+    EXPECT_EQ(bytes, first) << level;
+  }
+  set_cpu_level(saved);
+  const std::uint32_t background = pack_rgba8(kBackground);
+  EXPECT_GT(std::count_if(first.begin(), first.end(), [&](std::uint32_t c) { return c != background; }), 500);
 }
 
 TEST(Splats, ColourFollowsTheSphericalHarmonicsOfTheViewDirection) {
