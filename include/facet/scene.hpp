@@ -119,7 +119,9 @@ class Scene {
 
   // Draws every instance whose bounding sphere meets the view frustum; the others are rejected before any vertex
   // work. Returns how many instances were drawn. Does not clear the framebuffer; ends with Renderer::finish (its
-  // draws' shaders read this frame's lights and buffers), so the frame is in `target` when it returns.
+  // draws' shaders read this frame's lights and buffers), so the frame is in `target` when it returns. Gaussian
+  // splats (Mesh::splats) are composited after the finish (render_splats); a scene with splats and surfaces turns
+  // the target's keep_depth on, so that they composite by depth.
   std::size_t render(Renderer& renderer, Framebuffer& target, const View& view, const SceneOptions& options);
 
   // Clears target and draws the surfaces as render() would (same instances, culling, depth test and order, no

@@ -33,6 +33,10 @@ struct GaussianSplats {
   std::size_t coefficients() const { return static_cast<std::size_t>((sh_degree + 1) * (sh_degree + 1)); }
 };
 
+// The degree-0 real spherical harmonic's value, 1 / (2 sqrt(pi)): a Gaussian of degree 0 shows the colour
+// kShDegree0 * sh[0] + 0.5.
+inline constexpr float kShDegree0 = 0.28209479177387814f;
+
 // The most Gaussians a scene may hold (2^26: 4.3 GB of degree-3 coefficients).
 inline constexpr std::size_t kMaxSplats = std::size_t{1} << 26;
 

@@ -36,8 +36,7 @@ constexpr std::size_t kFootprintsAhead = 8;   // footprints a tile prefetches ah
 // The most (tile, Gaussian) pairs a frame lists: 1 GiB of indices.
 constexpr std::size_t kMaxTileEntries = std::size_t{1} << 28;
 
-// The real spherical harmonics' constants of degrees 0 to 3, in the paper's order.
-constexpr float kSh0 = 0.28209479177387814f;
+// The real spherical harmonics' constants of degrees 1 to 3 (degree 0's is kShDegree0), in the paper's order.
 constexpr float kSh1 = 0.4886025119029199f;
 constexpr float kSh2[] = {1.0925484305920792f, -1.0925484305920792f, 0.31539156525252005f, -1.0925484305920792f,
                           0.5462742152960396f};
@@ -306,7 +305,7 @@ void check_splats(const GaussianSplats& splats, const std::string& source) {
 
 glm::vec3 splat_color(const GaussianSplats& splats, std::size_t index, glm::vec3 d) {
   const glm::vec3* sh = splats.sh.data() + index * splats.coefficients();
-  glm::vec3 result = kSh0 * sh[0];
+  glm::vec3 result = kShDegree0 * sh[0];
   if (splats.sh_degree > 0) {
     const float x = d.x, y = d.y, z = d.z;
     result = result - kSh1 * y * sh[1] + kSh1 * z * sh[2] - kSh1 * x * sh[3];

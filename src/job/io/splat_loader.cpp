@@ -93,9 +93,6 @@ void read_binary_entry(const char* at, const std::vector<std::size_t>& offsets, 
 
 float sigmoid(double v) { return static_cast<float>(1.0 / (1.0 + std::exp(-v))); }
 
-// The constant term's coefficient of the real spherical harmonics: a degree-0 colour is kSh0 * dc + 0.5.
-constexpr float kSh0 = 0.28209479177387814f;
-
 // The mesh of a reader's Gaussians, after warning of those it skipped.
 Mesh splat_mesh(std::shared_ptr<GaussianSplats> splats, std::size_t unplaced, std::size_t unrotated,
                 const std::string& source) {
@@ -243,7 +240,7 @@ Mesh load_splat(std::string_view bytes, const std::string& source) {
     splats->rotations.push_back(rotation * (1.0f / norm));
     splats->opacities.push_back(byte(3) / 255.0f);
     // The colour as shown is the degree-0 term plus 0.5.
-    splats->sh.push_back((glm::vec3(byte(0), byte(1), byte(2)) / 255.0f - 0.5f) / kSh0);
+    splats->sh.push_back((glm::vec3(byte(0), byte(1), byte(2)) / 255.0f - 0.5f) / kShDegree0);
   }
   return splat_mesh(std::move(splats), unplaced, unrotated, source);
 }
