@@ -34,7 +34,7 @@ get_target_property(FACET_PC_MESHOPT meshoptimizer::meshoptimizer LOCATION)
 get_target_property(FACET_PC_LZF liblzf::liblzf LOCATION)
 set(FACET_PC_LIBS "")
 foreach(file ${FACET_PC_TINYGLTF} ${FACET_STB_ARCHIVE} ${FACET_PC_EXR_CORE} ${FACET_PC_DRACO} ${FACET_PC_MESHOPT}
-        ${FACET_PC_LZF})
+        ${FACET_PC_LZF} ${FACET_ISAL_LIBRARY})
   get_filename_component(folder ${file} DIRECTORY)
   get_filename_component(file ${file} NAME)
   if(NOT folder IN_LIST CMAKE_CXX_IMPLICIT_LINK_DIRECTORIES)

@@ -71,7 +71,7 @@ facet::facet (find_package(facet)) and facet.pc for pkg-config, to build
 programs that render with facet.")
 set(CPACK_DEBIAN_DEV_PACKAGE_DEPENDS
     "libglm-dev, libtinyobjloader-dev, libtinygltf-dev, libstb-dev, libopenexr-dev, libdraco-dev, \
-libmeshoptimizer-dev, liblzf-dev, zlib1g-dev, libgif-dev, libspng-dev, libturbojpeg0-dev, pkg-config")
+libmeshoptimizer-dev, liblzf-dev, libisal-dev, zlib1g-dev, libgif-dev, libspng-dev, libturbojpeg0-dev, pkg-config")
 set(CPACK_DEBIAN_DEV_PACKAGE_RECOMMENDS "libassimp${assimp_VERSION_MAJOR}")
 
 include(CPack)

@@ -3,7 +3,7 @@
 # Usage: scripts/deps.sh [PACKAGE...]   (extra packages a script needs besides these, e.g. perf.sh's f3d)
 set -euo pipefail
 
-packages=(g++ cmake ninja-build pkg-config libglm-dev libstb-dev libtinyobjloader-dev libtinygltf-dev libassimp-dev libopenexr-dev libdraco-dev libmeshoptimizer-dev liblzf-dev zlib1g-dev libcli11-dev nlohmann-json3-dev
+packages=(g++ cmake ninja-build pkg-config libglm-dev libstb-dev libtinyobjloader-dev libtinygltf-dev libassimp-dev libopenexr-dev libdraco-dev libmeshoptimizer-dev liblzf-dev libisal-dev zlib1g-dev libcli11-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels python3 time ccache clang parallel dpkg-dev mmdebstrap
           python3-dev pybind11-dev python3-numpy python3-pytest python3-setuptools python3-pip
           libsdl2-dev xvfb xauth libgif-dev libspng-dev libturbojpeg0-dev libavcodec-dev libavformat-dev libswscale-dev ffmpeg
