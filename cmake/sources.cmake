@@ -31,6 +31,7 @@ set(FACET_SCENE_SOURCES
   src/scene/lighting/brdf_table.cpp
   src/scene/lighting/environment.cpp
   src/scene/lighting/studio.cpp
+  src/scene/mesh/crease_normals.cpp
   src/scene/mesh/mesh.cpp
   src/scene/mesh/model.cpp
   src/scene/mesh/primitives.cpp

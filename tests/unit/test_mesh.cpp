@@ -12,6 +12,7 @@
 #include "facet/error.hpp"
 #include "facet/mesh.hpp"
 #include "facet/primitives.hpp"
+#include "scene/mesh/crease_normals.hpp"
 
 namespace facet {
 namespace {
@@ -350,6 +351,45 @@ TEST(MeshCreaseNormals, StraightAngleReproducesSmoothNormals) {
     EXPECT_EQ(creased.positions, smooth.positions);
     EXPECT_EQ(creased.indices, smooth.indices);
     EXPECT_EQ(creased.normals, smooth.normals);  // the same sums in the same order: equal bits
+  }
+}
+
+// Large meshes are split over threads (counting sorts, groups, vertices in parts); every split gives one thread's
+// result. The mesh: a fine torus (smooth), a folded sheet whose folds are creases (vertices split and copied with
+// their uvs and colours), and degenerate and out-of-range triangles scattered through it, parts' borders included.
+TEST(MeshCreaseNormals, AnyNumberOfThreadsGivesOneThreadsResult) {
+  Mesh mesh = make_torus(1.0f, 0.3f, 256, 128);  // 65,536 triangles
+  const int side = 160;                           // the sheet: 2 x 159 x 159 triangles, folded every third column
+  const auto base = static_cast<std::uint32_t>(mesh.positions.size());
+  for (int j = 0; j < side; ++j)
+    for (int i = 0; i < side; ++i)
+      mesh.positions.push_back({3.0f + 0.01f * i, 0.01f * j, (i % 3 == 0) ? 0.02f : 0.0f});
+  for (int j = 0; j + 1 < side; ++j)
+    for (int i = 0; i + 1 < side; ++i) {
+      const std::uint32_t a = base + static_cast<std::uint32_t>(j * side + i), b = a + 1, c = a + side, d = c + 1;
+      mesh.indices.insert(mesh.indices.end(), {a, b, d, a, d, c});
+    }
+  const auto n = static_cast<std::uint32_t>(mesh.positions.size());
+  for (std::size_t t = 0; t < mesh.indices.size() / 3; t += 9973) mesh.indices[3 * t + 1] = mesh.indices[3 * t];
+  mesh.indices[3 * 50000 + 2] = n + 5;  // out of range
+  mesh.normals.clear();
+  mesh.uvs.resize(n);
+  mesh.colors.resize(n);
+  for (std::uint32_t v = 0; v < n; ++v) {
+    mesh.uvs[v] = glm::vec2(static_cast<float>(v % 97), static_cast<float>(v % 89));
+    mesh.colors[v] = glm::vec4(static_cast<float>(v % 7) / 7.0f, 0.5f, 1.0f, 1.0f);
+  }
+  Mesh one = mesh;
+  detail::compute_crease_normals_in_parts(one, glm::radians(30.0f), 1);
+  ASSERT_GT(one.positions.size(), mesh.positions.size() + 10000);  // the folds split vertices
+  for (const int parts : {2, 3, 4, 7}) {
+    Mesh split = mesh;
+    detail::compute_crease_normals_in_parts(split, glm::radians(30.0f), parts);
+    EXPECT_EQ(split.indices, one.indices) << parts << " parts";
+    EXPECT_EQ(split.positions, one.positions) << parts << " parts";
+    EXPECT_EQ(split.normals, one.normals) << parts << " parts";
+    EXPECT_EQ(split.uvs, one.uvs) << parts << " parts";
+    EXPECT_EQ(split.colors, one.colors) << parts << " parts";
   }
 }
 
