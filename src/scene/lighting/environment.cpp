@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <future>
 #include <stdexcept>
 #include <thread>
 #include <vector>
@@ -148,8 +149,14 @@ glm::mat3 frame_around(glm::vec3 n) {
 }  // namespace
 
 Environment::Environment(const EnvironmentImage& image, float rotation_degrees, float intensity,
-                         const glm::mat3& world_from_upright)
-    : table_(detail::brdf_table_entries()) {
+                         const glm::mat3& world_from_upright) {
+  // The split-sum table (integrated once per process, about a millisecond on one thread) beside the prefiltering,
+  // which leaves a core idle in its serial parts. The browser build has no threads.
+#if defined(__EMSCRIPTEN__)
+  table_ = detail::brdf_table_entries();
+#else
+  std::future<const glm::vec2*> table = std::async(std::launch::async, detail::brdf_table_entries);
+#endif
   if (image.width < 1 || image.height < 1 ||
       image.texels.size() != static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height))
     throw std::invalid_argument("environment: image size and texels do not agree");
@@ -200,6 +207,9 @@ Environment::Environment(const EnvironmentImage& image, float rotation_degrees, 
       return weight > 0.0f ? sum / weight : glm::vec3(0.0f);
     });
   }
+#if !defined(__EMSCRIPTEN__)
+  table_ = table.get();
+#endif
 }
 
 }  // namespace facet
