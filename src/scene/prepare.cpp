@@ -1,4 +1,5 @@
 // prepare.cpp - turns a Mesh into what the stock shaders draw: complete vertices, material groups, edges, textures.
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <exception>
@@ -38,6 +39,48 @@ constexpr std::uint32_t kNoVertex = 0xffffffffu;
 // either way.
 constexpr float kCreaseAngle = 60.0f * 3.14159265f / 180.0f;
 
+// The Morton code of p within `box` at 10 bits an axis: x, y and z's bits interleaved, so that positions close in
+// space mostly have codes close together. A coordinate outside the box or NaN counts as its lowest cell.
+std::uint32_t morton_code(const glm::vec3& p, const Bounds& box) {
+  const auto cell = [](float t, float low, float high) {
+    const float u = high > low ? (t - low) / (high - low) * 1023.0f : 0.0f;
+    return u >= 0.0f ? static_cast<std::uint32_t>(std::min(u, 1023.0f)) : 0u;
+  };
+  const auto spread = [](std::uint32_t v) {  // bit i to bit 3 i
+    v = (v | v << 16) & 0x030000ffu;
+    v = (v | v << 8) & 0x0300f00fu;
+    v = (v | v << 4) & 0x030c30c3u;
+    return (v | v << 2) & 0x09249249u;
+  };
+  return spread(cell(p.x, box.min.x, box.max.x)) | spread(cell(p.y, box.min.y, box.max.y)) << 1 |
+         spread(cell(p.z, box.min.z, box.max.z)) << 2;
+}
+
+// A cloud's points (a mesh of points alone) in Morton order of their positions, nearby points together: a part of
+// the recorded frame then touches few tiles, where a cloud stored in random order touches all of them with every
+// part (a 1M-point cloud: 87 against 39 ms a frame at 1920x1080). The file's order is no order a cloud means to be
+// drawn in; only which of two points at exactly one depth shows at a pixel can change with it. A stable radix sort of
+// the codes, three passes of 10 bits; points naming no vertex go last, in their order.
+std::vector<std::uint32_t> points_in_space_order(const Mesh& mesh) {
+  const std::size_t count = mesh.points.size(), n = mesh.positions.size();
+  const Bounds box = bounds(mesh);
+  std::vector<std::uint32_t> key(count), order(count), sorted(count);
+  for (std::size_t i = 0; i < count; ++i) {
+    const std::uint32_t v = mesh.points[i];
+    key[i] = v < n ? morton_code(mesh.positions[v], box) : std::uint32_t{1} << 30;
+    order[i] = static_cast<std::uint32_t>(i);
+  }
+  constexpr std::uint32_t kBuckets = 1024;
+  for (int shift = 0; shift <= 30; shift += 10) {
+    std::array<std::uint32_t, kBuckets + 1> start{};
+    for (const std::uint32_t i : order) ++start[((key[i] >> shift) & (kBuckets - 1)) + 1];
+    for (std::uint32_t b = 0; b < kBuckets; ++b) start[b + 1] += start[b];
+    for (const std::uint32_t i : order) sorted[start[(key[i] >> shift) & (kBuckets - 1)]++] = i;
+    order.swap(sorted);
+  }
+  return order;
+}
+
 glm::vec3 face_normal(const glm::vec3& a, const glm::vec3& b, const glm::vec3& c) {
   const glm::vec3 n = glm::cross(b - a, c - a);
   const float length = glm::length(n);
@@ -55,8 +98,10 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   // Splitting at creases appends vertices and re-points indices, so the vertices and triangles come from the copy;
   // the original vertices keep their indices and positions, so edges and bounds still come from the mesh itself
   // (from the copy, an edge along a crease would be listed, and drawn, once per side).
+  // A cloud (points, no triangles) has no faces to take normals from: its vertices keep the default normal, as
+  // crease normals would give vertices no triangle uses.
   std::optional<Mesh> creased;
-  if (mesh.normals.size() != mesh.positions.size()) {
+  if (mesh.normals.size() != mesh.positions.size() && !mesh.indices.empty()) {
     Mesh& copy = creased.emplace();
     copy.positions = mesh.positions;
     copy.indices = mesh.indices;
@@ -68,14 +113,35 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   const Mesh& source = creased ? *creased : mesh;
   const std::size_t n = source.positions.size();
   const bool has_uvs = source.uvs.size() == n, has_uvs1 = source.uvs1.size() == n;
-  const bool has_colors = source.colors.size() == n;
+  const bool has_colors = source.colors.size() == n, has_normals = source.normals.size() == n;
   // Crease normals replace the file's (it had none), so its tangents are dropped with them.
   out.tangents = !creased && source.tangents.size() == n;
-  out.vertices.resize(n);
-  for (std::size_t i = 0; i < n; ++i) {
-    MeshVertex& v = out.vertices[i];
+  // A cloud's vertices in the order its points are drawn in (points_in_space_order), each once, so that the vertex
+  // stage and setup read them in order too; vertices no point names are left out.
+  std::vector<std::uint32_t> placed;  // placed[i]: the source vertex of prepared vertex i, where a cloud is ordered
+  if (mesh.indices.empty()) {
+    std::vector<std::uint32_t> place(n, kNoVertex);
+    out.points.indices.reserve(mesh.points.size());
+    for (const std::uint32_t p : points_in_space_order(mesh)) {
+      const std::uint32_t v = mesh.points[p];
+      if (v >= n) {
+        out.points.indices.push_back(kNoVertex);
+        continue;
+      }
+      if (place[v] == kNoVertex) {
+        place[v] = static_cast<std::uint32_t>(placed.size());
+        placed.push_back(v);
+      }
+      out.points.indices.push_back(place[v]);
+    }
+  }
+  const std::size_t m = mesh.indices.empty() ? placed.size() : n;
+  out.vertices.resize(m);
+  for (std::size_t k = 0; k < m; ++k) {
+    const std::size_t i = mesh.indices.empty() ? placed[k] : k;
+    MeshVertex& v = out.vertices[k];
     v.position = source.positions[i];
-    v.normal = source.normals[i];
+    v.normal = has_normals ? source.normals[i] : glm::vec3(0.0f, 0.0f, 1.0f);
     v.uv = has_uvs ? source.uvs[i] : glm::vec2(0.0f);
     v.uv1 = has_uvs1 ? source.uvs1[i] : glm::vec2(0.0f);
     v.color = has_colors ? source.colors[i] : glm::vec4(1.0f);
@@ -169,10 +235,13 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
     out.vertices = std::move(ordered);
   }
 
-  // Points name the mesh's vertices; where the groups' vertices were laid out apart, each takes its first copy.
-  out.points.indices.reserve(mesh.points.size());
-  for (const std::uint32_t v : mesh.points)
-    out.points.indices.push_back(out.first_copy.empty() ? v : out.first_copy[v]);
+  // Points beside triangles name the mesh's vertices in the file's order; where the groups' vertices were laid out
+  // apart, each takes its first copy.
+  if (!mesh.indices.empty()) {
+    out.points.indices.reserve(mesh.points.size());
+    for (const std::uint32_t v : mesh.points)
+      out.points.indices.push_back(v >= n ? kNoVertex : out.first_copy.empty() ? v : out.first_copy[v]);
+  }
   out.point_normals = mesh.normals.size() == mesh.positions.size();
 
   // Only materials some triangle uses are loaded, so unused ones cannot cost time or warnings.

@@ -1,5 +1,6 @@
 // test_scene.cpp - the Scene: frustum rejection, drawing modes, materials, textures, computed normals, linear depth.
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstdint>
 #include <memory>
@@ -11,6 +12,7 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "facet/scene.hpp"
+#include "scene/prepared_mesh.hpp"
 
 namespace facet {
 namespace {
@@ -417,6 +419,7 @@ TEST(SceneDepth, LinearDepthOfARenderedQuad) {
   EXPECT_EQ(linear[0], 0.0f);
 }
 
+
 }  // namespace
 }  // namespace facet
 
@@ -472,6 +475,48 @@ TEST(ScenePoints, EveryShadingDrawsThePointsInFrontOfTheSurface) {
         EXPECT_GT(green, 100);
       }
     }
+}
+
+
+// A cloud (points alone) is prepared in spatial order: its points, stored shuffled, come out with neighbours next to
+// each other (a path through them in order is a fraction of the shuffled one), every point once with its own
+// colour, and a point naming no vertex stays one. Its vertices get the default normal, with no crease normals.
+TEST(ScenePoints, ACloudIsPreparedInSpatialOrder) {
+  Mesh cloud;
+  const int side = 40;
+  for (int z = 0; z < side; ++z)
+    for (int y = 0; y < side; ++y)
+      for (int x = 0; x < side; ++x) {
+        cloud.positions.emplace_back(x, y, z);
+        cloud.colors.emplace_back(x / 64.0f, y / 64.0f, z / 64.0f, 1.0f);
+      }
+  const auto n = static_cast<std::uint32_t>(cloud.positions.size());
+  for (std::uint32_t v = 0; v < n; ++v) cloud.points.push_back((v * 7919u) % n);  // a shuffle: 7919 is prime
+  cloud.points.push_back(n + 3);                                                   // no such vertex
+  const auto path = [](const std::vector<glm::vec3>& p) {
+    double length = 0;
+    for (std::size_t i = 1; i < p.size(); ++i) length += glm::length(p[i] - p[i - 1]);
+    return length;
+  };
+  std::vector<glm::vec3> shuffled;
+  for (std::size_t i = 0; i + 1 < cloud.points.size(); ++i) shuffled.push_back(cloud.positions[cloud.points[i]]);
+
+  detail::TextureCache textures;
+  const detail::PreparedMesh prepared = detail::prepare_mesh(cloud, textures);
+  ASSERT_EQ(prepared.points.indices.size(), cloud.points.size());
+  EXPECT_GE(prepared.points.indices.back(), prepared.vertices.size());  // still names no vertex, and comes last
+  std::vector<glm::vec3> ordered;
+  std::set<std::array<float, 3>> seen;
+  for (std::size_t i = 0; i + 1 < prepared.points.indices.size(); ++i) {
+    const MeshVertex& v = prepared.vertices.at(prepared.points.indices[i]);
+    ordered.push_back(v.position);
+    seen.insert({v.position.x, v.position.y, v.position.z});
+    EXPECT_EQ(v.color, glm::vec4(v.position / 64.0f, 1.0f));
+    EXPECT_EQ(v.normal, glm::vec3(0, 0, 1));
+  }
+  EXPECT_EQ(seen.size(), n);
+  EXPECT_EQ(prepared.vertices.size(), n);
+  EXPECT_LT(path(ordered), path(shuffled) / 4);  // 1.5 against 11.5 a step
 }
 
 }  // namespace
