@@ -28,6 +28,7 @@ set(FACET_SCENE_SOURCES
   src/scene/ambient_occlusion.cpp
   src/scene/demo_scenes.cpp
   src/scene/draw.cpp
+  src/scene/eye_dome_lighting.cpp
   src/scene/lighting/brdf_table.cpp
   src/scene/lighting/environment.cpp
   src/scene/lighting/studio.cpp

@@ -224,6 +224,12 @@ void add_look_options(CLI::App& app, LookArgs& args) {
   add_enum_option<PointShape>(
       app, "--point-shape", point_shape_names(), [&args](PointShape s) { args.point_shape = s; },
       "Points: a square or a disc of --point-size pixels (default: square)");
+  app.add_option("--eye-dome-lighting", args.eye_dome_lighting,
+                 "Eye-dome lighting's strength, 0 (off) to " + std::to_string(static_cast<int>(kMaxEyeDomeLighting)) +
+                     " (default: " + std::to_string(static_cast<int>(kDefaultEyeDomeLighting)) +
+                     " for a point cloud with neither normals nor colours, 0 otherwise)")
+      ->check(number_in(0.0, kMaxEyeDomeLighting))
+      ->type_name("S");
   const auto color_check = [](const std::string& name) {
     return parse_check([name](const std::string& v) { parse_color(v, name); }, "");
   };
@@ -329,6 +335,7 @@ LookSpec look_spec(const LookArgs& args) {
   look.ambient_occlusion = args.ambient_occlusion;
   look.point_size = args.point_size;
   look.point_shape = args.point_shape;
+  look.eye_dome_lighting = args.eye_dome_lighting;
   return look;
 }
 

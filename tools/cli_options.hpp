@@ -106,6 +106,7 @@ struct LookArgs {
   bool ambient_occlusion = false;
   float point_size = LookSpec{}.point_size;
   PointShape point_shape = LookSpec{}.point_shape;
+  std::optional<float> eye_dome_lighting;
   int threads = 0;
   int samples = 4;  // multisample anti-aliasing
 };

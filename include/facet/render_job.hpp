@@ -53,6 +53,9 @@ struct LookSpec {
   bool ambient_occlusion = false;  // the physically based look: screen-space ambient occlusion
   float point_size = 2.0f;         // points (a point cloud's): pixels, above 0 and at most kMaxPointSize
   PointShape point_shape = PointShape::square;
+  // Eye-dome lighting's strength, 0 to kMaxEyeDomeLighting (SceneOptions::eye_dome_lighting). Unset: on
+  // (kDefaultEyeDomeLighting) for a cloud with neither normals nor colours, off otherwise.
+  std::optional<float> eye_dome_lighting{};
 };
 
 // The files a render writes; empty paths are not written.

@@ -59,6 +59,11 @@ struct SceneOptions {
   // is drawn in its colours (vertex colours, or the material's), unlit.
   float point_size = 2.0f;
   PointShape point_shape = PointShape::square;
+  // Eye-dome lighting's strength (0: off): the finished image darkened where the depth steps away from the viewer,
+  // the shading point-cloud viewers give clouds without normals or colours (Potree's and Cesium's formula, 8
+  // neighbours; see ARCHITECTURE.md). It keeps the target's depth (Framebuffer::keep_depth), sample 0's with several
+  // samples. `facet render` turns it on (1) for such a cloud.
+  float eye_dome_lighting = 0.0f;
   Sampler sampler{};
   // The physically based look (Shading::automatic): the environment that lights it besides `lights` (none: the
   // ambient colour lights it evenly instead), and how its light becomes displayed colour.
@@ -79,6 +84,10 @@ struct SceneOptions {
 };
 
 inline constexpr float kOcclusionRadius = 0.15f;
+// SceneOptions::eye_dome_lighting's largest strength, and the one `facet render` gives a cloud without normals or
+// colours.
+inline constexpr float kMaxEyeDomeLighting = 100.0f;
+inline constexpr float kDefaultEyeDomeLighting = 1.0f;
 
 inline constexpr int kMaxLights = 4;
 static_assert(kMaxLights <= kLightSlots);

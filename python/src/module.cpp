@@ -179,7 +179,7 @@ py::dict render_file(const std::string& model, int width, int height, int thread
                      const std::string& shading, float azimuth, float elevation, const std::string& projection,
                      const std::string& up, std::optional<int> camera_index, py::handle background,
                      const std::vector<std::string>& buffers, bool rgba, bool allow_external_files,
-                     py::handle max_triangles, py::handle max_texture_size) {
+                     py::handle max_triangles, py::handle max_texture_size, std::optional<float> eye_dome_lighting) {
   if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
     value_error("width and height must lie in 1.." + std::to_string(kMaxDimension));
   if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
@@ -200,6 +200,7 @@ py::dict render_file(const std::string& model, int width, int height, int thread
   if (!axis) value_error("up: expected +X, -X, +Y, -Y, +Z or -Z, got '" + up + "'");
   job.camera.up = *axis;
   if (shading != "automatic") job.look.shading = shading_named(shading);
+  job.look.eye_dome_lighting = eye_dome_lighting;
   if (!background.is_none()) {
     const glm::vec4 bg = finite_rows<4>(py::array::ensure(background).reshape({1, 4}), "background")[0];
     job.look.background = glm::vec3(bg);

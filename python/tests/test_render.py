@@ -294,3 +294,19 @@ def test_a_gaussian_splat_file_shows_its_gaussian_where_the_camera_projects_it(t
     np.testing.assert_allclose(color[45, 60], np.array([1.0, 0.5, 0.0]) * alpha * 255.0, atol=1.0)
     # 2.5 pixels of standard deviation (0.05 at depth 2, 100 px a unit at depth 1): faded 10 pixels out.
     assert color[45, 70].max() < color[45, 60].max() / 10
+
+
+def test_a_bare_cloud_is_drawn_with_eye_dome_lighting_unless_turned_off(tmp_path):
+    # Two squares of points, one in front of the other, with neither normals nor colours.
+    grid = np.stack(np.meshgrid(np.linspace(-1, 1, 90), np.linspace(-1, 1, 90)), -1).reshape(-1, 2)
+    near = np.column_stack([grid * 0.4, np.full(len(grid), 0.5)])
+    far = np.column_stack([grid, np.zeros(len(grid))])
+    path = tmp_path / "bare.xyz"
+    np.savetxt(path, np.vstack([far, near]))
+    shade = {s: facet.render(path, 64, 48, buffers=("color",), threads=1, samples=1, eye_dome_lighting=s)["color"]
+             for s in (None, 0, 1)}
+    np.testing.assert_array_equal(shade[None], shade[1])  # on, at strength 1, by default
+    darker = shade[0].astype(int) - shade[1].astype(int)
+    assert darker.min() >= 0 and (darker.max(axis=2) > 100).sum() > 20  # the far square's ring around the near one
+    with pytest.raises(ValueError, match="eye-dome lighting"):
+        facet.render(path, 64, 48, eye_dome_lighting=-1)

@@ -49,6 +49,12 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
   frame.clear = clear_color(job.look, kDefaultBackground);
   frame.options = scene_options(job.look, frame.view.view_from_world, Shading::automatic, glm::vec3(frame.clear),
                                 mesh->lights, job.camera.up);
+  // A bare cloud (points with neither normals nor colours) would draw as a flat silhouette: eye-dome lighting shows
+  // its shape, as point-cloud viewers do.
+  const bool bare_cloud = mesh->indices.empty() && !mesh->points.empty() && !mesh->splats &&
+                          mesh->normals.size() != mesh->positions.size() &&
+                          mesh->colors.size() != mesh->positions.size();
+  if (!job.look.eye_dome_lighting && bare_cloud) frame.options.eye_dome_lighting = kDefaultEyeDomeLighting;
   frame.scene.add(Instance{mesh, glm::mat4(1.0f)});
   if (timings) timings->prepare = clock.lap();
   return frame;

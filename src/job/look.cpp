@@ -70,6 +70,7 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
     throw std::invalid_argument("point size: must be above 0 and at most " +
                                 std::to_string(static_cast<int>(kMaxPointSize)) + " pixels");
   options.point_size = look.point_size;
+  if (look.eye_dome_lighting) options.eye_dome_lighting = *look.eye_dome_lighting;  // checked by Scene::render
   options.point_shape = look.point_shape;
   // Wireframe lines take the colour asked for, else white; on a light background white lines would vanish.
   const float luminance = glm::dot(background, glm::vec3(0.2126f, 0.7152f, 0.0722f));

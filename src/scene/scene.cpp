@@ -4,9 +4,11 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <string>
 #include <utility>
 
 #include "facet/splats.hpp"
+#include "scene/eye_dome_lighting.hpp"
 #include "scene/scene_impl.hpp"
 
 namespace facet {
@@ -163,7 +165,11 @@ std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& v
     splats |= instance.mesh->splats && instance.mesh->splats->size() > 0;
     surfaces |= !instance.mesh->indices.empty() || !instance.mesh->points.empty();
   }
-  if (splats && surfaces) target.keep_depth(true);
+  if (!(options.eye_dome_lighting >= 0.0f && options.eye_dome_lighting <= kMaxEyeDomeLighting))
+    throw std::invalid_argument("eye-dome lighting: strength must lie between 0 and " +
+                                std::to_string(static_cast<int>(kMaxEyeDomeLighting)));
+  const bool eye_dome = options.eye_dome_lighting > 0.0f && surfaces;
+  if ((splats && surfaces) || eye_dome) target.keep_depth(true);
   const std::vector<std::size_t> order = impl_->visible(frame);
   for (const std::size_t i : order) {
     const Mesh& mesh = *impl_->instances[i].mesh;
@@ -179,6 +185,7 @@ std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& v
     detail::draw_instance(renderer, target, frame, instance, impl_->prepared_of(instance), detail::DrawPass::blended);
   }
   renderer.finish(target);
+  if (eye_dome) detail::apply_eye_dome_lighting(renderer, target, view.clip_from_view, options.eye_dome_lighting);
   if (splats)
     for (const Instance& instance : impl_->instances)
       if (instance.mesh->splats) render_splats(renderer, target, view, *instance.mesh->splats, instance.world_from_object);

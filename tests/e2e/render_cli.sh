@@ -169,7 +169,8 @@ if "$facet" render "$scratch/splats.ply" --turntable 4 --resolution 96,72 --outp
 else
   bad "splat turntable GIF" "${msg:-$(cat "$scratch/splats.err")}"
 fi
-for bad_points in "--point-size 0" "--point-size 300" "--point-shape star"; do
+for bad_points in "--point-size 0" "--point-size 300" "--point-shape star" "--eye-dome-lighting -1" \
+  "--eye-dome-lighting 101"; do
   # shellcheck disable=SC2086  # the flags are meant to split
   if "$facet" render "$scratch/helix.xyz" $bad_points --output "$scratch/bad_points.png" 2>"$scratch/bad_points.log"; then
     bad "$bad_points" "accepted"

@@ -1,0 +1,147 @@
+// test_eye_dome_lighting.cpp - eye-dome lighting against its formula, and `facet render`'s default for bare clouds.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <glm/gtc/matrix_transform.hpp>
+#include <memory>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+#include "facet/image_io.hpp"
+#include "facet/render_job.hpp"
+#include "facet/renderer.hpp"
+#include "facet/scene.hpp"
+#include "support/scratch_dir.hpp"
+
+namespace facet {
+namespace {
+
+constexpr int kSize = 48;
+
+// A bare cloud: a near square of points (z = 0, half the view wide) in front of a far one (z = -1) that fills it.
+Mesh two_layers() {
+  Mesh m;
+  const auto layer = [&](float z, float half, int n) {
+    for (int j = 0; j < n; ++j)
+      for (int i = 0; i < n; ++i) {
+        m.points.push_back(static_cast<std::uint32_t>(m.positions.size()));
+        m.positions.emplace_back(-half + 2.0f * half * i / (n - 1), -half + 2.0f * half * j / (n - 1), z);
+      }
+  };
+  layer(-1.0f, 2.0f, 120);
+  layer(0.0f, 0.5f, 40);
+  return m;
+}
+
+struct Drawn {
+  Framebuffer fb{kSize, kSize};
+  View view;
+};
+
+void draw(Drawn& out, float strength) {
+  Scene scene;
+  scene.add(Instance{std::make_shared<Mesh>(two_layers()), glm::mat4(1.0f)});
+  out.view.view_from_world = glm::lookAt(glm::vec3(0, 0, 3), glm::vec3(0), glm::vec3(0, 1, 0));
+  out.view.clip_from_view = glm::perspective(glm::radians(60.0f), 1.0f, 0.5f, 10.0f);
+  SceneOptions options;
+  options.shading = Shading::unlit;
+  options.color = glm::vec4(0.8f, 0.6f, 0.4f, 1.0f);
+  options.point_size = 3.0f;
+  options.eye_dome_lighting = strength;
+  Renderer renderer(2);
+  renderer.clear(out.fb, glm::vec4(0.1f, 0.2f, 0.3f, 1.0f), 1.0f);
+  scene.render(renderer, out.fb, out.view, options);
+}
+
+int channel(std::uint32_t rgba, int c) { return static_cast<int>((rgba >> (8 * c)) & 0xffu); }
+
+// Every pixel against the formula computed here from the kept depth: the base-2 log of each pixel's linear depth,
+// the mean over its drawn 8-neighbours of max(0, own - theirs), the colour scaled by exp(-300 strength mean).
+// Pixels of the far layer at the near one's border darken (partly at a low strength, to black at a high one); flat
+// regions and the background keep their colours.
+TEST(EyeDomeLighting, EveryPixelFollowsTheFormula) {
+  Drawn off;
+  draw(off, 0.0f);
+  for (const float strength : {0.01f, 2.0f}) {
+    SCOPED_TRACE("strength " + std::to_string(strength));
+    Drawn on;
+    draw(on, strength);
+    const std::vector<float> depth = linear_depth(on.fb, on.view.clip_from_view);
+    const auto log_at = [&](int x, int y) { return std::log2(depth[static_cast<std::size_t>(y) * kSize + x]); };
+    int darkened = 0, partly = 0, kept = 0;
+    for (int y = 0; y < kSize; ++y)
+      for (int x = 0; x < kSize; ++x) {
+        const std::uint32_t before = off.fb.pixel(x, y), after = on.fb.pixel(x, y);
+        if (depth[static_cast<std::size_t>(y) * kSize + x] == 0.0f) {
+          EXPECT_EQ(after, before) << x << "," << y;  // background
+          continue;
+        }
+        float sum = 0.0f;
+        int count = 0;
+        for (int dy = -1; dy <= 1; ++dy)
+          for (int dx = -1; dx <= 1; ++dx) {
+            const int nx = x + dx, ny = y + dy;
+            if ((dx == 0 && dy == 0) || nx < 0 || ny < 0 || nx >= kSize || ny >= kSize) continue;
+            if (depth[static_cast<std::size_t>(ny) * kSize + nx] == 0.0f) continue;
+            sum += std::max(0.0f, log_at(x, y) - log_at(nx, ny));
+            ++count;
+          }
+        const float shade = std::exp(-300.0f * strength * (count ? sum / count : 0.0f));
+        for (int c = 0; c < 3; ++c)
+          EXPECT_NEAR(channel(after, c), channel(before, c) * shade, 0.51f) << x << "," << y << " channel " << c;
+        EXPECT_EQ(channel(after, 3), channel(before, 3));
+        (shade > 0.99f ? kept : shade > 0.5f ? partly : darkened) += 1;
+      }
+    EXPECT_GT(strength < 1.0f ? partly : darkened, 20);  // the far layer's ring around the near one
+    EXPECT_GT(kept, 500);                                 // both layers' flat insides
+  }
+}
+
+TEST(EyeDomeLighting, AStrengthOutOfRangeIsRefused) {
+  Drawn out;
+  EXPECT_THROW(draw(out, -1.0f), std::invalid_argument);
+  EXPECT_THROW(draw(out, kMaxEyeDomeLighting * 2.0f), std::invalid_argument);
+  EXPECT_THROW(draw(out, std::nanf("")), std::invalid_argument);
+}
+
+std::vector<std::uint8_t> render_cloud(const std::filesystem::path& model, const std::filesystem::path& png,
+                                       std::optional<float> strength) {
+  RenderJob job;
+  job.model = model;
+  job.width = 64;
+  job.height = 48;
+  job.outputs.color = png;
+  job.look.eye_dome_lighting = strength;
+  Renderer renderer(2);
+  render(job, renderer);
+  int width = 0, height = 0;
+  return read_png(png, width, height);
+}
+
+// `facet render` lights a bare cloud (no normals, no colours) with eye-dome lighting unless told otherwise, and
+// leaves a coloured one as it is.
+TEST(EyeDomeLighting, ABareCloudGetsItByDefault) {
+  const std::filesystem::path dir = test::scratch_dir("eye_dome_lighting");
+  std::ofstream bare(dir / "bare.xyz"), coloured(dir / "coloured.xyz");
+  const Mesh cloud = two_layers();
+  for (const glm::vec3& p : cloud.positions) {
+    bare << p.x << ' ' << p.y << ' ' << p.z << '\n';
+    coloured << p.x << ' ' << p.y << ' ' << p.z << " 200 150 100\n";
+  }
+  bare.close();
+  coloured.close();
+  const auto as_default = render_cloud(dir / "bare.xyz", dir / "a.png", std::nullopt);
+  EXPECT_EQ(as_default, render_cloud(dir / "bare.xyz", dir / "b.png", kDefaultEyeDomeLighting));
+  EXPECT_NE(as_default, render_cloud(dir / "bare.xyz", dir / "c.png", 0.0f));
+  EXPECT_EQ(render_cloud(dir / "coloured.xyz", dir / "d.png", std::nullopt),
+            render_cloud(dir / "coloured.xyz", dir / "e.png", 0.0f));
+  EXPECT_NE(render_cloud(dir / "coloured.xyz", dir / "f.png", std::nullopt),
+            render_cloud(dir / "coloured.xyz", dir / "g.png", 1.0f));
+}
+
+}  // namespace
+}  // namespace facet
