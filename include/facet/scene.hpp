@@ -156,5 +156,7 @@ bool sphere_in_frustum(const glm::mat4& clip_from_world, glm::vec3 center, float
 // Linear eye-space depth (distance along -Z) per pixel, 0 where nothing was drawn (depth buffer at 1), top row
 // first: what --output-depth writes. Works for perspective and orthographic projections.
 std::vector<float> linear_depth(const Framebuffer& target, const glm::mat4& clip_from_view);
+// The same, its rows on the renderer's threads.
+std::vector<float> linear_depth(Renderer& renderer, const Framebuffer& target, const glm::mat4& clip_from_view);
 
 }  // namespace facet

@@ -97,7 +97,7 @@ FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene,
   // mask come from one depth read, so every buffer agrees on which pixels are empty.
   if (request.depth || request.mask) {
     if (target.samples() == 1) {
-      out.depth = linear_depth(target, view.clip_from_view);
+      out.depth = linear_depth(renderer, target, view.clip_from_view);
     } else {
       Framebuffer centres(target.width(), target.height());
       SceneOptions plain = options;
@@ -105,7 +105,7 @@ FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene,
       plain.environment_background = plain.shadows = plain.ambient_occlusion = false;
       renderer.clear(centres, clear, 1.0f);
       scene.render(renderer, centres, view, plain);
-      out.depth = linear_depth(centres, view.clip_from_view);
+      out.depth = linear_depth(renderer, centres, view.clip_from_view);
     }
   }
   if (request.mask) {

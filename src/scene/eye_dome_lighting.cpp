@@ -55,7 +55,7 @@ std::uint32_t scaled(std::uint32_t rgba, float shade) {
 
 void apply_eye_dome_lighting(Renderer& renderer, Framebuffer& target, const glm::mat4& clip_from_view, float strength) {
   const int width = target.width(), height = target.height();
-  std::vector<float> log_depth = linear_depth(target, clip_from_view);  // 0 where nothing was drawn
+  std::vector<float> log_depth = linear_depth(renderer, target, clip_from_view);  // 0 where nothing was drawn
   const auto rows = [&](auto&& row) {
     renderer.parallel_for(static_cast<std::size_t>(height), [&](std::size_t y) { row(static_cast<int>(y)); });
   };

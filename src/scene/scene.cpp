@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <span>
 #include <stdexcept>
 #include <string>
 #include <utility>
@@ -209,22 +210,40 @@ bool sphere_in_frustum(const glm::mat4& clip_from_world, glm::vec3 center, float
   return true;
 }
 
-std::vector<float> linear_depth(const Framebuffer& target, const glm::mat4& clip_from_view) {
+namespace {
+
+// Row y of linear_depth.
+void linear_depth_row(const Framebuffer& target, const glm::mat4& view_from_clip, int y, float* out) {
   const int width = target.width(), height = target.height();
-  const glm::mat4 view_from_clip = glm::inverse(clip_from_view);
-  std::vector<float> out(static_cast<std::size_t>(width) * height, 0.0f);
-  for (int y = 0; y < height; ++y) {
-    // Row 0 is the top of the image, ndc y = +1.
-    const float ndc_y = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
-    for (int x = 0; x < width; ++x) {
-      const float d = target.depth_at(x, y);
-      if (!(d < 1.0f)) continue;
-      const float ndc_x = 2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(width) - 1.0f;
-      // The pixel's own x and y make this exact for off-centre projections too.
-      const glm::vec4 view = view_from_clip * glm::vec4(ndc_x, ndc_y, 2.0f * d - 1.0f, 1.0f);
-      out[static_cast<std::size_t>(y) * width + x] = -view.z / view.w;
-    }
+  const std::span<const float> depth = target.depth();
+  // Row 0 is the top of the image, ndc y = +1.
+  const float ndc_y = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(height);
+  for (int x = 0; x < width; ++x) {
+    const float d = depth[static_cast<std::size_t>(y) * static_cast<std::size_t>(width) + static_cast<std::size_t>(x)];
+    if (!(d < 1.0f)) continue;
+    const float ndc_x = 2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(width) - 1.0f;
+    // The pixel's own x and y make this exact for off-centre projections too.
+    const glm::vec4 view = view_from_clip * glm::vec4(ndc_x, ndc_y, 2.0f * d - 1.0f, 1.0f);
+    out[x] = -view.z / view.w;
   }
+}
+
+}  // namespace
+
+std::vector<float> linear_depth(const Framebuffer& target, const glm::mat4& clip_from_view) {
+  const glm::mat4 view_from_clip = glm::inverse(clip_from_view);
+  std::vector<float> out(static_cast<std::size_t>(target.width()) * static_cast<std::size_t>(target.height()), 0.0f);
+  for (int y = 0; y < target.height(); ++y)
+    linear_depth_row(target, view_from_clip, y, out.data() + static_cast<std::size_t>(y) * target.width());
+  return out;
+}
+
+std::vector<float> linear_depth(Renderer& renderer, const Framebuffer& target, const glm::mat4& clip_from_view) {
+  const glm::mat4 view_from_clip = glm::inverse(clip_from_view);
+  std::vector<float> out(static_cast<std::size_t>(target.width()) * static_cast<std::size_t>(target.height()), 0.0f);
+  renderer.parallel_for(static_cast<std::size_t>(target.height()), [&](std::size_t y) {
+    linear_depth_row(target, view_from_clip, static_cast<int>(y), out.data() + y * static_cast<std::size_t>(target.width()));
+  });
   return out;
 }
 
