@@ -299,6 +299,10 @@ void add_input_options(CLI::App& app, InputArgs& args) {
                  "Refuse models placing more triangles (" + std::to_string(kDefaultMaxTriangles) + ")")
       ->check(CLI::Range(std::uint64_t{1}, kMostMaxTriangles))
       ->type_name("N");
+  app.add_option("--max-points", args.max_points,
+                 "Refuse models placing more points and Gaussian splats (" + std::to_string(kDefaultMaxPoints) + ")")
+      ->check(CLI::Range(std::uint64_t{1}, kMostMaxPoints))
+      ->type_name("N");
   app.add_option("--max-texture-size", args.max_texture_size,
                  "Draw untextured a material whose texture is wider or taller than N texels (" +
                      std::to_string(kMaxTextureSize) + ")")
@@ -309,6 +313,7 @@ void add_input_options(CLI::App& app, InputArgs& args) {
 LoadOptions load_options(const InputArgs& args) {
   return LoadOptions{.allow_external_files = args.allow_external_files,
                      .max_triangles = args.max_triangles,
+                     .max_points = args.max_points,
                      .max_texture_size = args.max_texture_size};
 }
 

@@ -120,6 +120,7 @@ LookSpec look_spec(const LookArgs& args);
 struct InputArgs {
   bool allow_external_files = false;
   std::uint64_t max_triangles = kDefaultMaxTriangles;
+  std::uint64_t max_points = kDefaultMaxPoints;
   int max_texture_size = kMaxTextureSize;
 };
 void add_input_options(CLI::App& app, InputArgs& args);

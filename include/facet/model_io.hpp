@@ -16,6 +16,9 @@ inline constexpr std::uintmax_t kMaxModelFileBytes = std::uintmax_t{1} << 30;
 inline constexpr std::uint64_t kDefaultMaxTriangles = 100'000'000;
 // The largest triangle limit a face accepts (2^40): beyond any file, and far below overflow in the loaders' counts.
 inline constexpr std::uint64_t kMostMaxTriangles = std::uint64_t{1} << 40;
+// The default of LoadOptions::max_points, and the largest a face accepts (as for triangles).
+inline constexpr std::uint64_t kDefaultMaxPoints = 100'000'000;
+inline constexpr std::uint64_t kMostMaxPoints = std::uint64_t{1} << 40;
 
 // What reading a model may do. Model files are untrusted input (a thumbnailer renders what users upload): these
 // bound what one can make facet read and allocate.
@@ -28,6 +31,8 @@ struct LoadOptions {
   bool allow_external_files = false;
   // Models whose instances place more triangles than this are refused.
   std::uint64_t max_triangles = kDefaultMaxTriangles;
+  // Models whose instances place more points and Gaussian splats together than this are refused.
+  std::uint64_t max_points = kDefaultMaxPoints;
   // Textures wider or taller than this (at most kMaxTextureSize, 16384) are not decoded: the material is drawn
   // untextured, with a warning.
   int max_texture_size = 16384;

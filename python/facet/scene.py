@@ -25,6 +25,7 @@ def _pose(pose, name="pose"):
 # model_io.hpp): files a model names are read only from inside its folder tree, at most 100 million triangles are
 # placed, and textures up to 16384 texels a side are decoded.
 DEFAULT_MAX_TRIANGLES = _facet.DEFAULT_MAX_TRIANGLES
+DEFAULT_MAX_POINTS = _facet.DEFAULT_MAX_POINTS
 DEFAULT_MAX_TEXTURE_SIZE = _facet.MAX_TEXTURE_SIZE
 
 
@@ -48,19 +49,20 @@ class Mesh:
 
     @classmethod
     def from_file(cls, path, *, allow_external_files=False, max_triangles=DEFAULT_MAX_TRIANGLES,
-                  max_texture_size=DEFAULT_MAX_TEXTURE_SIZE):
+                  max_points=DEFAULT_MAX_POINTS, max_texture_size=DEFAULT_MAX_TEXTURE_SIZE):
         """The whole model file as one mesh in world space (every format `facet render` reads).
 
         Model files are untrusted input, read within limits: the files a model names (materials, textures, buffers)
         are read only from inside its folder tree unless allow_external_files; a model placing more than
-        max_triangles triangles is refused; a texture wider or taller than max_texture_size is not decoded (its
+        max_triangles triangles, or more than max_points points and Gaussian splats together, is refused; a
+        texture wider or taller than max_texture_size is not decoded (its
         material is drawn untextured, with a warning).
 
         Raises FileNotFoundError for a missing file and facet.LoadError (an OSError and a ValueError) for one that
         cannot be read, naming the file and the problem; ValueError for a limit out of range.
         """
         mesh = cls.__new__(cls)
-        mesh._core = _facet.MeshCore.from_file(str(path), bool(allow_external_files), max_triangles,
+        mesh._core = _facet.MeshCore.from_file(str(path), bool(allow_external_files), max_triangles, max_points,
                                                max_texture_size)
         return mesh
 
@@ -249,11 +251,12 @@ class Scene:
 
     @classmethod
     def from_file(cls, path, bg_color=None, ambient_light=None, *, allow_external_files=False,
-                  max_triangles=DEFAULT_MAX_TRIANGLES, max_texture_size=DEFAULT_MAX_TEXTURE_SIZE):
+                  max_triangles=DEFAULT_MAX_TRIANGLES, max_points=DEFAULT_MAX_POINTS,
+                  max_texture_size=DEFAULT_MAX_TEXTURE_SIZE):
         """Every mesh of a model file, placed by the file's nodes (node ids as the file numbers them), and the
         file's cameras. Reads within the limits Mesh.from_file takes, and raises as it does."""
         meshes, instances, cameras = _facet.read_model(str(path), bool(allow_external_files), max_triangles,
-                                                       max_texture_size)
+                                                       max_points, max_texture_size)
         scene = cls(bg_color=bg_color, ambient_light=ambient_light)
         wrapped = []
         for core in meshes:

@@ -137,11 +137,14 @@ MeshCore load_mesh_file(const std::string& path, const LoadOptions& options) {
   return MeshCore{std::make_shared<const Mesh>(std::move(mesh))};
 }
 
-LoadOptions load_options_of(bool allow_external_files, py::handle max_triangles, py::handle max_texture_size) {
+LoadOptions load_options_of(bool allow_external_files, py::handle max_triangles, py::handle max_points,
+                            py::handle max_texture_size) {
   constexpr auto kMost = static_cast<long long>(kMostMaxTriangles);
+  constexpr auto kMostPoints = static_cast<long long>(kMostMaxPoints);
   return LoadOptions{
       .allow_external_files = allow_external_files,
       .max_triangles = static_cast<std::uint64_t>(integer_in(max_triangles, "max_triangles", 1, kMost)),
+      .max_points = static_cast<std::uint64_t>(integer_in(max_points, "max_points", 1, kMostPoints)),
       .max_texture_size = static_cast<int>(integer_in(max_texture_size, "max_texture_size", 1, kMaxTextureSize))};
 }
 

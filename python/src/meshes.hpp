@@ -41,9 +41,10 @@ struct SceneCore {
   Bounds world_bounds() const;  // over every placed mesh's transformed box; empty when there is none
 };
 
-// The LoadOptions of the Python keywords allow_external_files, max_triangles and max_texture_size, in the ranges
-// `facet render` accepts for its flags; raises ValueError outside them.
-LoadOptions load_options_of(bool allow_external_files, py::handle max_triangles, py::handle max_texture_size);
+// The LoadOptions of the Python keywords allow_external_files, max_triangles, max_points and max_texture_size, in the
+// ranges `facet render` accepts for its flags; raises ValueError outside them.
+LoadOptions load_options_of(bool allow_external_files, py::handle max_triangles, py::handle max_points,
+                            py::handle max_texture_size);
 
 // load_model for Python: the whole file as one world-space mesh, its sides made explicit (materials.hpp).
 MeshCore load_mesh_file(const std::string& path, const LoadOptions& options);

@@ -179,14 +179,15 @@ py::dict render_file(const std::string& model, int width, int height, int thread
                      const std::string& shading, float azimuth, float elevation, const std::string& projection,
                      const std::string& up, std::optional<int> camera_index, py::handle background,
                      const std::vector<std::string>& buffers, bool rgba, bool allow_external_files,
-                     py::handle max_triangles, py::handle max_texture_size, std::optional<float> eye_dome_lighting) {
+                     py::handle max_triangles, py::handle max_points, py::handle max_texture_size,
+                     std::optional<float> eye_dome_lighting) {
   if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
     value_error("width and height must lie in 1.." + std::to_string(kMaxDimension));
   if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
     value_error("samples: expected 1, 2, 4 or 8, got " + std::to_string(samples));
   RenderJob job;
   job.model = model;
-  job.load = load_options_of(allow_external_files, max_triangles, max_texture_size);
+  job.load = load_options_of(allow_external_files, max_triangles, max_points, max_texture_size);
   job.width = width;
   job.height = height;
   job.samples = samples;
@@ -249,11 +250,13 @@ PYBIND11_MODULE(_facet, m) {
            py::arg("colors"), py::arg("texture"), py::arg("material"))
       .def_static(
           "from_file",
-          [](const std::string& path, bool allow_external_files, py::handle max_triangles,
+          [](const std::string& path, bool allow_external_files, py::handle max_triangles, py::handle max_points,
              py::handle max_texture_size) {
-            return load_mesh_file(path, load_options_of(allow_external_files, max_triangles, max_texture_size));
+            return load_mesh_file(path,
+                                  load_options_of(allow_external_files, max_triangles, max_points, max_texture_size));
           },
-          py::arg("path"), py::arg("allow_external_files"), py::arg("max_triangles"), py::arg("max_texture_size"))
+          py::arg("path"), py::arg("allow_external_files"), py::arg("max_triangles"), py::arg("max_points"),
+          py::arg("max_texture_size"))
       .def_property_readonly("vertex_count", [](const MeshCore& c) { return c.mesh->vertex_count(); })
       .def_property_readonly("triangle_count", [](const MeshCore& c) { return c.mesh->triangle_count(); })
       .def_property_readonly("point_count", [](const MeshCore& c) { return c.mesh->point_count(); })
@@ -281,13 +284,17 @@ PYBIND11_MODULE(_facet, m) {
 
   m.def(
       "read_model",
-      [](const std::string& path, bool allow_external_files, py::handle max_triangles, py::handle max_texture_size) {
-        return read_model_file(path, load_options_of(allow_external_files, max_triangles, max_texture_size));
+      [](const std::string& path, bool allow_external_files, py::handle max_triangles, py::handle max_points,
+         py::handle max_texture_size) {
+        return read_model_file(path,
+                               load_options_of(allow_external_files, max_triangles, max_points, max_texture_size));
       },
-      py::arg("path"), py::arg("allow_external_files"), py::arg("max_triangles"), py::arg("max_texture_size"));
+      py::arg("path"), py::arg("allow_external_files"), py::arg("max_triangles"), py::arg("max_points"),
+      py::arg("max_texture_size"));
   m.def("render_file", &render_file);
   // The load limits' defaults, for the Python keywords.
   m.attr("DEFAULT_MAX_TRIANGLES") = facet::kDefaultMaxTriangles;
+  m.attr("DEFAULT_MAX_POINTS") = facet::kDefaultMaxPoints;
   m.attr("MAX_TEXTURE_SIZE") = facet::kMaxTextureSize;
   m.attr("HEADLIGHT_FROM_CAMERA") = py::make_tuple(facet::kHeadlightFromCamera.x, facet::kHeadlightFromCamera.y,
                                                    facet::kHeadlightFromCamera.z);

@@ -96,6 +96,7 @@ LOADS = {
     ({"max_triangles": 0}, "max_triangles: expected 1..1099511627776, got 0"),
     ({"max_triangles": 2**70}, "max_triangles: expected 1..1099511627776, got 1180591620717411303424"),
     ({"max_triangles": 1.5}, "max_triangles: expected an integer"),
+    ({"max_points": 0}, "max_points: expected 1..1099511627776, got 0"),
     ({"max_texture_size": 0}, "max_texture_size: expected 1..16384, got 0"),
     ({"max_texture_size": 16385}, "max_texture_size: expected 1..16384, got 16385"),
 ])
@@ -111,6 +112,16 @@ def test_a_model_over_the_triangle_limit_is_refused(load):
     with pytest.raises(facet.LoadError,
                        match=r"box.obj: places 12 triangles, more than the limit of 11 \(keyword max_triangles\)"):
         load(BOX, max_triangles=11)
+
+
+@pytest.mark.parametrize("load", LOADS.values(), ids=LOADS.keys())
+def test_a_cloud_over_the_point_limit_is_refused(load, tmp_path):
+    cloud = tmp_path / "cloud.xyz"
+    np.savetxt(cloud, np.random.default_rng(3).random((30, 3)))
+    load(cloud, max_points=30)
+    with pytest.raises(facet.LoadError,
+                       match=r"cloud.xyz: places 30 points and splats, more than the limit of 29 \(keyword max_points\)"):
+        load(cloud, max_points=29)
 
 
 @pytest.mark.parametrize("load", LOADS.values(), ids=LOADS.keys())

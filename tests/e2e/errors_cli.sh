@@ -119,6 +119,10 @@ expect_message fifo_model "not a regular file"
 expect too_many_triangles 1 render "$box" --max-triangles 5
 expect_message too_many_triangles "more than the limit of 5 (--max-triangles)"
 expect max_triangles_zero 2 render "$box" --max-triangles 0
+printf '0 0 0\n1 0 0\n0 1 0\n0 0 1\n' >"$scratch/four.xyz"
+expect too_many_points 1 render "$scratch/four.xyz" --max-points 3
+expect_message too_many_points "places 4 points and splats, more than the limit of 3 (--max-points)"
+expect max_points_zero 2 render "$scratch/four.xyz" --max-points 0
 expect max_texture_size_range 2 render "$box" --max-texture-size 20000
 # Environments: missing, not an image, not a format facet reads, lying about their size.
 printf '#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 16000 +X 16000\n' >"$scratch/lying.hdr"

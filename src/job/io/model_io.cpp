@@ -9,6 +9,7 @@
 #include <utility>
 
 #include "facet/error.hpp"
+#include "facet/splats.hpp"
 #include "core/file_util.hpp"
 #include "job/io/loaders.hpp"
 #include "job/io/splat_loader.hpp"
@@ -147,11 +148,18 @@ Model read_model(const fs::path& path, const LoadOptions& options) {
 
 Model read_model(const fs::path& path, std::string& format_name, const LoadOptions& options) {
   Model model = read_any_model(path, format_name, options);
-  std::uint64_t triangles = 0;
-  for (const ModelInstance& instance : model.instances) triangles += model.meshes[instance.mesh].indices.size() / 3;
+  std::uint64_t triangles = 0, points = 0;
+  for (const ModelInstance& instance : model.instances) {
+    const Mesh& mesh = model.meshes[instance.mesh];
+    triangles += mesh.indices.size() / 3;
+    points += mesh.points.size() + (mesh.splats ? mesh.splats->size() : 0);
+  }
   if (triangles > options.max_triangles)
     throw InputError(path.string(), "places " + std::to_string(triangles) + " triangles, more than the limit of " +
                                         std::to_string(options.max_triangles) + " (" + setting("max_triangles") + ")");
+  if (points > options.max_points)
+    throw InputError(path.string(), "places " + std::to_string(points) + " points and splats, more than the limit of " +
+                                        std::to_string(options.max_points) + " (" + setting("max_points") + ")");
   return model;
 }
 
