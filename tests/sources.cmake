@@ -29,9 +29,9 @@ set(FACET_LIGHT_TEST_SOURCES
   unit/test_clear.cpp
   unit/test_clearcoat_sheen.cpp
   unit/test_clip.cpp
+  unit/test_cloud_looks.cpp
   unit/test_cpu_level.cpp
   unit/test_environment_io.cpp
-  unit/test_eye_dome_lighting.cpp
   unit/test_file_cameras.cpp
   unit/test_punctual_lights.cpp
   unit/test_format_parity.cpp

@@ -224,6 +224,9 @@ void add_look_options(CLI::App& app, LookArgs& args) {
   add_enum_option<PointShape>(
       app, "--point-shape", point_shape_names(), [&args](PointShape s) { args.point_shape = s; },
       "Points: a square or a disc of --point-size pixels (default: square)");
+  add_enum_option<ColorMap>(
+      app, "--color-map", color_map_names(), [&args](ColorMap m) { args.color_map = m; },
+      "Colour every vertex by its height along the up axis, blue (lowest) to red (highest), or not (default: none)");
   app.add_option("--eye-dome-lighting", args.eye_dome_lighting,
                  "Eye-dome lighting's strength, 0 (off) to " + std::to_string(static_cast<int>(kMaxEyeDomeLighting)) +
                      " (default: " + std::to_string(static_cast<int>(kDefaultEyeDomeLighting)) +
@@ -341,6 +344,7 @@ LookSpec look_spec(const LookArgs& args) {
   look.point_size = args.point_size;
   look.point_shape = args.point_shape;
   look.eye_dome_lighting = args.eye_dome_lighting;
+  look.color_map = args.color_map;
   return look;
 }
 

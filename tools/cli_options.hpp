@@ -107,6 +107,7 @@ struct LookArgs {
   float point_size = LookSpec{}.point_size;
   PointShape point_shape = LookSpec{}.point_shape;
   std::optional<float> eye_dome_lighting;
+  ColorMap color_map = LookSpec{}.color_map;
   int threads = 0;
   int samples = 4;  // multisample anti-aliasing
 };

@@ -22,6 +22,8 @@ std::span<const Named<CullMode>> cull_mode_names();
 std::span<const Named<ToneMapping>> tone_mapping_names();
 // "square", "disc".
 std::span<const Named<PointShape>> point_shape_names();
+// "none", "height".
+std::span<const Named<ColorMap>> color_map_names();
 // "perspective", "orthographic", "frustum", "oblique", "isometric", "dimetric", "trimetric", "front", "top", "side".
 std::span<const Named<Projection>> projection_names();
 // The buffers a render can return: "color", "depth", "normal", "ids", "mask", each a field of BufferRequest.

@@ -20,6 +20,10 @@
 
 namespace facet {
 
+// Colours given to every vertex from where it lies (LookSpec::color_map): none (the model's own), or by height along
+// the model's up axis, through blue, cyan, green and yellow to red from the lowest vertex to the highest.
+enum class ColorMap { none, height };
+
 // The look of a render. Unset fields take the defaults of `facet render`.
 struct LookSpec {
   std::optional<Shading> shading;  // default: the caller's (the model's own look for `facet render`)
@@ -56,6 +60,7 @@ struct LookSpec {
   // Eye-dome lighting's strength, 0 to kMaxEyeDomeLighting (SceneOptions::eye_dome_lighting). Unset: on
   // (kDefaultEyeDomeLighting) for a cloud with neither normals nor colours, off otherwise.
   std::optional<float> eye_dome_lighting{};
+  ColorMap color_map = ColorMap::none;  // not with `color`
 };
 
 // The files a render writes; empty paths are not written.
@@ -159,6 +164,10 @@ std::shared_ptr<const Environment> environment_for(const LookSpec& look, UpAxis 
 // A colour the look asks for replaces the mesh's vertex and face colours too (the shaders prefer those over the
 // material), so the whole model takes it. Does nothing without one.
 void apply_look_color(Mesh& mesh, const LookSpec& look);
+// The look's colour map (ColorMap) as the mesh's vertex colours, replacing its vertex and face colours; heights along
+// `up` (CameraSpec::up). Does nothing for ColorMap::none. Throws std::invalid_argument when the look also sets a
+// colour.
+void apply_color_map(Mesh& mesh, const LookSpec& look, UpAxis up);
 
 // The clear colour of a look: its background (or `fallback`), alpha 0 when transparent.
 glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback);

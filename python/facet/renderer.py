@@ -125,20 +125,22 @@ class OffscreenRenderer:
 def render(model, width=640, height=480, buffers=("color", "depth"), shading="automatic", azimuth=0.0,
            elevation=0.0, projection="perspective", up="+Y", camera_index=None, background=None, rgba=False,
            threads=0, samples=4, *, allow_external_files=False, max_triangles=DEFAULT_MAX_TRIANGLES,
-           max_points=DEFAULT_MAX_POINTS, max_texture_size=DEFAULT_MAX_TEXTURE_SIZE, eye_dome_lighting=None):
+           max_points=DEFAULT_MAX_POINTS, max_texture_size=DEFAULT_MAX_TEXTURE_SIZE, eye_dome_lighting=None,
+           color_map="none"):
     """Renders a model file as `facet render` does (framed from the front right, above, lit by a headlight,
     anti-aliased with `samples` samples per pixel: 1, 2, 4 or 8) and returns a dict of the buffers named (see
     OffscreenRenderer.render_buffers, ids holding the file's node and face ids) plus "camera", the camera as
     render_buffers' camera_json gives it. The model is read within the limits Mesh.from_file takes.
     eye_dome_lighting: its strength, 0 (off) to 100, as `--eye-dome-lighting`; None: on for a point cloud with
-    neither normals nor colours, off otherwise."""
+    neither normals nor colours, off otherwise. color_map: "none" or "height", as `--color-map`."""
     for name in buffers:
         if name not in BUFFERS:
             raise ValueError(f"buffers: unknown buffer {name!r} (one of {', '.join(BUFFERS)})")
     return _facet.render_file(os.fspath(model), int(width), int(height), int(threads), int(samples), shading,
                               float(azimuth), float(elevation), projection, up, camera_index, background,
                               list(buffers), bool(rgba), bool(allow_external_files), max_triangles, max_points,
-                              max_texture_size, None if eye_dome_lighting is None else float(eye_dome_lighting))
+                              max_texture_size, None if eye_dome_lighting is None else float(eye_dome_lighting),
+                              str(color_map))
 
 
 __all__ = ["BUFFERS", "RenderFlags", "OffscreenRenderer", "render"]

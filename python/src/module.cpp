@@ -180,7 +180,7 @@ py::dict render_file(const std::string& model, int width, int height, int thread
                      const std::string& up, std::optional<int> camera_index, py::handle background,
                      const std::vector<std::string>& buffers, bool rgba, bool allow_external_files,
                      py::handle max_triangles, py::handle max_points, py::handle max_texture_size,
-                     std::optional<float> eye_dome_lighting) {
+                     std::optional<float> eye_dome_lighting, const std::string& color_map) {
   if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
     value_error("width and height must lie in 1.." + std::to_string(kMaxDimension));
   if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
@@ -202,6 +202,9 @@ py::dict render_file(const std::string& model, int width, int height, int thread
   job.camera.up = *axis;
   if (shading != "automatic") job.look.shading = shading_named(shading);
   job.look.eye_dome_lighting = eye_dome_lighting;
+  const std::optional<ColorMap> map = parse_name(color_map_names(), color_map);
+  if (!map) value_error("color_map: unknown colour map '" + color_map + "' (" + listed(color_map_names()) + ")");
+  job.look.color_map = *map;
   if (!background.is_none()) {
     const glm::vec4 bg = finite_rows<4>(py::array::ensure(background).reshape({1, 4}), "background")[0];
     job.look.background = glm::vec3(bg);

@@ -310,3 +310,22 @@ def test_a_bare_cloud_is_drawn_with_eye_dome_lighting_unless_turned_off(tmp_path
     assert darker.min() >= 0 and (darker.max(axis=2) > 100).sum() > 20  # the far square's ring around the near one
     with pytest.raises(ValueError, match="eye-dome lighting"):
         facet.render(path, 64, 48, eye_dome_lighting=-1)
+
+
+def test_a_cloud_coloured_by_height_runs_from_blue_below_to_red_above(tmp_path):
+    heights = np.linspace(-1, 1, 400)
+    path = tmp_path / "column.xyz"
+    np.savetxt(path, np.column_stack([np.zeros_like(heights), heights, np.zeros_like(heights)]))
+    color = facet.render(path, 48, 64, buffers=("color",), threads=1, samples=1, shading="unlit",
+                         eye_dome_lighting=0, color_map="height")["color"].astype(int)
+    off_background = np.abs(color - color[0, 0]).sum(axis=2)
+    drawn = np.flatnonzero((off_background > 30).any(axis=1))  # the rows the column covers
+
+    def column_pixel(row):
+        return color[row, off_background[row].argmax()]
+
+    top, bottom = column_pixel(drawn[0]), column_pixel(drawn[-1])
+    assert top[0] > 200 and top[2] < 60     # red at the top of the image
+    assert bottom[2] > 200 and bottom[0] < 60  # blue at the bottom
+    with pytest.raises(ValueError, match="color_map"):
+        facet.render(path, 48, 64, color_map="rainbow")

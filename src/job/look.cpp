@@ -1,6 +1,8 @@
 // look.cpp - a LookSpec applied: the scene's drawing options and lights, the mesh's colour, the clear colour.
 #include <algorithm>
 #include <cmath>
+#include <iterator>
+#include <limits>
 #include <map>
 #include <memory>
 #include <mutex>
@@ -100,6 +102,31 @@ void apply_look_color(Mesh& mesh, const LookSpec& look) {
   if (!look.color) return;
   mesh.colors.clear();
   mesh.face_colors.clear();
+}
+
+void apply_color_map(Mesh& mesh, const LookSpec& look, UpAxis up) {
+  if (look.color_map == ColorMap::none) return;
+  if (look.color) throw std::invalid_argument("colour map: cannot be combined with a colour for the whole model");
+  // Display values (Mesh::colors), evenly spaced from the lowest height to the highest.
+  constexpr glm::vec3 kStops[] = {{0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 1.0f}, {0.0f, 1.0f, 0.0f}, {1.0f, 1.0f, 0.0f},
+                                  {1.0f, 0.0f, 0.0f}};
+  constexpr int kLast = static_cast<int>(std::size(kStops)) - 1;
+  const glm::vec3 axis = glm::transpose(upright_from_model(up))[1];  // the model's up, in its own coordinates
+  float low = std::numeric_limits<float>::infinity(), high = -low;
+  for (const glm::vec3& p : mesh.positions) {
+    const float h = glm::dot(p, axis);
+    if (!std::isfinite(h)) continue;
+    low = std::min(low, h);
+    high = std::max(high, h);
+  }
+  mesh.face_colors.clear();
+  mesh.colors.resize(mesh.positions.size());
+  for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+    const float h = glm::dot(mesh.positions[v], axis);
+    const float t = high > low && std::isfinite(h) ? (h - low) / (high - low) * kLast : 0.0f;
+    const int stop = std::clamp(static_cast<int>(t), 0, kLast - 1);
+    mesh.colors[v] = glm::vec4(glm::mix(kStops[stop], kStops[stop + 1], std::clamp(t - stop, 0.0f, 1.0f)), 1.0f);
+  }
 }
 
 glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback) {

@@ -30,6 +30,11 @@ std::span<const Named<PointShape>> point_shape_names() {
   return kNames;
 }
 
+std::span<const Named<ColorMap>> color_map_names() {
+  static constexpr Named<ColorMap> kNames[] = {{"none", ColorMap::none}, {"height", ColorMap::height}};
+  return kNames;
+}
+
 std::span<const Named<Projection>> projection_names() {
   static constexpr Named<Projection> kNames[] = {
       {"perspective", Projection::perspective}, {"orthographic", Projection::orthographic},

@@ -170,7 +170,7 @@ else
   bad "splat turntable GIF" "${msg:-$(cat "$scratch/splats.err")}"
 fi
 for bad_points in "--point-size 0" "--point-size 300" "--point-shape star" "--eye-dome-lighting -1" \
-  "--eye-dome-lighting 101"; do
+  "--eye-dome-lighting 101" "--color-map rainbow" "--color-map height --color 1,0,0"; do
   # shellcheck disable=SC2086  # the flags are meant to split
   if "$facet" render "$scratch/helix.xyz" $bad_points --output "$scratch/bad_points.png" 2>"$scratch/bad_points.log"; then
     bad "$bad_points" "accepted"

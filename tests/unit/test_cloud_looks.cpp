@@ -1,4 +1,5 @@
-// test_eye_dome_lighting.cpp - eye-dome lighting against its formula, and `facet render`'s default for bare clouds.
+// test_cloud_looks.cpp - the looks of clouds: eye-dome lighting against its formula and as bare clouds' default,
+// and the height colour map.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -141,6 +142,37 @@ TEST(EyeDomeLighting, ABareCloudGetsItByDefault) {
             render_cloud(dir / "coloured.xyz", dir / "e.png", 0.0f));
   EXPECT_NE(render_cloud(dir / "coloured.xyz", dir / "f.png", std::nullopt),
             render_cloud(dir / "coloured.xyz", dir / "g.png", 1.0f));
+}
+
+}  // namespace
+}  // namespace facet
+
+namespace facet {
+namespace {
+
+// The height colour map: the lowest vertex blue, the highest red, the stops between at quarter heights, along the
+// up axis asked for; it replaces the model's colours and refuses a colour for the whole model beside it.
+TEST(ColorMap, HeightRunsFromBlueAtTheBottomToRedAtTheTop) {
+  Mesh mesh;
+  for (int k = 0; k <= 4; ++k) mesh.positions.emplace_back(0.3f * k, 0.0f, -2.0f + k);  // z from -2 to 2
+  mesh.positions.emplace_back(0.0f, std::nanf(""), 0.0f);
+  mesh.points = {0, 1, 2, 3, 4, 5};
+  mesh.colors.assign(mesh.positions.size(), glm::vec4(0.5f));
+  LookSpec look;
+  look.color_map = ColorMap::height;
+  Mesh by_z = mesh;
+  apply_color_map(by_z, look, UpAxis::pos_z);
+  const glm::vec4 stops[] = {{0, 0, 1, 1}, {0, 1, 1, 1}, {0, 1, 0, 1}, {1, 1, 0, 1}, {1, 0, 0, 1}};
+  for (int k = 0; k <= 4; ++k) EXPECT_EQ(by_z.colors[k], stops[k]) << k;
+  EXPECT_EQ(by_z.colors[5], stops[0]);  // no height: the lowest colour
+  Mesh by_negative_x = mesh;
+  apply_color_map(by_negative_x, look, UpAxis::neg_x);  // x falls as z rises: the order turns over
+  for (int k = 0; k <= 4; ++k) EXPECT_EQ(by_negative_x.colors[k], stops[4 - k]) << k;
+  Mesh untouched = mesh;
+  apply_color_map(untouched, LookSpec{}, UpAxis::pos_z);
+  EXPECT_EQ(untouched.colors, mesh.colors);
+  look.color = glm::vec3(1.0f, 0.0f, 0.0f);
+  EXPECT_THROW(apply_color_map(by_z, look, UpAxis::pos_z), std::invalid_argument);
 }
 
 }  // namespace
