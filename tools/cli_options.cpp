@@ -217,10 +217,14 @@ void add_look_options(CLI::App& app, LookArgs& args) {
       "Face culling (default: none, but glTF's single-sided materials cull back faces)");
   app.add_flag("--no-depth-test", args.no_depth_test, "Draw in submission order without the depth test");
   app.add_flag("--painter", args.painter, "Painter's algorithm: sort triangles back to front, no depth test");
-  app.add_option("--point-size", args.point_size, "Points (a point cloud's): size in pixels")
+  app.add_option("--point-size", args.point_size,
+                 "Points (a point cloud's): size in pixels, at most " + std::to_string(static_cast<int>(kMaxPointSize)) +
+                     " (or in the model's units, --world-point-size)")
       ->capture_default_str()
-      ->check(number_in(1e-3, kMaxPointSize))
-      ->type_name("PX");
+      ->check(number_in(1e-6, 1e6))
+      ->type_name("S");
+  app.add_flag("--world-point-size", args.world_point_size,
+               "Points: --point-size in the model's units, so that nearer points look larger");
   add_enum_option<PointShape>(
       app, "--point-shape", point_shape_names(), [&args](PointShape s) { args.point_shape = s; },
       "Points: a square or a disc of --point-size pixels (default: square)");
@@ -343,6 +347,7 @@ LookSpec look_spec(const LookArgs& args) {
   look.ambient_occlusion = args.ambient_occlusion;
   look.point_size = args.point_size;
   look.point_shape = args.point_shape;
+  look.world_point_size = args.world_point_size;
   look.eye_dome_lighting = args.eye_dome_lighting;
   look.color_map = args.color_map;
   return look;

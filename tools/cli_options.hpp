@@ -106,6 +106,7 @@ struct LookArgs {
   bool ambient_occlusion = false;
   float point_size = LookSpec{}.point_size;
   PointShape point_shape = LookSpec{}.point_shape;
+  bool world_point_size = false;
   std::optional<float> eye_dome_lighting;
   ColorMap color_map = LookSpec{}.color_map;
   int threads = 0;

@@ -57,6 +57,7 @@ struct LookSpec {
   bool ambient_occlusion = false;  // the physically based look: screen-space ambient occlusion
   float point_size = 2.0f;         // points (a point cloud's): pixels, above 0 and at most kMaxPointSize
   PointShape point_shape = PointShape::square;
+  bool world_point_size = false;   // point_size in the model's units instead (SceneOptions::world_point_size)
   // Eye-dome lighting's strength, 0 to kMaxEyeDomeLighting (SceneOptions::eye_dome_lighting). Unset: on
   // (kDefaultEyeDomeLighting) for a cloud with neither normals nor colours, off otherwise.
   std::optional<float> eye_dome_lighting{};

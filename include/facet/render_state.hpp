@@ -14,6 +14,7 @@ enum class BlendMode { none, alpha };
 // How draw_points draws a point: a screen-aligned square of point_size pixels a side, or a disc of that diameter.
 enum class PointShape { square, disc };
 inline constexpr float kMaxPointSize = 256.0f;  // pixels; what the scene and job layers accept
+inline constexpr float kMinScaledPointSize = 1.0f / 64.0f;  // pixels: the least a point sized by depth takes
 
 enum class DrawOrder {
   as_given,       // index order, as OpenGL draws
@@ -34,6 +35,10 @@ struct RenderState {
   float line_width = 1.0f;    // pixels, for draw_lines
   float point_size = 1.0f;    // pixels, for draw_points: a square's side or a disc's diameter
   PointShape point_shape = PointShape::square;
+  // Above 0: each point's size is point_size_per_w / w pixels instead, w its clip-space w (a fixed size in world
+  // units under a perspective projection, where w is the distance along the view axis), clamped to
+  // kMinScaledPointSize..kMaxPointSize; point_size is then unused.
+  float point_size_per_w = 0.0f;
   // Shade each pixel once, after the depth test has seen all of a draw's triangles (tile-based deferred shading).
   // Applies when the shader cannot discard and colour is written without blending; the image is identical either
   // way, only overdraw gets cheaper. false shades every passing fragment as its triangle is drawn.

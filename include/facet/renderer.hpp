@@ -78,7 +78,7 @@ class Renderer {
   // volume covers the pixel centres within a screen-aligned square of state.point_size pixels a side centred on it
   // (PointShape::square), or within a disc of that diameter (PointShape::disc, drawn as a polygon whose edges stay
   // within a tenth of a pixel of the circle), at the point's depth; every pixel takes the vertex's varyings. Never
-  // culled; the painter's order does not apply.
+  // culled; the painter's order does not apply. With state.point_size_per_w, each point's size follows its depth.
   template <Shader S>
   void draw_points(Framebuffer& target, const S& shader, std::span<const typename S::Vertex> vertices,
                    std::span<const std::uint32_t> indices, const RenderState& state = {});

@@ -59,6 +59,10 @@ struct SceneOptions {
   // is drawn in its colours (vertex colours, or the material's), unlit.
   float point_size = 2.0f;
   PointShape point_shape = PointShape::square;
+  // point_size in world units rather than pixels: each point then covers as much of the image as a square (or
+  // disc) of that side would at its distance along the view axis (exact for perspective and orthographic
+  // projections), from 1/64 to kMaxPointSize pixels.
+  bool world_point_size = false;
   // Eye-dome lighting's strength (0: off): the finished image darkened where the depth steps away from the viewer,
   // the shading point-cloud viewers give clouds without normals or colours (Potree's and Cesium's formula, 8
   // neighbours; see ARCHITECTURE.md). It keeps the target's depth (Framebuffer::keep_depth), sample 0's with several

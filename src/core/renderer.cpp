@@ -374,7 +374,8 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
                              .line_width = state.line_width,
                              .samples = samples,
                              .point_size = state.point_size,
-                             .point_shape = state.point_shape};
+                             .point_shape = state.point_shape,
+                             .point_size_per_w = state.point_size_per_w};
       if (triangles) setup_triangles(input, chunk);
       else if (request.kind == PrimitiveKind::lines) setup_lines(input, chunk);
       else setup_points(input, chunk);

@@ -68,10 +68,13 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
   options.painter = look.painter;
   options.wireframe = look.wireframe;
   options.edges = look.edges;
-  if (!(look.point_size > 0.0f && look.point_size <= kMaxPointSize))
-    throw std::invalid_argument("point size: must be above 0 and at most " +
-                                std::to_string(static_cast<int>(kMaxPointSize)) + " pixels");
+  if (look.world_point_size ? !(look.point_size > 0.0f && std::isfinite(look.point_size))
+                            : !(look.point_size > 0.0f && look.point_size <= kMaxPointSize))
+    throw std::invalid_argument(look.world_point_size ? "point size: must be a finite size above 0"
+                                                      : "point size: must be above 0 and at most " +
+                                                            std::to_string(static_cast<int>(kMaxPointSize)) + " pixels");
   options.point_size = look.point_size;
+  options.world_point_size = look.world_point_size;
   if (look.eye_dome_lighting) options.eye_dome_lighting = *look.eye_dome_lighting;  // checked by Scene::render
   options.point_shape = look.point_shape;
   // Wireframe lines take the colour asked for, else white; on a light background white lines would vanish.

@@ -262,6 +262,10 @@ void draw_points(Renderer& renderer, Framebuffer& target, const FrameContext& fr
   RenderState state = surface_state(options, material_of(*instance.mesh, prepared.points), transforms.mirrored);
   state.point_size = options.point_size;
   state.point_shape = options.point_shape;
+  // A length s at clip w spans s * P[1][1] / w of ndc's height 2, i.e. s * P[1][1] * height / (2 w) pixels.
+  if (options.world_point_size)
+    state.point_size_per_w =
+        options.point_size * std::abs(frame.view->clip_from_view[1][1]) * static_cast<float>(target.height()) * 0.5f;
   const std::span<const MeshVertex> vertices(prepared.vertices);
   const GroupDraw draw{renderer, target, vertices, prepared.points.indices, state, true};
   const Shading shading = point_shading(options.shading, prepared.point_normals);

@@ -87,8 +87,9 @@ fi
 
 # SIGTERM midway: the jobs in flight finish, nothing partial or temporary is left, and a rerun completes the set
 # with the bytes of an uninterrupted run. A sanitized build renders each job ten times slower, so fewer jobs, of
-# one sample each (the sanitized unit tests cover multisampling), still leave the signal arriving midway.
-many=200 samples=4
+# one sample each (the sanitized unit tests cover multisampling), still leave the signal arriving midway; the
+# release build writes a job's PNG in about a millisecond, so it takes 400, which outlast a loaded poll.
+many=400 samples=4
 [ -n "${FACET_E2E_SANITIZED:-}" ] && many=40 samples=1
 python3 -c 'import json, sys
 for n in range(int(sys.argv[2])): print(json.dumps({"model": sys.argv[1], "samples": int(sys.argv[3])}))' \

@@ -1,6 +1,7 @@
 // test_points.cpp - Renderer::draw_points: the pixels a point covers, its depth against triangles, and determinism.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -77,6 +78,25 @@ TEST(Points, ASquareCoversThePixelCentresWithinIt) {
     }
   }
   EXPECT_GT(checked, 150);
+}
+
+// A point sized by depth (RenderState::point_size_per_w) covers exactly what a point of point_size_per_w / w pixels
+// does, w its clip w, for squares and discs, and clamps to kMinScaledPointSize..kMaxPointSize.
+TEST(Points, APointSizedByDepthCoversWhatItsSizeAtThatDepthWould) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> x(6.0f, kWidth - 6.0f), y(6.0f, kHeight - 6.0f), w(0.5f, 4.0f);
+  for (const PointShape shape : {PointShape::square, PointShape::disc})
+    for (int trial = 0; trial < 30; ++trial) {
+      const float cx = x(rng), cy = y(rng), depth = w(rng), per_w = trial == 0 ? 1e-4f : trial == 1 ? 1e4f : 6.0f;
+      const glm::vec4 clip = clip_at(cx, cy) * depth;  // the same window position, at clip w = depth
+      RenderState by_depth = point_state(1.0f, shape);
+      by_depth.point_size_per_w = per_w;
+      const float size = std::clamp(per_w / depth, kMinScaledPointSize, kMaxPointSize);
+      const Drawn scaled = draw_points({{clip, glm::vec3(1.0f)}}, by_depth);
+      const Drawn fixed = draw_points({{clip, glm::vec3(1.0f)}}, point_state(size, shape));
+      ASSERT_EQ(scaled.pixels, fixed.pixels) << "per_w " << per_w << " at w " << depth << ", shape "
+                                             << static_cast<int>(shape);
+    }
 }
 
 TEST(Points, ADiscCoversTheCentresWithinItsRadius) {

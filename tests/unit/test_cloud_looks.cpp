@@ -177,3 +177,46 @@ TEST(ColorMap, HeightRunsFromBlueAtTheBottomToRedAtTheTop) {
 
 }  // namespace
 }  // namespace facet
+
+namespace facet {
+namespace {
+
+// --world-point-size: a square of side s in the model's units at distance d along the view axis covers s P[1][1]
+// H / (2 d) pixels a side under a perspective projection, the same at every distance under an orthographic one.
+TEST(WorldPointSize, ASquareCoversWhatItsSizeSpansAtItsDistance) {
+  for (const bool perspective : {true, false}) {
+    SCOPED_TRACE(perspective ? "perspective" : "orthographic");
+    Mesh cloud;
+    cloud.positions = {{-1.0f, 0.0f, -1.0f}, {1.2f, 0.0f, 1.0f}};  // 4 and 2 from the eye at z = 3
+    cloud.points = {0, 1};
+    Scene scene;
+    scene.add(Instance{std::make_shared<Mesh>(cloud), glm::mat4(1.0f)});
+    View view;
+    view.view_from_world = glm::lookAt(glm::vec3(0, 0, 3), glm::vec3(0), glm::vec3(0, 1, 0));
+    view.clip_from_view = perspective ? glm::perspective(glm::radians(60.0f), 4.0f / 3.0f, 0.5f, 10.0f)
+                                      : glm::ortho(-2.0f, 2.0f, -1.5f, 1.5f, 0.5f, 10.0f);
+    SceneOptions options;
+    options.shading = Shading::unlit;
+    options.point_size = 0.3f;
+    options.world_point_size = true;
+    Framebuffer fb(160, 120);
+    Renderer renderer(1);
+    renderer.clear(fb, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), 1.0f);
+    scene.render(renderer, fb, view, options);
+    for (const float distance : {4.0f, 2.0f}) {
+      const float expected = 0.3f * view.clip_from_view[1][1] * 120.0f * 0.5f / (perspective ? distance : 1.0f);
+      // The square's width along its centre row, on its own half of the image.
+      const bool left = distance == 4.0f;
+      int widest = 0;
+      for (int y = 0; y < 120; ++y) {
+        int width = 0;
+        for (int x = left ? 0 : 80; x < (left ? 80 : 160); ++x) width += fb.pixel(x, y) != fb.pixel(0, 0);
+        widest = std::max(widest, width);
+      }
+      EXPECT_NEAR(widest, expected, 1.0f) << "distance " << distance;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace facet

@@ -476,22 +476,36 @@ int disc_sides(float diameter) {
   return static_cast<int>(std::clamp(sides, 8.0f, static_cast<float>(kMaxDiscSides)));
 }
 
-void setup_points(const SetupInput& in, SetupChunk& out) {
-  Binner binner(in, out);
-  const float half = std::max(in.point_size, 0.01f) * 0.5f;
-  // The disc's corners around its centre, counter-clockwise on screen (y down), the same for every point.
-  const int sides = in.point_shape == PointShape::disc ? disc_sides(in.point_size) : 4;
-  float corner_x[kMaxDiscSides], corner_y[kMaxDiscSides];
-  for (int k = 0; k < sides; ++k) {
-    if (in.point_shape == PointShape::disc) {
-      const float angle = 2.0f * std::numbers::pi_v<float> * static_cast<float>(k) / static_cast<float>(sides);
-      corner_x[k] = half * std::cos(angle);
-      corner_y[k] = -half * std::sin(angle);
-    } else {
-      corner_x[k] = k == 0 || k == 3 ? -half : half;
-      corner_y[k] = k < 2 ? -half : half;
+// The corners of a point's square or disc around its centre, counter-clockwise on screen (y down), for a size in
+// pixels; kept from one point to the next while the size stays the same (always, but for points sized by depth).
+struct PointCorners {
+  float size = -1.0f;
+  int sides = 0;
+  float x[kMaxDiscSides], y[kMaxDiscSides];
+
+  void set(float point_size, PointShape shape) {
+    if (point_size == size) return;
+    size = point_size;
+    const float half = point_size * 0.5f;
+    sides = shape == PointShape::disc ? disc_sides(point_size) : 4;
+    for (int k = 0; k < sides; ++k) {
+      if (shape == PointShape::disc) {
+        const float angle = 2.0f * std::numbers::pi_v<float> * static_cast<float>(k) / static_cast<float>(sides);
+        x[k] = half * std::cos(angle);
+        y[k] = -half * std::sin(angle);
+      } else {
+        x[k] = k == 0 || k == 3 ? -half : half;
+        y[k] = k < 2 ? -half : half;
+      }
     }
   }
+};
+
+void setup_points(const SetupInput& in, SetupChunk& out) {
+  Binner binner(in, out);
+  const bool by_depth = in.point_size_per_w > 0.0f;
+  PointCorners corners;
+  if (!by_depth) corners.set(std::max(in.point_size, 0.01f), in.point_shape);
   for (std::size_t p = in.first; p < in.first + in.count; ++p) {
     const std::uint32_t v = in.indices[p];
     if (v >= in.vertex_count) {
@@ -504,11 +518,12 @@ void setup_points(const SetupInput& in, SetupChunk& out) {
       ++out.culled;
       continue;
     }
+    if (by_depth) corners.set(std::clamp(in.point_size_per_w / clip.w, kMinScaledPointSize, kMaxPointSize), in.point_shape);
     const ScreenVertex centre = to_screen(clip, glm::vec3(1.0f, 0.0f, 0.0f), in.width, in.height);
     const auto corner = [&](int k) {
       ScreenVertex s = centre;
-      s.x += corner_x[k];
-      s.y += corner_y[k];
+      s.x += corners.x[k];
+      s.y += corners.y[k];
       return snap(s, in.width, in.height);
     };
     const auto slot = static_cast<std::uint32_t>(v - in.vertex_first);
@@ -520,7 +535,7 @@ void setup_points(const SetupInput& in, SetupChunk& out) {
     }
     const std::uint32_t vertex[3] = {slot, slot, slot};
     // A fan from corner 0: neighbouring triangles share their edges, so the fill rule covers each pixel once.
-    for (int k = 1; k + 1 < sides; ++k) {
+    for (int k = 1; k + 1 < corners.sides; ++k) {
       SnappedVertex fan[3] = {corner(0), corner(k), corner(k + 1)};
       binner.triangle(fan, vertex, primitive, 0, false);
     }

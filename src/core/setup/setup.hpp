@@ -37,6 +37,7 @@ struct SetupInput {
   int samples = 1;
   float point_size = 1.0f;  // pixels: a point's square side or disc diameter
   PointShape point_shape = PointShape::square;
+  float point_size_per_w = 0.0f;  // RenderState::point_size_per_w
   bool multisample() const { return samples > 1; }
 };
 
@@ -124,7 +125,8 @@ void setup_accepted_lanes(const SetupInput& input, std::size_t first, const Cull
 
 void setup_lines(const SetupInput& input, SetupChunk& out);
 // Each point inside the view volume becomes a screen-aligned square or a disc (a polygon) of input.point_size
-// pixels, as triangles whose corners all carry the point's vertex (see Renderer::draw_points).
+// pixels (or of input.point_size_per_w / w), as triangles whose corners all carry the point's vertex (see
+// Renderer::draw_points).
 void setup_points(const SetupInput& input, SetupChunk& out);
 // The number of sides of the polygon that stands for a disc of `diameter` pixels: enough that each side stays
 // within a tenth of a pixel of the circle, from 8 to kMaxDiscSides.
