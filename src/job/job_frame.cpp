@@ -65,9 +65,10 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
 DemoModel prepare_demo(const RenderJob& job) {
   check_resolution(job);
   DemoModel demo = make_demo(*job.demo);
-  if (job.look.color) {
+  if (job.look.color || job.look.color_map != ColorMap::none) {
     Mesh recoloured = *demo.mesh;
     apply_look_color(recoloured, job.look);
+    apply_color_map(recoloured, job.look, UpAxis::pos_y);  // demo models stand on +Y
     demo.mesh = std::make_shared<const Mesh>(std::move(recoloured));
   }
   return demo;

@@ -76,6 +76,9 @@ render cube_t2 cube --time 2 --resolution 200,150 &&
   verify cube_animates differ "$scratch/cube.png" "$scratch/cube_t2.png"
 render torus_t2 torus --time 2 --resolution 200,150 &&
   verify torus_animates differ "$scratch/torus.png" "$scratch/torus_t2.png"
+# A demo takes the height colour map as a model does.
+render torus_height torus --color-map height --resolution 200,150 &&
+  verify torus_color_map differ "$scratch/torus.png" "$scratch/torus_height.png"
 # The pentagon is upright at whole seconds: apex at the top (also checks the image is not upside down).
 verify pentagon_upright apex-up "$scratch/pentagon.png"
 
