@@ -55,7 +55,9 @@ glm::vec3 splat_color(const GaussianSplats& splats, std::size_t index, glm::vec3
 // min(0.99, opacity * G), skipping alphas under 1/255 and stopping before the transmittance falls under 1e-4; what
 // is left of the transmittance shows the target's colour. A pixel's centre is where the Gaussian is evaluated (the
 // paper's pixel coordinate i is facet's i + 0.5). Where the target keeps depth, a Gaussian whose centre lies behind
-// a pixel's surface is left out there, so splats and meshes composite by depth. Gaussians with a centre behind the
+// a pixel's surface is left out there, so splats and meshes composite by depth; and a pixel the Gaussians cover at
+// least half (accumulated alpha 0.5 or more) takes their blended view depth, sum(alpha T d) / sum(alpha T), as its
+// depth, so that depth and masks read from the target show the splats. Gaussians with a centre behind the
 // near plane, a degenerate footprint or a value that is not finite are skipped. Runs on the renderer's threads;
 // the image is the same at any thread count. Throws InputError (source "splats") when the arrays disagree in size
 // or the degree is outside 0..3; the values are the reader's to check (check_splats), not every frame's.

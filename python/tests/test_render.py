@@ -329,3 +329,22 @@ def test_a_cloud_coloured_by_height_runs_from_blue_below_to_red_above(tmp_path):
     assert bottom[2] > 200 and bottom[0] < 60  # blue at the bottom
     with pytest.raises(ValueError, match="color_map"):
         facet.render(path, 48, 64, color_map="rainbow")
+
+
+def test_a_gaussian_shows_in_the_depth_and_mask_where_it_covers_half_a_pixel(tmp_path):
+    names = ["x", "y", "z", "f_dc_0", "f_dc_1", "f_dc_2", "opacity", "scale_0", "scale_1", "scale_2",
+             "rot_0", "rot_1", "rot_2", "rot_3"]
+    values = np.array([0.0, 0.0, -2.0, 1.0, 1.0, 1.0, 2.0, *[np.log(0.05)] * 3, 1.0, 0.0, 0.0, 0.0], dtype="<f4")
+    path = tmp_path / "one.ply"
+    header = "ply\nformat binary_little_endian 1.0\nelement vertex 1\n"
+    path.write_bytes((header + "".join(f"property float {n}\n" for n in names) + "end_header\n").encode() +
+                     values.tobytes())
+    for samples in (1, 4):
+        scene = facet.Scene.from_file(str(path), bg_color=[0, 0, 0])
+        scene.add(facet.IntrinsicsCamera(100.0, 100.0, 60.0, 45.0, znear=0.1, zfar=10.0), pose=np.eye(4))
+        out = facet.OffscreenRenderer(120, 90, threads=1, samples=samples).render_buffers(scene, ["depth", "mask"])
+        assert out["depth"][45, 60] == pytest.approx(2.0, abs=1e-4)
+        assert out["mask"][45, 60] == 255 and out["mask"][45, 70] == 0 and out["depth"][45, 70] == 0
+        # Alpha sigmoid(2) exp(-r^2 / 2 sigma^2) >= 0.5 within r = 2.7 pixels (sigma 2.5): about 22 pixels.
+        assert 14 <= (out["mask"] == 255).sum() <= 30
+        assert ((out["mask"] == 255) == (out["depth"] > 0)).all()

@@ -51,6 +51,7 @@ struct Footprint {
   float least_power = 0.0f;  // ln(1 / (255 opacity)): below it, alpha is under 1/255
   glm::vec3 color{0.0f};
   float window_z = 0.0f;                     // 0..1, against the target's depth
+  float view_depth = 0.0f;                   // the centre's distance along the view axis
   int first_row = 0, last_row = -1;  // the rows whose alpha can reach 1/255, a pixel of margin added
 };
 
@@ -112,6 +113,7 @@ Projected project(const GaussianSplats& splats, std::size_t i, const glm::mat4& 
   g.y = (1.0f - ndc.y) * 0.5f * static_cast<float>(height);
   g.window_z = ndc.z * 0.5f + 0.5f;
   projected.depth = -q.z;
+  g.view_depth = -q.z;
 
   // Covariance: 3D in object space, R S S^T R^T, carried to view space and through the projection's Jacobian.
   const glm::mat3 rotation = glm::mat3_cast(splats.rotations[i]);
@@ -181,16 +183,20 @@ FACET_LANES_INLINE simd::FloatT<L> exp_nonpositive(simd::FloatT<L> x) {
 // per quantity, and each Gaussian visits only the rows it reaches; a row whose pixels are all done is skipped, and
 // the tile stops when every row is. Each pixel sees the same operations in the same order as one looping over its
 // own list.
-template <class L>
+// Where the target keeps depth (`depth` not null), a pixel the Gaussians cover at least half (1 - transmittance >= 0.5)
+// takes their blended view depth, sum(alpha T depth) / sum(alpha T), as window depth (`window_of`): the depth and
+// mask outputs then show the splats as they show surfaces.
+template <class L, class WindowOf>
 FACET_LANES_INLINE void blend_tile(const Footprint* footprints, const std::uint32_t* list, std::size_t count, int x0,
-                                   int y0, int width, int height, std::uint32_t* color, const float* depth) {
+                                   int y0, int width, int height, std::uint32_t* color, float* depth,
+                                   const WindowOf& window_of) {
   using namespace simd;
   FACET_LANE_TYPES(L);
   static_assert(kTile == kLanes);
   const int x1 = std::min(width, x0 + kTile), y1 = std::min(height, y0 + kTile);
   const int n = x1 - x0, rows = y1 - y0;
   const Float px = to_float(kLaneIndexT<L> + x0) + 0.5f;
-  Float transmittance[kTile], red[kTile], green[kTile], blue[kTile], surface[kTile];
+  Float transmittance[kTile], red[kTile], green[kTile], blue[kTile], surface[kTile], distance[kTile];
   Mask active[kTile];
   std::uint32_t alive = 0;  // a bit per row with a pixel still taking Gaussians
   for (int r = 0; r < rows; ++r) {
@@ -198,7 +204,7 @@ FACET_LANES_INLINE void blend_tile(const Footprint* footprints, const std::uint3
     for (int k = 0; k < kLanes; ++k)
       surface_row[k] = depth && k < n ? depth[static_cast<std::size_t>(y0 + r) * width + x0 + k] : 2.0f;
     surface[r] = load<Float>(surface_row);
-    transmittance[r] = splat<L>(1.0f), red[r] = green[r] = blue[r] = splat<L>(0.0f);
+    transmittance[r] = splat<L>(1.0f), red[r] = green[r] = blue[r] = distance[r] = splat<L>(0.0f);
     active[r] = kLaneIndexT<L> < n;
     alive |= 1u << r;
   }
@@ -227,18 +233,21 @@ FACET_LANES_INLINE void blend_tile(const Footprint* footprints, const std::uint3
       red[r] = select(takes, red[r] + g.color.r * weight, red[r]);
       green[r] = select(takes, green[r] + g.color.g * weight, green[r]);
       blue[r] = select(takes, blue[r] + g.color.b * weight, blue[r]);
+      if (depth) distance[r] = select(takes, distance[r] + g.view_depth * weight, distance[r]);
       transmittance[r] = select(takes, next, transmittance[r]);
       if (lane_bits(active[r]) == 0) alive &= ~(1u << r);
     }
   }
   for (int r = 0; r < rows; ++r) {
-    alignas(64) float cr[kLanes], cg[kLanes], cb[kLanes], t[kLanes];
-    store(cr, red[r]), store(cg, green[r]), store(cb, blue[r]), store(t, transmittance[r]);
-    std::uint32_t* row = color + static_cast<std::size_t>(y0 + r) * width + x0;
+    alignas(64) float cr[kLanes], cg[kLanes], cb[kLanes], t[kLanes], d[kLanes];
+    store(cr, red[r]), store(cg, green[r]), store(cb, blue[r]), store(t, transmittance[r]), store(d, distance[r]);
+    const std::size_t at = static_cast<std::size_t>(y0 + r) * width + x0;
+    std::uint32_t* row = color + at;
     for (int k = 0; k < n; ++k) {
       const glm::vec4 under = unpack_rgba8(row[k]);
       row[k] = pack_rgba8(glm::vec4(cr[k] + t[k] * under.r, cg[k] + t[k] * under.g, cb[k] + t[k] * under.b,
                                     (1.0f - t[k]) + t[k] * under.a));
+      if (depth && t[k] <= 0.5f) depth[at + k] = std::min(depth[at + k], window_of(d[k] / (1.0f - t[k])));
     }
   }
 }
@@ -386,14 +395,20 @@ void render_splats(Renderer& renderer, Framebuffer& target, const View& view, co
   });
 
   std::uint32_t* color = target.mutable_color().data();
-  const float* depth = target.keeps_depth() ? target.depth().data() : nullptr;
+  float* depth = target.keeps_depth() ? target.mutable_depth().data() : nullptr;
+  // A view depth's window depth on the view axis (x and y of the projections facet makes do not move it).
+  const glm::mat4& p = view.clip_from_view;
+  const auto window_of = [&p](float distance) {
+    const float z = -distance, w = p[2][3] * z + p[3][3];
+    return std::clamp((p[2][2] * z + p[3][2]) / w * 0.5f + 0.5f, 0.0f, 1.0f);
+  };
   renderer.parallel_for(tiles, [&](std::size_t tile) {
     if (first[tile] == first[tile + 1]) return;
     const int tx = static_cast<int>(tile % static_cast<std::size_t>(tiles_x));
     const int ty = static_cast<int>(tile / static_cast<std::size_t>(tiles_x));
     detail::at_cpu_level([&]<class L>(L) __attribute__((always_inline)) {
       blend_tile<L>(footprints.data(), entries.data() + first[tile], first[tile + 1] - first[tile], tx * kTile,
-                    ty * kTile, width, height, color, depth);
+                    ty * kTile, width, height, color, depth, window_of);
     });
   });
 }

@@ -235,5 +235,52 @@ TEST(Splats, ASplatBehindASurfaceIsHiddenAndOneInFrontShows) {
   EXPECT_GT(unpack_rgba8(mixed[at(21, 32)]).r, unpack_rgba8(plain[at(21, 32)]).r);
 }
 
+// Where the target keeps depth, a pixel the Gaussians cover at least half takes their blended view depth: one
+// Gaussian covers exactly the pixels whose paper alpha reaches 0.5, at its centre's depth; two overlapping at
+// different depths give the alpha-weighted mean; a surface in front keeps its own depth.
+TEST(Splats, APixelTheyCoverAtLeastHalfTakesTheirBlendedDepth) {
+  const View view = orthographic_view(1.0f);  // depth 5 at z = 0; window depth (d - 1) / 9
+  const auto window = [](float distance) { return (distance - 1.0f) / 9.0f; };
+  GaussianSplats one;
+  const glm::vec3 scale(0.1f, 0.06f, 0.05f);
+  add(one, glm::vec3(0.0f, 0.0f, 0.5f), scale, glm::quat(1, 0, 0, 0), 0.9f, glm::vec3(1.0f));
+  Renderer renderer(2);
+  Framebuffer target(kSize, kSize);
+  renderer.clear(target, kBackground, 1.0f);
+  renderer.finish(target);
+  render_splats(renderer, target, view, one);
+  const glm::mat2 screen(32.0f * 32.0f * scale.x * scale.x, 0.0f, 0.0f, 32.0f * 32.0f * scale.y * scale.y);
+  int covered = 0;
+  for (int y = 0; y < kSize; ++y)
+    for (int x = 0; x < kSize; ++x) {
+      const float alpha = paper_alpha(screen, glm::vec2(x + 0.5f, y + 0.5f) - glm::vec2(32.0f), 0.9f);
+      if (std::abs(alpha - 0.5f) < 0.01f) continue;  // rounding may put it either side
+      const float depth = target.depth_at(x, y);
+      if (alpha > 0.5f) {
+        EXPECT_NEAR(depth, window(4.5f), 1e-6f) << x << "," << y;
+        ++covered;
+      } else {
+        EXPECT_EQ(depth, 1.0f) << x << "," << y;
+      }
+    }
+  EXPECT_GT(covered, 15);  // about 24 pixels, the ellipse where alpha reaches 0.5, less those on its rim
+
+  // Two on one axis, 0.5 apart in depth: the nearer has weight alpha1, the farther alpha2 (1 - alpha1).
+  GaussianSplats two = one;
+  add(two, glm::vec3(0.0f, 0.0f, 0.0f), scale, glm::quat(1, 0, 0, 0), 0.9f, glm::vec3(1.0f));
+  renderer.clear(target, kBackground, 1.0f);
+  renderer.finish(target);
+  render_splats(renderer, target, view, two);
+  const float a = paper_alpha(screen, glm::vec2(0.5f, 0.5f), 0.9f), near_weight = a, far_weight = a * (1.0f - a);
+  EXPECT_NEAR(target.depth_at(32, 32), window((4.5f * near_weight + 5.0f * far_weight) / (near_weight + far_weight)),
+              1e-5f);
+
+  // A surface nearer than the Gaussian: the Gaussian is hidden there and the depth stays the surface's.
+  renderer.clear(target, kBackground, window(4.0f));
+  renderer.finish(target);
+  render_splats(renderer, target, view, one);
+  EXPECT_EQ(target.depth_at(32, 32), window(4.0f));
+}
+
 }  // namespace
 }  // namespace facet
