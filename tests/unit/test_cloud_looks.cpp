@@ -6,6 +6,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <glm/gtc/matrix_transform.hpp>
 #include <memory>
 #include <stdexcept>
@@ -109,18 +110,22 @@ TEST(EyeDomeLighting, AStrengthOutOfRangeIsRefused) {
   EXPECT_THROW(draw(out, std::nanf("")), std::invalid_argument);
 }
 
-std::vector<std::uint8_t> render_cloud(const std::filesystem::path& model, const std::filesystem::path& png,
-                                       std::optional<float> strength) {
+// The bytes of a render of `model` into `out` (a PNG, or a GIF for a turntable), with the strength given; `views`
+// asks for a contact sheet of those views, `turntable` for a turntable of that many frames.
+std::string render_cloud(const std::filesystem::path& model, const std::filesystem::path& out,
+                         std::optional<float> strength, std::vector<SheetView> views = {}, int turntable = 0) {
   RenderJob job;
   job.model = model;
   job.width = 64;
   job.height = 48;
-  job.outputs.color = png;
+  job.outputs.color = out;
   job.look.eye_dome_lighting = strength;
+  job.views = std::move(views);
+  job.turntable = turntable;
   Renderer renderer(2);
   render(job, renderer);
-  int width = 0, height = 0;
-  return read_png(png, width, height);
+  std::ifstream in(out, std::ios::binary);
+  return std::string(std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>());
 }
 
 // `facet render` lights a bare cloud (no normals, no colours) with eye-dome lighting unless told otherwise, and
@@ -142,6 +147,14 @@ TEST(EyeDomeLighting, ABareCloudGetsItByDefault) {
             render_cloud(dir / "coloured.xyz", dir / "e.png", 0.0f));
   EXPECT_NE(render_cloud(dir / "coloured.xyz", dir / "f.png", std::nullopt),
             render_cloud(dir / "coloured.xyz", dir / "g.png", 1.0f));
+  // Contact sheets and turntables take the same default.
+  const std::vector<SheetView> views = {SheetView::front, SheetView::top};
+  const auto sheet = render_cloud(dir / "bare.xyz", dir / "h.png", std::nullopt, views);
+  EXPECT_EQ(sheet, render_cloud(dir / "bare.xyz", dir / "i.png", kDefaultEyeDomeLighting, views));
+  EXPECT_NE(sheet, render_cloud(dir / "bare.xyz", dir / "j.png", 0.0f, views));
+  const auto turn = render_cloud(dir / "bare.xyz", dir / "k.gif", std::nullopt, {}, 3);
+  EXPECT_EQ(turn, render_cloud(dir / "bare.xyz", dir / "l.gif", kDefaultEyeDomeLighting, {}, 3));
+  EXPECT_NE(turn, render_cloud(dir / "bare.xyz", dir / "m.gif", 0.0f, {}, 3));
 }
 
 }  // namespace
