@@ -126,7 +126,9 @@ Showing::Frame Showing::frame(double seconds, float aspect, const Toggles& toggl
   view.clip_from_view = scale(glm::vec3(orbit.zoom, orbit.zoom, 1.0f)) * view.clip_from_view;
   const glm::vec4 clear = clear_color(look, background);
   const std::span<const Light> lights = demo_ ? std::span<const Light>() : std::span<const Light>(mesh_->lights);
-  return Frame{&scene_, view, scene_options(look, view.view_from_world, own, glm::vec3(clear), lights), clear};
+  SceneOptions options = scene_options(look, view.view_from_world, own, glm::vec3(clear), lights);
+  if (!demo_) options.eye_dome_lighting = eye_dome_lighting_for(look, *mesh_);
+  return Frame{&scene_, view, options, clear};
 }
 
 void draw_frame(Renderer& renderer, std::optional<Framebuffer>& target, int width, int height, Showing& showing,

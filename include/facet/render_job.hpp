@@ -169,6 +169,10 @@ void apply_look_color(Mesh& mesh, const LookSpec& look);
 // `up` (CameraSpec::up). Does nothing for ColorMap::none. Throws std::invalid_argument when the look also sets a
 // colour.
 void apply_color_map(Mesh& mesh, const LookSpec& look, UpAxis up);
+// The eye-dome lighting a look gives a model, as loaded: the look's strength, else kDefaultEyeDomeLighting for a
+// bare cloud (points, no triangles or splats, neither normals nor colours of its own), which would otherwise draw as
+// one flat silhouette, else 0. What `facet render`, sheets, turntables and the viewer use.
+float eye_dome_lighting_for(const LookSpec& look, const Mesh& as_loaded);
 
 // The clear colour of a look: its background (or `fallback`), alpha 0 when transparent.
 glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback);

@@ -38,11 +38,8 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
   Stopwatch clock;
   auto mesh = std::make_shared<Mesh>(load_model(job.model, job.load));
   if (!drawable(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
-  // A bare cloud (points with neither normals nor colours of its own) would draw as a flat silhouette: eye-dome
-  // lighting shows its shape, as point-cloud viewers do, coloured by a map or not.
-  const bool bare_cloud = mesh->indices.empty() && !mesh->points.empty() && !mesh->splats &&
-                          mesh->normals.size() != mesh->positions.size() &&
-                          mesh->colors.size() != mesh->positions.size();
+  // Taken from the model as loaded: a bare cloud keeps eye-dome lighting when a colour map colours it.
+  const float eye_dome = eye_dome_lighting_for(job.look, *mesh);
   apply_look_color(*mesh, job.look);
   apply_color_map(*mesh, job.look, job.camera.up);
   if (timings) timings->load = clock.lap();
@@ -55,7 +52,7 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
   frame.clear = clear_color(job.look, kDefaultBackground);
   frame.options = scene_options(job.look, frame.view.view_from_world, Shading::automatic, glm::vec3(frame.clear),
                                 mesh->lights, job.camera.up);
-  if (!job.look.eye_dome_lighting && bare_cloud) frame.options.eye_dome_lighting = kDefaultEyeDomeLighting;
+  frame.options.eye_dome_lighting = eye_dome;
   frame.scene.add(Instance{mesh, glm::mat4(1.0f)});
   if (timings) timings->prepare = clock.lap();
   return frame;

@@ -132,6 +132,14 @@ void apply_color_map(Mesh& mesh, const LookSpec& look, UpAxis up) {
   }
 }
 
+float eye_dome_lighting_for(const LookSpec& look, const Mesh& as_loaded) {
+  if (look.eye_dome_lighting) return *look.eye_dome_lighting;
+  const bool bare_cloud = as_loaded.indices.empty() && !as_loaded.points.empty() && !as_loaded.splats &&
+                          as_loaded.normals.size() != as_loaded.positions.size() &&
+                          as_loaded.colors.size() != as_loaded.positions.size();
+  return bare_cloud ? kDefaultEyeDomeLighting : 0.0f;
+}
+
 glm::vec4 clear_color(const LookSpec& look, glm::vec3 fallback) {
   return {look.background.value_or(fallback), look.transparent_background ? 0.0f : 1.0f};
 }

@@ -17,6 +17,7 @@
 #include "facet/render_job.hpp"
 #include "facet/renderer.hpp"
 #include "facet/scene.hpp"
+#include "facet/splats.hpp"
 #include "support/scratch_dir.hpp"
 
 namespace facet {
@@ -229,6 +230,32 @@ TEST(WorldPointSize, ASquareCoversWhatItsSizeSpansAtItsDistance) {
       EXPECT_NEAR(widest, expected, 1.0f) << "distance " << distance;
     }
   }
+}
+
+}  // namespace
+}  // namespace facet
+
+namespace facet {
+namespace {
+
+// The default strength: the look's when it sets one, else on for a bare cloud alone (not for normals, colours,
+// triangles or splats beside the points).
+TEST(EyeDomeLighting, OnByDefaultForABareCloudAlone) {
+  Mesh bare;
+  bare.positions = {{0, 0, 0}, {1, 0, 0}, {0, 1, 0}};
+  bare.points = {0, 1, 2};
+  LookSpec look;
+  EXPECT_EQ(eye_dome_lighting_for(look, bare), kDefaultEyeDomeLighting);
+  Mesh coloured = bare, with_normals = bare, with_triangles = bare, with_splats = bare;
+  coloured.colors.assign(3, glm::vec4(1.0f));
+  with_normals.normals.assign(3, glm::vec3(0, 0, 1));
+  with_triangles.indices = {0, 1, 2};
+  with_splats.splats = std::make_shared<GaussianSplats>();
+  for (const Mesh* mesh : {&coloured, &with_normals, &with_triangles, &with_splats})
+    EXPECT_EQ(eye_dome_lighting_for(look, *mesh), 0.0f);
+  look.eye_dome_lighting = 3.0f;
+  EXPECT_EQ(eye_dome_lighting_for(look, bare), 3.0f);
+  EXPECT_EQ(eye_dome_lighting_for(look, coloured), 3.0f);
 }
 
 }  // namespace
