@@ -99,10 +99,7 @@ void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* t
     CameraSpec camera = job.camera;
     camera.azimuth_degrees += 360.0f * static_cast<float>(k) / static_cast<float>(job.turntable);
     const View view = make_view(camera, framing, aspect);
-    SceneOptions options = scene_options(job.look, view.view_from_world, Shading::automatic, glm::vec3(frame.clear),
-                                         frame.scene.instances()[0].mesh->lights, job.camera.up);
-    options.eye_dome_lighting = frame.options.eye_dome_lighting;  // prepare_job's, a bare cloud's default included
-    return AnimationFrame{&frame.scene, view, options};
+    return AnimationFrame{&frame.scene, view, options_for_view(job, frame, view)};
   };
   // A whole turn in about 3 s, at no more than 50 frames a second (GIF delays are whole centiseconds).
   draw_frames(job, job.turntable, std::max(0.02, 3.0 / job.turntable), frame.clear, turned, renderer, timings);

@@ -58,6 +58,13 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
   return frame;
 }
 
+SceneOptions options_for_view(const RenderJob& job, const JobFrame& frame, const View& view) {
+  SceneOptions options = scene_options(job.look, view.view_from_world, Shading::automatic, glm::vec3(frame.clear),
+                                       frame.scene.instances()[0].mesh->lights, job.camera.up);
+  options.eye_dome_lighting = frame.options.eye_dome_lighting;
+  return options;
+}
+
 // A contact sheet or turntable is a colour output alone, seen through cameras of its own.
 DemoModel prepare_demo(const RenderJob& job) {
   check_resolution(job);

@@ -34,6 +34,10 @@ struct JobFrame {
 
 // Loads job.model and frames it as job.camera says; times the load and the preparation.
 JobFrame prepare_job(const RenderJob& job, RenderTimings* timings = nullptr);
+// frame.options for another view of the same model (a sheet's cell, a turntable's frame): the look's lights follow
+// the view (the headlight), and what prepare_job took from the model as loaded (a bare cloud's eye-dome lighting)
+// stays.
+SceneOptions options_for_view(const RenderJob& job, const JobFrame& frame, const View& view);
 
 // The demo a job names (job.demo), with the look's colour over its own.
 DemoModel prepare_demo(const RenderJob& job);

@@ -218,9 +218,7 @@ void render_sheet(const RenderJob& job, Renderer& renderer, RenderTimings* timin
   for (int k = 0; k < n; ++k) {
     const SheetView view = job.views[static_cast<std::size_t>(k)];
     const View v = make_view(sheet_camera(view, job.camera, framing, aspect), framing, aspect);
-    SceneOptions options = scene_options(job.look, v.view_from_world, Shading::automatic, glm::vec3(frame.clear),
-                                         frame.scene.instances()[0].mesh->lights, job.camera.up);
-    options.eye_dome_lighting = frame.options.eye_dome_lighting;  // prepare_job's, a bare cloud's default included
+    const SceneOptions options = detail::options_for_view(job, frame, v);
     renderer.clear(cell, frame.clear, 1.0f);
     frame.scene.render(renderer, cell, v, options);
     renderer.finish(cell);

@@ -60,10 +60,9 @@ std::uint32_t morton_code(const glm::vec3& p, const Bounds& box) {
 // the recorded frame then touches few tiles, where a cloud stored in random order touches all of them with every
 // part (a 1M-point cloud: 87 against 39 ms a frame at 1920x1080). The file's order is no order a cloud means to be
 // drawn in; only which of two points at exactly one depth shows at a pixel can change with it. A stable radix sort of
-// the codes, three passes of 10 bits; points naming no vertex go last, in their order.
-std::vector<std::uint32_t> points_in_space_order(const Mesh& mesh) {
+// the codes, three passes of 10 bits; points naming no vertex go last, in their order. `box` bounds the positions.
+std::vector<std::uint32_t> points_in_space_order(const Mesh& mesh, const Bounds& box) {
   const std::size_t count = mesh.points.size(), n = mesh.positions.size();
-  const Bounds box = bounds(mesh);
   std::vector<std::uint32_t> key(count), order(count), sorted(count);
   for (std::size_t i = 0; i < count; ++i) {
     const std::uint32_t v = mesh.points[i];
@@ -94,6 +93,7 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   PreparedMesh out;
   // Nothing of a mesh without triangles or points goes through the pipeline (a splat scene's centres).
   if (mesh.indices.empty() && mesh.points.empty()) return out;
+  const Bounds box = bounds(mesh);
   // A model without normals gets crease normals, computed on a copy because the caller's mesh is shared and const.
   // Splitting at creases appends vertices and re-points indices, so the vertices and triangles come from the copy;
   // the original vertices keep their indices and positions, so edges and bounds still come from the mesh itself
@@ -122,7 +122,7 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   if (mesh.indices.empty()) {
     std::vector<std::uint32_t> place(n, kNoVertex);
     out.points.indices.reserve(mesh.points.size());
-    for (const std::uint32_t p : points_in_space_order(mesh)) {
+    for (const std::uint32_t p : points_in_space_order(mesh, box)) {
       const std::uint32_t v = mesh.points[p];
       if (v >= n) {
         out.points.indices.push_back(kNoVertex);
@@ -254,7 +254,6 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
     out.textures[static_cast<std::size_t>(g.material)] = texture && !texture->empty() ? texture : nullptr;
   }
 
-  const Bounds box = bounds(mesh);
   out.center = box.center();
   out.radius = box.radius();
   return out;

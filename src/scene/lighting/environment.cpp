@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "facet/shaders/brdf.hpp"
+#include "core/in_parts.hpp"
 #include "scene/lighting/sampling.hpp"
 
 namespace facet {
@@ -122,21 +123,15 @@ std::vector<LobeSample> lobe_samples(float alpha, int count, int source_size, in
   return samples;
 }
 
-// f(map, first row, end row) over a map's rows on up to 8 threads; a texel's value does not depend on the split.
-// The browser build has no threads.
+// f over a map's rows in up to 8 parts on threads of their own; a texel's value does not depend on the split.
 template <class F>
 void fill_in_parallel(OctahedralMap& map, F f) {
-#if defined(__EMSCRIPTEN__)
-  map.fill(f);
-#else
-  const int threads = std::clamp(static_cast<int>(std::thread::hardware_concurrency()), 1, 8);
-  const int rows = map.size(), per_thread = (rows + threads - 1) / threads;
-  std::vector<std::thread> workers;
-  for (int t = 1; t < threads && t * per_thread < rows; ++t)
-    workers.emplace_back([&, t] { map.fill_rows(t * per_thread, std::min(rows, (t + 1) * per_thread), f); });
-  map.fill_rows(0, std::min(rows, per_thread), f);
-  for (std::thread& w : workers) w.join();
-#endif
+  const int rows = map.size();
+  const int parts = std::clamp(std::min(static_cast<int>(std::thread::hardware_concurrency()), rows), 1, 8);
+  detail::in_parts(parts, [&](int p) {
+    map.fill_rows(static_cast<int>(detail::part_begin(static_cast<std::size_t>(rows), p, parts)),
+                  static_cast<int>(detail::part_begin(static_cast<std::size_t>(rows), p + 1, parts)), f);
+  });
 }
 
 // A unit-length frame around n: columns t, b, n.

@@ -2,7 +2,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <exception>
 #include <limits>
 #include <span>
 #include <stdexcept>
@@ -13,6 +12,7 @@
 #include "facet/detail/default_init.hpp"
 #include "facet/framebuffer.hpp"
 #include "facet/mesh.hpp"
+#include "core/in_parts.hpp"
 #include "scene/mesh/crease_normals.hpp"
 #include "scene/mesh/position_key.hpp"
 
@@ -20,6 +20,8 @@ namespace facet {
 
 namespace {
 
+using detail::in_parts;
+using detail::part_begin;
 using detail::PositionKey;
 using NormalBits = std::array<std::uint32_t, 3>;
 
@@ -40,38 +42,6 @@ int parts_for(std::size_t triangles) {
   const std::size_t cores = std::max(1u, std::thread::hardware_concurrency());
   return static_cast<int>(std::clamp<std::size_t>(triangles / 65536, 1, std::min<std::size_t>(cores, 4)));
 #endif
-}
-
-// Calls part(p) for every p in [0, parts), each on its own thread (the caller's the first), and rethrows the first
-// part's exception once all have returned. The browser build calls them in turn.
-template <class Part>
-void in_parts(int parts, Part&& part) {
-  if (parts <= 1) return part(0);
-  std::vector<std::exception_ptr> errors(static_cast<std::size_t>(parts));
-  const auto guarded = [&](int p) {
-    try {
-      part(p);
-    } catch (...) {
-      errors[static_cast<std::size_t>(p)] = std::current_exception();
-    }
-  };
-#if defined(__EMSCRIPTEN__)
-  for (int p = 0; p < parts; ++p) guarded(p);
-#else
-  {
-    std::vector<std::jthread> helpers;
-    helpers.reserve(static_cast<std::size_t>(parts - 1));
-    for (int p = 1; p < parts; ++p) helpers.emplace_back(guarded, p);
-    guarded(0);
-  }
-#endif
-  for (const std::exception_ptr& error : errors)
-    if (error) std::rethrow_exception(error);
-}
-
-// Part p of `parts` equal ranges of [0, count).
-std::size_t part_begin(std::size_t count, int p, int parts) {
-  return count * static_cast<std::size_t>(p) / static_cast<std::size_t>(parts);
 }
 
 NormalBits bits_of(const glm::vec3& v) {
