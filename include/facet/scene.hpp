@@ -103,6 +103,7 @@ LightBlock make_light_block(const SceneOptions& options);
 struct Instance {
   std::shared_ptr<const Mesh> mesh;
   glm::mat4 world_from_object{1.0f};
+  bool wireframe = false;  // drawn as its edges, as SceneOptions::wireframe draws every instance
 };
 
 // Which surface each pixel shows (Scene::render_ids), top row first; kNoSurface in both where nothing is drawn.

@@ -7,11 +7,18 @@
     buffers = facet.render("model.glb", width=640, height=480, buffers=["color", "depth", "normal", "ids"])
 """
 from ._facet import LoadError
-from .light import DirectionalLight, PointLight, SpotLight
-from .material import MetallicRoughnessMaterial
-from .renderer import BUFFERS, OffscreenRenderer, RenderFlags, render
-from .scene import IntrinsicsCamera, Mesh, Node, OrthographicCamera, PerspectiveCamera, Scene
+from .camera import Camera, IntrinsicsCamera, OrthographicCamera, PerspectiveCamera
+from .constants import GLTF, RenderFlags
+from .light import DirectionalLight, Light, PointLight, SpotLight
+from .material import Material, MetallicRoughnessMaterial
+from .mesh import Mesh
+from .node import Node
+from .primitive import Primitive
+from .renderer import BUFFERS, OffscreenRenderer, render
+from .scene import Scene
+from .texture import Sampler, Texture
 
-__all__ = ["BUFFERS", "DirectionalLight", "IntrinsicsCamera", "LoadError", "Mesh", "MetallicRoughnessMaterial",
-           "Node", "OffscreenRenderer", "OrthographicCamera", "PerspectiveCamera", "PointLight", "RenderFlags",
-           "Scene", "SpotLight", "render"]
+__all__ = ["BUFFERS", "Camera", "DirectionalLight", "GLTF", "IntrinsicsCamera", "Light", "LoadError", "Material",
+           "Mesh", "MetallicRoughnessMaterial", "Node", "OffscreenRenderer", "OrthographicCamera",
+           "PerspectiveCamera", "PointLight", "Primitive", "RenderFlags", "Sampler", "Scene", "SpotLight", "Texture",
+           "render"]

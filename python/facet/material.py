@@ -3,6 +3,8 @@ import numbers
 
 import numpy as np
 
+from .texture import Texture, image_array
+
 ALPHA_MODES = ("OPAQUE", "MASK", "BLEND")
 
 
@@ -44,26 +46,65 @@ def _flag(value, name):
 
 
 def _image(texture, name, data_channels=False):
-    """A texture as an image array H x W (x C) for the compiled module, which checks its size and values: numpy
-    arrays and anything numpy reads as one (PIL images), or an object holding one as `source` (pyrender.Texture).
+    """A texture as an image array H x W (x C) for the compiled module, which checks its size and values.
     data_channels: two channels are green and blue (a metallic-roughness image), given a zero red channel."""
-    if texture is None:
+    if texture is None or texture.source is None:
         return None
-    image = np.asarray(getattr(texture, "source", texture))
-    if image.dtype.kind not in "fiu" or image.ndim not in (2, 3):
-        raise ValueError(f"{name}: expected an image H x W, H x W x 3 or H x W x 4, got {type(texture).__name__} "
-                         f"of shape {image.shape}")
-    if image.dtype.kind in "iu" and image.dtype != np.uint8:
-        # pyrender casts integer images to bytes; out-of-range values would wrap around there, so refuse them here.
-        if image.size and (image.min() < 0 or image.max() > 255):
-            raise ValueError(f"{name}: integer values must lie in 0..255")
-        image = image.astype(np.uint8)
+    image = texture.source
     if data_channels and image.ndim == 3 and image.shape[2] == 2:
         image = np.concatenate([np.zeros_like(image[..., :1]), image], axis=2)
     return image
 
 
-class MetallicRoughnessMaterial:
+_TEXTURES = ("normalTexture", "occlusionTexture", "emissiveTexture", "baseColorTexture", "metallicRoughnessTexture")
+
+
+class Material:
+    """What every material has, as pyrender's Material: a name, textures for normals, occlusion and emission, the
+    emissive factor, the alpha mode and cutoff, and the sidedness. Values are checked as they are set; a texture
+    may be given as an image (numpy array or PIL image) and is kept as a facet.Texture."""
+
+    def __setattr__(self, key, value):
+        if key in _TEXTURES:
+            if value is not None and not isinstance(value, Texture):
+                value = Texture(source=image_array(value, key))
+        elif key in ("doubleSided", "smooth", "wireframe"):
+            value = _flag(value, key)
+        elif key == "alphaMode":
+            value = "OPAQUE" if value is None else value
+            if value not in ALPHA_MODES:
+                raise ValueError(f"alphaMode: expected one of {', '.join(ALPHA_MODES)}, got {value!r}")
+        elif key == "alphaCutoff":
+            value = _unit(value, 0.5, key)
+        elif key in ("metallicFactor", "roughnessFactor"):
+            value = _unit(value, 1.0, key)
+        elif key == "emissiveFactor":
+            value = _factor_vector(np.zeros(3) if value is None else value, 3, key, np.inf)
+        elif key == "baseColorFactor":
+            value = _factor_vector(np.ones(4) if value is None else value, 4, key, 1.0)
+        elif key == "name":
+            value = None if value is None else str(value)
+        object.__setattr__(self, key, value)
+        # Meshes compare it with the one they last drew with, to see that the material changed.
+        object.__setattr__(self, "_version", getattr(self, "_version", 0) + 1)
+
+    @property
+    def is_transparent(self):
+        """Whether it is drawn blended: pyrender's rule (alpha below 1 in BLEND mode, below the cutoff in MASK)."""
+        if self.alphaMode == "OPAQUE":
+            return False
+        cutoff = 1.0 if self.alphaMode == "BLEND" else self.alphaCutoff
+        base = getattr(self, "baseColorFactor", np.ones(4))
+        texture = getattr(self, "baseColorTexture", None)
+        return bool(base[3] < cutoff or (texture is not None and texture.is_transparent(cutoff)))
+
+    @property
+    def textures(self):
+        """The set of the Textures it holds."""
+        return {t for t in (getattr(self, k, None) for k in _TEXTURES) if t is not None}
+
+
+class MetallicRoughnessMaterial(Material):
     """glTF's metallic-roughness material, as pyrender spells it; give it to Mesh(..., material=) or
     Mesh.from_trimesh(tm, material=).
 
@@ -76,7 +117,7 @@ class MetallicRoughnessMaterial:
     occlusionTexture reads red; normalTexture is tangent space. smooth is kept but changes nothing, as in pyrender;
     wireframe is not drawn per material (RenderFlags.ALL_WIREFRAME draws every mesh as lines).
 
-    A mesh reads its material when it is made: change a material before making meshes with it.
+    Changes to a material show in the next frame of every mesh that has it.
     """
 
     def __init__(self, name=None, normalTexture=None, occlusionTexture=None, emissiveTexture=None,
@@ -85,31 +126,24 @@ class MetallicRoughnessMaterial:
                  roughnessFactor=1.0, metallicRoughnessTexture=None):
         self.name = name
         self.normalTexture, self.occlusionTexture = normalTexture, occlusionTexture
-        self.emissiveTexture = emissiveTexture
-        self.emissiveFactor = np.zeros(3) if emissiveFactor is None else emissiveFactor
-        self.alphaMode = "OPAQUE" if alphaMode is None else alphaMode
-        self.alphaCutoff = 0.5 if alphaCutoff is None else alphaCutoff
+        self.emissiveTexture, self.emissiveFactor = emissiveTexture, emissiveFactor
+        self.alphaMode, self.alphaCutoff = alphaMode, alphaCutoff
         self.doubleSided, self.smooth, self.wireframe = doubleSided, smooth, wireframe
-        self.baseColorFactor = np.ones(4) if baseColorFactor is None else baseColorFactor
-        self.baseColorTexture, self.metallicRoughnessTexture = baseColorTexture, metallicRoughnessTexture
+        self.baseColorFactor, self.baseColorTexture = baseColorFactor, baseColorTexture
         self.metallicFactor, self.roughnessFactor = metallicFactor, roughnessFactor
-        self._core_dict()  # bad values raise here, where they are given
+        self.metallicRoughnessTexture = metallicRoughnessTexture
 
     def _core_dict(self):
-        """The material as the compiled module takes it (python/src/materials.hpp), every value checked."""
-        if self.alphaMode not in ALPHA_MODES:
-            raise ValueError(f"alphaMode: expected one of {', '.join(ALPHA_MODES)}, got {self.alphaMode!r}")
-        _flag(self.smooth, "smooth")
-        _flag(self.wireframe, "wireframe")
+        """The material as the compiled module takes it (python/src/materials.hpp); every value was checked when set."""
         return {
-            "name": "" if self.name is None else str(self.name),
-            "base_color": _factor_vector(self.baseColorFactor, 4, "baseColorFactor", 1.0),
-            "metallic": _unit(self.metallicFactor, 1.0, "metallicFactor"),
-            "roughness": _unit(self.roughnessFactor, 1.0, "roughnessFactor"),
-            "emissive": _factor_vector(self.emissiveFactor, 3, "emissiveFactor", np.inf),
+            "name": "" if self.name is None else self.name,
+            "base_color": self.baseColorFactor,
+            "metallic": self.metallicFactor,
+            "roughness": self.roughnessFactor,
+            "emissive": self.emissiveFactor,
             "alpha_mode": self.alphaMode,
-            "alpha_cutoff": _unit(self.alphaCutoff, 0.5, "alphaCutoff"),
-            "double_sided": _flag(self.doubleSided, "doubleSided"),
+            "alpha_cutoff": self.alphaCutoff,
+            "double_sided": self.doubleSided,
             "base_color_texture": _image(self.baseColorTexture, "baseColorTexture"),
             "metallic_roughness_texture": _image(self.metallicRoughnessTexture, "metallicRoughnessTexture", True),
             "emissive_texture": _image(self.emissiveTexture, "emissiveTexture"),
@@ -118,4 +152,13 @@ class MetallicRoughnessMaterial:
         }
 
 
-__all__ = ["MetallicRoughnessMaterial"]
+def _material_description(material):
+    """A mesh's material as the compiled module takes it; warns where facet draws it differently from pyrender."""
+    if material is None:
+        return None
+    if not isinstance(material, MetallicRoughnessMaterial):
+        raise ValueError(f"material: expected a facet.MetallicRoughnessMaterial, got {type(material).__name__}")
+    return material._core_dict()
+
+
+__all__ = ["Material", "MetallicRoughnessMaterial"]

@@ -1,6 +1,7 @@
 // meshes.cpp - the Python module's meshes (from arrays or files) and scenes of placed meshes.
 #include "meshes.hpp"
 
+#include <algorithm>
 #include <string>
 #include <utility>
 
@@ -88,42 +89,33 @@ py::array MeshCore::bounds() const {
   return py::array_t<double>({2, 3}, std::vector<double>{b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z}.data());
 }
 
-std::size_t SceneCore::add(const MeshCore& mesh, py::handle pose, std::uint32_t node_id) {
-  const glm::mat4 world = matrix4(pose, "pose");
-  std::unique_lock lock(mutex);
-  scene.add(Instance{mesh.mesh, world});
-  node_ids.push_back(node_id);
-  return scene.size() - 1;
-}
-
-void SceneCore::set_pose(std::size_t index, py::handle pose) {
-  const glm::mat4 world = matrix4(pose, "pose");
-  std::unique_lock lock(mutex);
-  if (index >= scene.size()) throw py::index_error("no mesh node at " + std::to_string(index));
-  scene.set_transform(index, world);
-}
-
-void SceneCore::remove(std::size_t index) {
-  std::unique_lock lock(mutex);
-  if (index >= scene.size()) throw py::index_error("no mesh node at " + std::to_string(index));
-  scene.remove(index);
-  node_ids.erase(node_ids.begin() + static_cast<std::ptrdiff_t>(index));
-}
-
-Bounds SceneCore::world_bounds() const {
-  Bounds out;
-  for (const Instance& instance : scene.instances()) {
-    const Bounds b = facet::bounds(*instance.mesh);
-    if (b.empty()) continue;
-    for (int corner = 0; corner < 8; ++corner) {
-      const glm::vec3 p((corner & 1) ? b.max.x : b.min.x, (corner & 2) ? b.max.y : b.min.y,
-                        (corner & 4) ? b.max.z : b.min.z);
-      const glm::vec3 w = glm::vec3(instance.world_from_object * glm::vec4(p, 1.0f));
-      out.min = glm::min(out.min, w);
-      out.max = glm::max(out.max, w);
-    }
+void SceneCore::sync(py::list instances) {
+  std::vector<Instance> wanted;
+  std::vector<std::uint32_t> ids;
+  wanted.reserve(instances.size());
+  ids.reserve(instances.size());
+  for (const py::handle item : instances) {
+    const auto t = item.cast<py::tuple>();
+    if (t.size() != 4) value_error("scene: expected (mesh, pose, node id, wireframe) for each instance");
+    wanted.push_back(Instance{t[0].cast<const MeshCore&>().mesh, matrix4(t[1], "pose"), t[3].cast<bool>()});
+    ids.push_back(t[2].cast<std::uint32_t>());
   }
-  return out;
+  std::unique_lock lock(mutex);
+  const std::vector<Instance>& have = scene.instances();
+  const bool same_meshes = have.size() == wanted.size() &&
+                           std::equal(have.begin(), have.end(), wanted.begin(), [](const Instance& a, const Instance& b) {
+                             return a.mesh == b.mesh && a.wireframe == b.wireframe;
+                           });
+  if (same_meshes) {
+    for (std::size_t i = 0; i < wanted.size(); ++i)
+      if (have[i].world_from_object != wanted[i].world_from_object) scene.set_transform(i, wanted[i].world_from_object);
+  } else {
+    // The new instances go in before the old ones leave, so that a mesh in both keeps its prepared data.
+    const std::size_t old = have.size();
+    for (Instance& instance : wanted) scene.add(std::move(instance));
+    for (std::size_t i = old; i-- > 0;) scene.remove(i);
+  }
+  node_ids = std::move(ids);
 }
 
 MeshCore load_mesh_file(const std::string& path, const LoadOptions& options) {

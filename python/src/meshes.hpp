@@ -35,10 +35,10 @@ struct SceneCore {
   std::vector<std::uint32_t> node_ids;
   mutable std::shared_mutex mutex;
 
-  std::size_t add(const MeshCore& mesh, py::handle pose, std::uint32_t node_id);
-  void set_pose(std::size_t index, py::handle pose);
-  void remove(std::size_t index);
-  Bounds world_bounds() const;  // over every placed mesh's transformed box; empty when there is none
+  // Makes the scene's instances those of `instances`, a list of (MeshCore, 4x4 world pose, node id, wireframe),
+  // in order. Meshes placed before and after keep their prepared data (Scene::add prepares a mesh it has not
+  // seen), so a frame after a change of poses or nodes prepares only the meshes that are new.
+  void sync(py::list instances);
 };
 
 // The LoadOptions of the Python keywords allow_external_files, max_triangles, max_points and max_texture_size, in the

@@ -267,16 +267,7 @@ PYBIND11_MODULE(_facet, m) {
 
   py::class_<SceneCore>(m, "SceneCore")
       .def(py::init<>())
-      .def("add", &SceneCore::add, py::arg("mesh"), py::arg("pose"), py::arg("node_id"))
-      .def("set_pose", &SceneCore::set_pose)
-      .def("remove", &SceneCore::remove)
-      .def("bounds", [](const SceneCore& s) -> py::object {
-        std::shared_lock lock(s.mutex);
-        const facet::Bounds b = s.world_bounds();
-        if (b.empty()) return py::none();
-        return py::array_t<double>({2, 3},
-                                   std::vector<double>{b.min.x, b.min.y, b.min.z, b.max.x, b.max.y, b.max.z}.data());
-      });
+      .def("sync", &SceneCore::sync, py::arg("instances"));
 
   py::class_<RendererCore>(m, "RendererCore")
       .def(py::init<int, int, int, int>(), py::arg("width"), py::arg("height"), py::arg("threads"), py::arg("samples"))

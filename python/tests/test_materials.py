@@ -15,7 +15,7 @@ SQUARE_NORMALS = np.tile([0.0, 0.0, 1.0], (4, 1))
 SQUARE_UVS = np.array([[0, 0], [1, 0], [1, 1], [0, 1]], dtype=float)
 
 
-def square_scene(mesh, eye=(0, 0, 3), ambient=(0, 0, 0), light=None, bg_color=(0, 0, 0, 1)):
+def square_scene(mesh, eye=(0, 0, 3), ambient=(0.0, 0.0, 0.0), light=None, bg_color=(0.0, 0.0, 0.0, 1.0)):
     scene = facet.Scene(ambient_light=ambient, bg_color=bg_color)
     scene.add(mesh)
     scene.add(facet.PerspectiveCamera(yfov=0.8), pose=look_at(eye))
@@ -33,7 +33,7 @@ def test_a_linear_base_colour_is_displayed_srgb_encoded():
     perpendicular light of intensity 1 and no ambient light."""
     material = facet.MetallicRoughnessMaterial(baseColorFactor=[0.604, 0.604, 0.604, 1.0], metallicFactor=0.0,
                                                roughnessFactor=1.0)
-    mesh = facet.Mesh(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, material=material)
+    mesh = facet.Mesh.from_arrays(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, material=material)
     color, depth = draw(square_scene(mesh, light=facet.DirectionalLight(intensity=1.0)), facet.RenderFlags.FLAT)
     assert (depth > 0).sum() > 100
     assert np.all(np.abs(color[depth > 0].astype(int) - 204) <= 1)
@@ -78,7 +78,7 @@ def test_a_material_draws_as_the_same_material_read_from_gltf(tmp_path, base, me
     material = facet.MetallicRoughnessMaterial(baseColorFactor=base, metallicFactor=metallic,
                                                roughnessFactor=roughness, emissiveFactor=emissive)
     made = facet.Scene(ambient_light=(0.1, 0.1, 0.1))
-    made.add(facet.Mesh(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, material=material))
+    made.add(facet.Mesh.from_arrays(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, material=material))
     images = []
     for scene in (from_file, made):
         scene.add(facet.PerspectiveCamera(yfov=0.8), pose=look_at((0.4, 0.3, 3.0)))
@@ -98,7 +98,7 @@ def test_a_metal_and_a_rough_dielectric_look_different():
         material = facet.MetallicRoughnessMaterial(baseColorFactor=[0.9, 0.6, 0.3, 1.0], metallicFactor=metallic,
                                                    roughnessFactor=roughness)
         scene = facet.Scene(ambient_light=(0.1, 0.1, 0.1))
-        scene.add(facet.Mesh(positions, faces, normals=normals, material=material))
+        scene.add(facet.Mesh.from_arrays(positions, faces, normals=normals, material=material))
         scene.add(facet.PerspectiveCamera(yfov=0.8), pose=look_at((0, 0, 4)))
         scene.add(facet.DirectionalLight(intensity=3.0), pose=look_at((1, 2, 3)))
         color, depth = draw(scene, size=(64, 48))
@@ -115,7 +115,7 @@ def test_a_metal_and_a_rough_dielectric_look_different():
 def test_single_sided_materials_cull_their_back_faces():
     """Seen from behind, a square is drawn only when its material is double-sided or culling is skipped."""
     def drawn(material, flags=facet.RenderFlags.NONE):
-        mesh = facet.Mesh(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, material=material)
+        mesh = facet.Mesh.from_arrays(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, material=material)
         return (draw(square_scene(mesh, eye=(0, 0, -3)), flags)[1] > 0).sum()
 
     assert drawn(None) == 0
@@ -128,8 +128,8 @@ def test_alpha_modes():
     def color_of(**kwargs):
         material = facet.MetallicRoughnessMaterial(baseColorFactor=[1.0, 1.0, 1.0, 0.4], metallicFactor=0.0,
                                                    **kwargs)
-        mesh = facet.Mesh(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, material=material)
-        color, depth = draw(square_scene(mesh, ambient=(1, 1, 1), bg_color=(0, 0, 1, 1)))
+        mesh = facet.Mesh.from_arrays(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, material=material)
+        color, depth = draw(square_scene(mesh, ambient=(1.0, 1.0, 1.0), bg_color=(0.0, 0.0, 1.0, 1.0)))
         return color[12, 16].astype(int), (depth > 0).sum()
 
     opaque, _ = color_of()
@@ -147,8 +147,8 @@ def test_a_base_colour_texture_is_drawn_with_the_uvs():
     texture[0, 0] = (255, 0, 0)  # left: red
     texture[0, 1] = (0, 255, 0)  # right: green
     material = facet.MetallicRoughnessMaterial(baseColorTexture=texture, metallicFactor=0.0)
-    mesh = facet.Mesh(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, uvs=SQUARE_UVS, material=material)
-    color, _ = draw(square_scene(mesh, ambient=(1, 1, 1)), size=(64, 48))
+    mesh = facet.Mesh.from_arrays(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, uvs=SQUARE_UVS, material=material)
+    color, _ = draw(square_scene(mesh, ambient=(1.0, 1.0, 1.0)), size=(64, 48))
     left, right = color[24, 24].astype(int), color[24, 40].astype(int)
     assert left[0] > left[1] + 80 and right[1] > right[0] + 80
 
@@ -161,7 +161,7 @@ def test_from_trimesh_takes_a_material_in_place_of_vertex_colours():
     material = facet.MetallicRoughnessMaterial(baseColorFactor=[1.0, 0.0, 0.0, 1.0], metallicFactor=0.0)
 
     def center(mesh):
-        scene = facet.Scene(ambient_light=(1, 1, 1))
+        scene = facet.Scene(ambient_light=(1.0, 1.0, 1.0))
         scene.add(mesh)
         scene.add(facet.PerspectiveCamera(yfov=0.8), pose=look_at((0, 0, 4)))
         return draw(scene)[0][12, 16].astype(int)
@@ -169,12 +169,22 @@ def test_from_trimesh_takes_a_material_in_place_of_vertex_colours():
     assert center(facet.Mesh.from_trimesh(tm))[2] > 100  # its vertex colours: blue
     red = center(facet.Mesh.from_trimesh(tm, material=material))
     assert red[0] > red[2] + 100
-    np.testing.assert_array_equal(red, center(facet.Mesh(positions, faces, normals=normals, material=material)))
+    np.testing.assert_array_equal(red, center(facet.Mesh.from_arrays(positions, faces, normals=normals, material=material)))
 
 
-def test_a_wireframe_material_warns_that_it_is_drawn_solid():
-    with pytest.warns(UserWarning, match="ALL_WIREFRAME"):
-        facet.Mesh(SQUARE, SQUARE_FACES, material=facet.MetallicRoughnessMaterial(wireframe=True))
+def test_a_wireframe_material_draws_its_mesh_as_lines_and_the_flags_override_it():
+    """One wireframe mesh beside a solid one: the flags turn either or both into lines as pyrender's do."""
+    def covered(flags, wireframe):
+        scene = square_scene(facet.Mesh.from_arrays(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS,
+                                                    material=facet.MetallicRoughnessMaterial(wireframe=wireframe)))
+        return (draw(scene, flags=flags)[1] > 0).sum()
+
+    solid, lines = covered(facet.RenderFlags.NONE, False), covered(facet.RenderFlags.NONE, True)
+    assert 0 < lines < solid / 2
+    assert covered(facet.RenderFlags.FLIP_WIREFRAME, True) == solid
+    assert covered(facet.RenderFlags.FLIP_WIREFRAME, False) == lines
+    assert covered(facet.RenderFlags.ALL_WIREFRAME, False) == lines
+    assert covered(facet.RenderFlags.ALL_SOLID, True) == solid
 
 
 @pytest.mark.parametrize("make, message", [
@@ -190,10 +200,10 @@ def test_a_wireframe_material_warns_that_it_is_drawn_solid():
     (lambda: facet.MetallicRoughnessMaterial(baseColorTexture="red.png"), "baseColorTexture"),
     (lambda: facet.MetallicRoughnessMaterial(baseColorTexture=np.zeros((2, 2, 3), dtype=np.int32) + 300),
      "baseColorTexture"),
-    (lambda: facet.Mesh(SQUARE, SQUARE_FACES, material="red"), "material"),
-    (lambda: facet.Mesh(SQUARE, SQUARE_FACES,
+    (lambda: facet.Mesh.from_arrays(SQUARE, SQUARE_FACES, material="red"), "material"),
+    (lambda: facet.Mesh.from_arrays(SQUARE, SQUARE_FACES,
                         material=facet.MetallicRoughnessMaterial(baseColorTexture=np.zeros((2, 2, 3)))), "uvs"),
-    (lambda: facet.Mesh(SQUARE, SQUARE_FACES, uvs=SQUARE_UVS,
+    (lambda: facet.Mesh.from_arrays(SQUARE, SQUARE_FACES, uvs=SQUARE_UVS,
                         material=facet.MetallicRoughnessMaterial(emissiveTexture=np.full((2, 2, 3), 2.0))),
      "emissiveTexture"),
 ])
@@ -208,6 +218,6 @@ def test_non_boolean_flags_raise_type_error():
 
 
 def test_pyrenders_default_material_a_white_metal_is_lit():
-    mesh = facet.Mesh(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, material=facet.MetallicRoughnessMaterial())
+    mesh = facet.Mesh.from_arrays(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, material=facet.MetallicRoughnessMaterial())
     color, depth = draw(square_scene(mesh, light=facet.DirectionalLight(intensity=3.0)))
     assert np.median(color[depth > 0]) > 50

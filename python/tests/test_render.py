@@ -11,7 +11,7 @@ MODELS = "/usr/share/assimp/models"
 def sphere_scene(sphere, camera, pose, **kwargs):
     positions, faces, normals = sphere
     scene = facet.Scene(**kwargs)
-    scene.add(facet.Mesh(positions, faces, normals=normals))
+    scene.add(facet.Mesh.from_arrays(positions, faces, normals=normals))
     scene.add(camera, pose=pose)
     return scene
 
@@ -22,7 +22,7 @@ def test_any_numeric_dtype_and_order_makes_the_same_image(dtype, order):
     positions = np.array([[-1, -1, 0], [1, -1, 0], [1, 1, 0], [-1, 1, 0]])
     faces = np.array([[0, 1, 2], [0, 2, 3]], dtype=np.uint16)
     scene = facet.Scene()
-    scene.add(facet.Mesh(np.array(positions, dtype=dtype, order=order), np.array(faces, order=order)))
+    scene.add(facet.Mesh.from_arrays(np.array(positions, dtype=dtype, order=order), np.array(faces, order=order)))
     scene.add(facet.PerspectiveCamera(yfov=1.0), pose=look_at((0, 0, 3)))
     color, depth = facet.OffscreenRenderer(40, 30, threads=1).render(scene)
     assert color.shape == (30, 40, 3) and color.dtype == np.uint8
@@ -74,7 +74,7 @@ def test_sphere_depth_matches_the_analytic_sphere(sphere):
 def test_orthographic_depth_is_the_distance_along_the_view():
     positions = np.array([[-5, -5, -2], [5, -5, -2], [5, 5, -2], [-5, 5, -2]], dtype=float)
     scene = facet.Scene()
-    scene.add(facet.Mesh(positions, [[0, 1, 2], [0, 2, 3]]))
+    scene.add(facet.Mesh.from_arrays(positions, [[0, 1, 2], [0, 2, 3]]))
     scene.add(facet.OrthographicCamera(xmag=2, ymag=1.5, znear=0.5, zfar=20), pose=look_at((0, 0, 4)))
     depth = facet.OffscreenRenderer(32, 24, threads=1, samples=1).render(scene, facet.RenderFlags.DEPTH_ONLY)
     np.testing.assert_allclose(depth, 6.0, rtol=1e-5)
@@ -90,7 +90,7 @@ def test_intrinsics_put_a_point_where_the_pinhole_model_does(point):
     s = 0.03 * -z  # about 5 pixels either side
     positions = np.array([[x - s, y - s, z], [x + s, y - s, z], [x + s, y + s, z], [x - s, y + s, z]])
     scene = facet.Scene()
-    scene.add(facet.Mesh(positions, [[0, 1, 2], [0, 2, 3]]))
+    scene.add(facet.Mesh.from_arrays(positions, [[0, 1, 2], [0, 2, 3]]))
     scene.add(camera, pose=np.eye(4))
     renderer = facet.OffscreenRenderer(width, height, threads=1, samples=1)
     mask = renderer.render_buffers(scene, ["mask"])["mask"] == 255
@@ -137,8 +137,8 @@ def test_multisampling_blends_only_the_silhouette(sphere, samples):
 
 def test_buffers_agree_on_every_pixel(sphere):
     positions, faces, normals = sphere
-    scene = facet.Scene(bg_color=(0, 0, 0, 1))
-    mesh = facet.Mesh(positions, faces, normals=normals)
+    scene = facet.Scene(bg_color=(0.0, 0.0, 0.0, 1.0))
+    mesh = facet.Mesh.from_arrays(positions, faces, normals=normals)
     scene.add(mesh, pose=np.eye(4))
     moved = np.eye(4)
     moved[:3, 3] = (1.5, 0.3, -1.0)
@@ -157,7 +157,7 @@ def test_buffers_agree_on_every_pixel(sphere):
 def test_scene_nodes_move_and_go(sphere):
     positions, faces, normals = sphere
     scene = facet.Scene()
-    node = scene.add(facet.Mesh(positions, faces), pose=np.eye(4))
+    node = scene.add(facet.Mesh.from_arrays(positions, faces), pose=np.eye(4))
     scene.add(facet.PerspectiveCamera(yfov=0.8), pose=look_at((0, 0, 5)))
     renderer = facet.OffscreenRenderer(48, 36, threads=1)
     before = renderer.render(scene, facet.RenderFlags.DEPTH_ONLY)
@@ -169,7 +169,7 @@ def test_scene_nodes_move_and_go(sphere):
     assert not np.array_equal(before > 0, after > 0)
     scene.remove_node(node)
     assert not renderer.render(scene, facet.RenderFlags.DEPTH_ONLY).any()
-    assert scene.mesh_nodes == []
+    assert scene.mesh_nodes == set()
 
 
 def test_flags_change_what_is_drawn(sphere):
@@ -179,8 +179,16 @@ def test_flags_change_what_is_drawn(sphere):
     wire, _ = renderer.render(scene, facet.RenderFlags.ALL_WIREFRAME)
     flat, _ = renderer.render(scene, facet.RenderFlags.FLAT)
     assert not np.array_equal(color, wire) and not np.array_equal(color, flat)
-    ids, seg_depth = renderer.render(scene, facet.RenderFlags.SEG)
-    assert ids.shape == (48, 64, 2) and np.array_equal(seg_depth, depth)
+    node = next(iter(scene.mesh_nodes))
+    seg, seg_depth = renderer.render(scene, facet.RenderFlags.SEG, {node: (10, 200, 30)})
+    # pyrender's segmentation: the mapped node flat in its colour on black, at the depth it is drawn at.
+    assert seg.shape == (48, 64, 3) and np.array_equal(seg_depth, depth)
+    assert set(map(tuple, seg.reshape(-1, 3))) == {(0, 0, 0), (10, 200, 30)}
+    np.testing.assert_array_equal(np.all(seg == (10, 200, 30), axis=-1), depth > 0)
+    unmapped, unmapped_depth = renderer.render(scene, facet.RenderFlags.SEG)
+    assert not unmapped.any() and not unmapped_depth.any()  # nodes outside the map are left out
+    with pytest.raises(ValueError, match="flags"):
+        renderer.render(scene, 1 << 20)
 
 
 def test_from_file_scenes_keep_the_files_nodes():
@@ -267,13 +275,11 @@ def test_a_point_cloud_covers_a_square_of_point_size_around_each_projected_point
 def test_bad_point_clouds_and_point_sizes_raise_value_error():
     with pytest.raises(ValueError, match="positions"):
         facet.Mesh.from_points(np.array([[0.0, np.nan, 0.0]]))
-    with pytest.raises(ValueError, match="colors"):
+    with pytest.raises(ValueError, match="color"):
         facet.Mesh.from_points(np.zeros((3, 3)), colors=np.zeros((2, 3)))
-    scene = facet.Scene()
-    scene.add(facet.Mesh.from_points(np.zeros((1, 3))))
-    scene.add(facet.PerspectiveCamera(yfov=1.0), pose=look_at((0, 0, 3)))
-    with pytest.raises(ValueError, match="point size"):
-        facet.OffscreenRenderer(16, 12, point_size=0.0, threads=1).render(scene)
+    for size in (0.0, -1.0, float("nan"), float("inf")):
+        with pytest.raises(ValueError, match="point_size"):
+            facet.OffscreenRenderer(16, 12, point_size=size, threads=1)
 
 
 def test_a_gaussian_splat_file_shows_its_gaussian_where_the_camera_projects_it(tmp_path):

@@ -14,30 +14,29 @@ TRIANGLE = np.array([[0, 0, 0], [1, 0, 0], [0, 1, 0]], dtype=float)
 
 
 @pytest.mark.parametrize("make, message", [
-    (lambda: facet.Mesh(np.zeros((3, 2)), [[0, 1, 2]]), "positions"),
-    (lambda: facet.Mesh(np.zeros(9), [[0, 1, 2]]), "positions"),
-    (lambda: facet.Mesh(np.array([[0, 0, np.nan], [1, 0, 0], [0, 1, 0]]), [[0, 1, 2]]), "positions"),
-    (lambda: facet.Mesh(np.array([[0, 0, np.inf], [1, 0, 0], [0, 1, 0]]), [[0, 1, 2]]), "positions"),
-    (lambda: facet.Mesh(TRIANGLE, [[0, 1, 3]]), "faces"),
-    (lambda: facet.Mesh(TRIANGLE, [[0, 1, -1]]), "faces"),
-    (lambda: facet.Mesh(TRIANGLE, [[0.0, 1.0, 2.0]]), "faces"),
-    (lambda: facet.Mesh(TRIANGLE, np.zeros((0, 3), dtype=int)), "faces"),
-    (lambda: facet.Mesh(TRIANGLE, [[0, 1, 2]], normals=np.zeros((2, 3))), "normals"),
-    (lambda: facet.Mesh(TRIANGLE, [[0, 1, 2]], colors=np.full((3, 3), 2.0)), "colors"),
-    (lambda: facet.Mesh(TRIANGLE, [[0, 1, 2]], texture=np.zeros((4, 4, 3), dtype=np.uint8)), "uvs"),
-    (lambda: facet.Mesh(TRIANGLE, [[0, 1, 2]], uvs=np.zeros((3, 2)), texture=np.zeros((4, 4, 5))), "texture"),
-    (lambda: facet.Mesh(np.array([["a", "b", "c"]] * 3), [[0, 1, 2]]), "positions"),
+    (lambda: facet.Mesh.from_arrays(np.zeros((3, 2)), [[0, 1, 2]]), "positions"),
+    (lambda: facet.Mesh.from_arrays(np.zeros(9), [[0, 1, 2]]), "positions"),
+    (lambda: facet.Mesh.from_arrays(np.array([[0, 0, np.nan], [1, 0, 0], [0, 1, 0]]), [[0, 1, 2]]), "positions"),
+    (lambda: facet.Mesh.from_arrays(np.array([[0, 0, np.inf], [1, 0, 0], [0, 1, 0]]), [[0, 1, 2]]), "positions"),
+    (lambda: facet.Mesh.from_arrays(TRIANGLE, [[0, 1, 3]]), "faces"),
+    (lambda: facet.Mesh.from_arrays(TRIANGLE, [[0, 1, -1]]), "faces"),
+    (lambda: facet.Mesh.from_arrays(TRIANGLE, [[0.0, 1.0, 2.0]]), "faces"),
+    (lambda: facet.Mesh.from_arrays(TRIANGLE, np.zeros((0, 3), dtype=int)), "faces"),
+    (lambda: facet.Mesh.from_arrays(TRIANGLE, [[0, 1, 2]], normals=np.zeros((2, 3))), "normals"),
+    (lambda: facet.Mesh.from_arrays(TRIANGLE, [[0, 1, 2]], colors=np.full((3, 3), 2.0)), "colors"),
+    (lambda: facet.Mesh.from_arrays(TRIANGLE, [[0, 1, 2]], texture=np.zeros((4, 4, 3), dtype=np.uint8)), "uvs"),
+    (lambda: facet.Mesh.from_arrays(TRIANGLE, [[0, 1, 2]], uvs=np.zeros((3, 2)), texture=np.zeros((4, 4, 5))), "texture"),
+    (lambda: facet.Mesh.from_arrays(np.array([["a", "b", "c"]] * 3), [[0, 1, 2]]), "positions"),
     (lambda: facet.OffscreenRenderer(0, 10), "size"),
     (lambda: facet.OffscreenRenderer(20000, 10), "size"),
     (lambda: facet.OffscreenRenderer(10, 10, samples=3), "samples"),
     (lambda: facet.render("/usr/share/assimp/models/OBJ/box.obj", samples=16), "samples"),
     (lambda: facet.PerspectiveCamera(yfov=0), "yfov"),
-    (lambda: facet.PerspectiveCamera(yfov=1, znear=0), "znear"),
+    (lambda: facet.PerspectiveCamera(yfov=1, znear=-1), "znear"),
     (lambda: facet.IntrinsicsCamera(0, 1, 0, 0), "fx"),
     (lambda: facet.OrthographicCamera(1, 1, znear=2, zfar=1), "zfar"),
-    (lambda: facet.Scene().add(facet.Mesh(TRIANGLE, [[0, 1, 2]]), pose=np.eye(3)), "pose"),
-    (lambda: facet.Scene().add(facet.Mesh(TRIANGLE, [[0, 1, 2]]), pose=np.full((4, 4), np.nan)), "pose"),
-    (lambda: facet.Scene().add("not a mesh"), "str"),
+    (lambda: facet.Scene().add(facet.Mesh.from_arrays(TRIANGLE, [[0, 1, 2]]), pose=np.eye(3)), "pose"),
+    (lambda: facet.Scene().add(facet.Mesh.from_arrays(TRIANGLE, [[0, 1, 2]]), pose=np.full((4, 4), np.nan)), "pose"),
     (lambda: facet.render("/usr/share/assimp/models/OBJ/box.obj", width=0), "width"),
     (lambda: facet.render("/usr/share/assimp/models/OBJ/box.obj", buffers=["colour"]), "colour"),
     (lambda: facet.render("/usr/share/assimp/models/OBJ/box.obj", projection="fisheye"), "fisheye"),
@@ -61,7 +60,7 @@ def test_shading_names_are_the_clis_and_the_old_spelling_still_works():
 
 def test_a_scene_without_camera_cannot_render():
     scene = facet.Scene()
-    scene.add(facet.Mesh(TRIANGLE, [[0, 1, 2]]))
+    scene.add(facet.Mesh.from_arrays(TRIANGLE, [[0, 1, 2]]))
     with pytest.raises(ValueError, match="camera"):
         facet.OffscreenRenderer(8, 8).render(scene)
 
@@ -165,7 +164,7 @@ def test_textures_over_the_size_limit_are_not_decoded(load, tmp_path, capfd):
 def test_memory_stays_flat_over_a_thousand_renders():
     positions, faces, normals = uv_sphere(rings=32, segments=64)
     scene = facet.Scene()
-    scene.add(facet.Mesh(positions, faces, normals=normals))
+    scene.add(facet.Mesh.from_arrays(positions, faces, normals=normals))
     scene.add(facet.PerspectiveCamera(yfov=0.8), pose=look_at((0, 0, 4)))
     renderer = facet.OffscreenRenderer(64, 48, threads=1)
     for _ in range(100):
@@ -184,7 +183,7 @@ def test_rendering_releases_the_gil():
     other thread could not run at all while the flag is up."""
     positions, faces, normals = uv_sphere(rings=160, segments=320)  # about 100,000 triangles
     scene = facet.Scene()
-    scene.add(facet.Mesh(positions, faces, normals=normals))
+    scene.add(facet.Mesh.from_arrays(positions, faces, normals=normals))
     scene.add(facet.PerspectiveCamera(yfov=0.8), pose=look_at((0, 0, 3)))
     renderer = facet.OffscreenRenderer(320, 240, threads=1)
     renderer.render(scene)  # warm up: the first render prepares the mesh

@@ -288,7 +288,8 @@ void draw_instance(Renderer& renderer, Framebuffer& target, const FrameContext& 
   const ObjectTransforms transforms = ObjectTransforms::make(frame.clip_from_world, instance.world_from_object);
   const std::span<const MeshVertex> vertices(prepared.vertices);
 
-  if (!options.wireframe) {
+  const bool wireframe = options.wireframe || instance.wireframe;
+  if (!wireframe) {
     for (const TriangleGroup& group : prepared.groups) {
       if (is_blended(*instance.mesh, group) != (pass == DrawPass::blended)) continue;
       const RenderState state = surface_state(options, material_of(*instance.mesh, group), transforms.mirrored);
@@ -297,14 +298,14 @@ void draw_instance(Renderer& renderer, Framebuffer& target, const FrameContext& 
   }
   if (pass == DrawPass::opaque && !prepared.points.indices.empty())
     draw_points(renderer, target, frame, instance, transforms, prepared);
-  if (pass == DrawPass::blended || !(options.wireframe || options.edges) || prepared.edge_indices.empty()) return;
+  if (pass == DrawPass::blended || !(wireframe || options.edges) || prepared.edge_indices.empty()) return;
 
   RenderState lines;
   lines.cull = CullMode::none;
   lines.depth_test = options.depth_test;
   lines.line_width = options.line_width;
   glm::vec4 color = options.edge_color;
-  if (options.wireframe) {
+  if (wireframe) {
     color = options.color.value_or(glm::vec4(1.0f));
   } else {
     const glm::vec3 center(frame.view->view_from_world * instance.world_from_object * glm::vec4(prepared.center, 1));

@@ -174,7 +174,8 @@ std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& v
   const std::vector<std::size_t> order = impl_->visible(frame);
   for (const std::size_t i : order) {
     const Mesh& mesh = *impl_->instances[i].mesh;
-    if (options.wireframe || options.edges) detail::prepare_edges(impl_->prepared.at(&mesh), mesh);
+    if (options.wireframe || options.edges || impl_->instances[i].wireframe)
+      detail::prepare_edges(impl_->prepared.at(&mesh), mesh);
     if (options.shading == Shading::flat) detail::prepare_face_normals(impl_->prepared.at(&mesh));
   }
   for (const std::size_t i : order) {
