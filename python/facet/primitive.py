@@ -10,6 +10,18 @@ _MODE_NAMES = {GLTF.POINTS: "POINTS", GLTF.LINES: "LINES", GLTF.LINE_LOOP: "LINE
                GLTF.TRIANGLE_FAN: "TRIANGLE_FAN"}
 
 
+def srgb_encode(linear):
+    """sRGB's encoding of linear values in 0..1."""
+    c = np.clip(np.asarray(linear, dtype=np.float64), 0.0, 1.0)
+    return np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1.0 / 2.4) - 0.055)
+
+
+def srgb_decode(encoded):
+    """sRGB's decoding of encoded values in 0..1."""
+    c = np.clip(np.asarray(encoded, dtype=np.float64), 0.0, 1.0)
+    return np.where(c <= 0.04045, c / 12.92, np.power((c + 0.055) / 1.055, 2.4))
+
+
 def _rows(value, columns, count, name, at_least=False):
     """value as a contiguous float32 array count x columns (more columns allowed, and cut, when at_least)."""
     v = np.ascontiguousarray(np.asanyarray(value, dtype=np.float32))
@@ -148,21 +160,38 @@ class Primitive:
         """Whether it is drawn blended: its material is, or a vertex colour's alpha is below 1."""
         return self.material.is_transparent or bool(self.color_0 is not None and np.any(self.color_0[:, 3] != 1.0))
 
-    def _mesh_core(self):
-        """The compiled mesh this primitive draws, made again only after a change to it or its material."""
-        key = (self.material, self.material._version)
-        if self._built is None or self._built[0] != key:
-            object.__setattr__(self, "_built", (key, self._make_core()))
-        return self._built[1]
+    def _mesh_core(self, flat=False):
+        """The compiled mesh this primitive draws (flat: as RenderFlags.FLAT draws it), made again only after a
+        change to it or its material."""
+        key = (self.material, self.material._version, flat)
+        built = self._built or {}
+        if built.get(flat, (None,))[0] != key:
+            built = {**built, flat: (key, self._make_core(flat))}
+            object.__setattr__(self, "_built", built)
+        return built[flat][1]
 
-    def _make_core(self):
+    def _make_core(self, flat):
         if len(self.positions) == 0:
             return None
         if self.mode in (GLTF.LINES, GLTF.LINE_LOOP, GLTF.LINE_STRIP):
             raise ValueError(f"Primitive: facet draws no line primitives (mode {_MODE_NAMES[self.mode]}); "
                              "RenderFlags.ALL_WIREFRAME draws triangles' edges")
         description = _material_description(self.material)
-        columns = (self.normals, self.texcoord_0, self.color_0)
+        colors = self.color_0
+        if flat:
+            # pyrender's flat shader writes base colour x texture x vertex colour unconverted: the factor, which
+            # the renderer would encode as linear, is given as the value it encodes to.
+            description = {**description, "base_color": np.append(srgb_decode(description["base_color"][:3]),
+                                                                  description["base_color"][3])}
+        else:
+            # pyrender's shader multiplies the lit colour by COLOR_0, a linear value (the renderer decodes vertex
+            # colours from their displayed values, so they are given encoded), and adds the emissive factor
+            # squared (it multiplies the emission, the factor times the texture, by the factor again).
+            description = {**description, "color_after_lighting": True,
+                           "emissive": description["emissive"] * description["emissive"]}
+            if colors is not None:
+                colors = np.column_stack([srgb_encode(colors[:, :3]), colors[:, 3]])
+        columns = (self.normals, self.texcoord_0, colors)
         if self.mode == GLTF.POINTS:
             positions = self.positions
             if self.indices is not None:  # only the points the indices name
@@ -199,7 +228,7 @@ class CorePrimitive:
     def is_transparent(self):
         return self.material is not None and self.material.is_transparent
 
-    def _mesh_core(self):
+    def _mesh_core(self, flat=False):
         return self._core
 
 

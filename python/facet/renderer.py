@@ -96,8 +96,8 @@ class OffscreenRenderer:
         if flags & (RenderFlags.VERTEX_NORMALS | RenderFlags.FACE_NORMALS):
             warnings.warn("facet draws no normal lines: RenderFlags.VERTEX_NORMALS and FACE_NORMALS are ignored",
                           stacklevel=3)
-        return self._draw(scene, scene._core, scene._instances(), flags, buffers, flags & RenderFlags.FLAT,
-                          scene.bg_color)
+        flat = bool(flags & RenderFlags.FLAT)
+        return self._draw(scene, scene._core, scene._instances(flat=flat), flags, buffers, flat, scene.bg_color)
 
     def _draw(self, scene, core, instances, flags, buffers, unlit, background):
         view = self._view(scene)

@@ -257,9 +257,9 @@ class Scene:
         if node not in self._parent:
             raise ValueError("the node is not in this scene")
 
-    def _instances(self, only=None):
+    def _instances(self, only=None, flat=False):
         """(mesh core, world pose, node id, wireframe material) for each visible primitive and instance; only:
-        the nodes to draw (None: all)."""
+        the nodes to draw (None: all); flat: the meshes as RenderFlags.FLAT draws them."""
         out = []
         for node in self._parent:
             mesh = node.mesh
@@ -267,7 +267,7 @@ class Scene:
                 continue
             pose = self.get_pose(node)
             for primitive in mesh.primitives:
-                core = primitive._mesh_core()
+                core = primitive._mesh_core(flat)
                 if core is None:
                     continue
                 material = primitive.material

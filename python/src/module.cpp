@@ -141,6 +141,7 @@ class RendererCore {
     look.ambient = finite_rows<3>(py::array::ensure(ambient).reshape({1, 3}), "ambient_light")[0];
     const glm::vec4 clear = finite_rows<4>(py::array::ensure(background).reshape({1, 4}), "bg_color")[0];
     look.model_lights = false;
+    look.tone_mapping = ToneMapping::none;  // pyrender's shader clamps; it maps no tones
     look.point_size = point_size;
     const SceneOptions options = scene_options(look, view.view_from_world, Shading::automatic, glm::vec3(clear));
     const BufferRequest request = request_of(buffers);

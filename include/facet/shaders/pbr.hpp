@@ -105,7 +105,8 @@ struct BasicPbrShader : PbrUniforms {
 
   // What the material is at one pixel.
   PbrInputs<float> inputs(const Fragment<Varyings>& f) const {
-    const glm::vec4 c = f.varyings.color;
+    const glm::vec4 c = material.color_after_lighting ? glm::vec4(1.0f, 1.0f, 1.0f, f.varyings.color.a)
+                                                       : f.varyings.color;
     PbrInputs<float> in = factor_inputs<float>(material, {c.r, c.g, c.b}, c.a);
     if (material.face_colors) multiply_face_color(material.face_colors[f.primitive], in);
     if constexpr (kTextured) {
@@ -139,6 +140,10 @@ struct BasicPbrShader : PbrUniforms {
     PbrInputs<float> in = inputs(f);
     if (screen_occlusion) in.occlusion = in.occlusion * screen_open(f.screen.x, f.screen.y);
     brdf::Rgb<float> radiance = shade(in, n, n_coat, f.varyings.world);
+    if (material.color_after_lighting) {
+      const glm::vec4 c = f.varyings.color;
+      radiance = radiance * brdf::Rgb<float>{c.r, c.g, c.b};
+    }
     if (material.transmissive()) see_through(in, n, f.varyings.world, radiance);
     const brdf::Rgb<float> c = display(radiance);
     return {c.r, c.g, c.b, in.alpha};
@@ -164,6 +169,10 @@ struct BasicPbrShader : PbrUniforms {
       }
       const Vec3 world = f.get(&Varyings::world);
       brdf::Rgb<Float> radiance = shade(in, n, n, world);
+      if (material.color_after_lighting) {
+        const Color c = f.get(&Varyings::color);
+        radiance = radiance * brdf::Rgb<Float>{c.r, c.g, c.b};
+      }
       if (material.transmissive()) see_through(in, n, world, radiance);
       const brdf::Rgb<Float> out = display(radiance);
       return {out.r, out.g, out.b, in.alpha};
@@ -176,7 +185,9 @@ struct BasicPbrShader : PbrUniforms {
     using namespace simd;
     FACET_LANE_TYPES(L);
     const Color c = f.get(&Varyings::color);
-    PbrInputs<Float> in = factor_inputs<Float>(material, {c.r, c.g, c.b}, c.a);
+    const Float one = splat<L>(1.0f);
+    PbrInputs<Float> in = material.color_after_lighting ? factor_inputs<Float>(material, {one, one, one}, c.a)
+                                                        : factor_inputs<Float>(material, {c.r, c.g, c.b}, c.a);
     if constexpr (kTextured) {
       if (material.face_colors || material.textured()) {
         const std::size_t u0 = FragmentLanes<Varyings>::float_index(&Varyings::uv);
@@ -389,15 +400,16 @@ struct BasicPbrShader : PbrUniforms {
   }
 
   // E(n), the prefiltered radiance along r and the split-sum table, or, without an environment, the ambient colour
-  // as a uniform irradiance of pi * ambient and no reflection.
+  // as a uniform environment: radiance `ambient` from every direction (irradiance pi * ambient), reflected by the
+  // split sum's analytic fit (brdf::split_sum_approximation), so that metals reflect it too.
   template <class F, class V3>
   FACET_LANES_INLINE void environment_terms(const V3& n, const V3& r, const F& n_dot_v, const F& roughness,
                                             brdf::Rgb<F>& irradiance, brdf::Rgb<F>& radiance, F& a, F& b) const {
     if (!environment) {
       const glm::vec3 e = ambient * brdf::kPi;
       irradiance = {brdf::constant<F>(e.r), brdf::constant<F>(e.g), brdf::constant<F>(e.b)};
-      radiance = brdf::black<F>();
-      a = b = brdf::constant<F>(0.0f);
+      radiance = {brdf::constant<F>(ambient.r), brdf::constant<F>(ambient.g), brdf::constant<F>(ambient.b)};
+      brdf::split_sum_approximation(n_dot_v, roughness, a, b);
       return;
     }
     const std::array<F, 3> e = environment->irradiance(n.x, n.y, n.z);
