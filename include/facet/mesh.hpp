@@ -92,9 +92,10 @@ struct Material {
   // Seen from both sides. false (glTF doubleSided false): back faces are culled when the look leaves culling to
   // the model (SceneOptions::cull_single_sided).
   bool double_sided = true;
-  // The vertex colours multiply the lit colour rather than the base colour (pyrender's shader: its highlights and
-  // ambient light take the vertex colour too). The physically based shading only.
-  bool color_after_lighting = false;
+  // Lit as pyrender's shader lights it (the physically based shading only): the vertex colours multiply the lit
+  // colour rather than the base colour (highlights and ambient light take them too), and occlusion darkens every
+  // light rather than the ambient (environment) light alone.
+  bool pyrender_lighting = false;
 };
 
 // A camera the model file defines (glTF), placed in the world by its node. Checked when it is used (file_camera_view

@@ -187,7 +187,7 @@ class Primitive:
             # pyrender's shader multiplies the lit colour by COLOR_0, a linear value (the renderer decodes vertex
             # colours from their displayed values, so they are given encoded), and adds the emissive factor
             # squared (it multiplies the emission, the factor times the texture, by the factor again).
-            description = {**description, "color_after_lighting": True,
+            description = {**description, "pyrender_lighting": True,
                            "emissive": description["emissive"] * description["emissive"]}
             if colors is not None:
                 colors = np.column_stack([srgb_encode(colors[:, :3]), colors[:, 3]])

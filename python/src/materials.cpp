@@ -89,7 +89,7 @@ Material material_of(py::handle description, bool has_uvs) {
   else if (mode != "OPAQUE") value_error("material: alphaMode must be OPAQUE, MASK or BLEND, got '" + mode + "'");
   out.alpha_cutoff = factor(d, "alpha_cutoff", 0.0f, 1.0f);
   out.double_sided = d["double_sided"].cast<bool>();
-  out.color_after_lighting = d.contains("color_after_lighting") && d["color_after_lighting"].cast<bool>();
+  out.pyrender_lighting = d.contains("pyrender_lighting") && d["pyrender_lighting"].cast<bool>();
 
   // Colour images (base colour, emission) are sRGB-encoded and data images linear, as glTF has them.
   const auto texture = [&](const char* key, const char* name, TexelEncoding encoding) {

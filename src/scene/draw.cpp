@@ -77,7 +77,7 @@ PbrMaterial pbr_material(const Material& material, const SurfaceColor& surface) 
   m.normal_scale = material.normal_scale;
   m.sampler = surface.sampler;
   m.opaque = surface.opaque;
-  m.color_after_lighting = material.color_after_lighting;
+  m.pyrender_lighting = material.pyrender_lighting;
   return m;
 }
 

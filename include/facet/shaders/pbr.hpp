@@ -105,7 +105,7 @@ struct BasicPbrShader : PbrUniforms {
 
   // What the material is at one pixel.
   PbrInputs<float> inputs(const Fragment<Varyings>& f) const {
-    const glm::vec4 c = material.color_after_lighting ? glm::vec4(1.0f, 1.0f, 1.0f, f.varyings.color.a)
+    const glm::vec4 c = material.pyrender_lighting ? glm::vec4(1.0f, 1.0f, 1.0f, f.varyings.color.a)
                                                        : f.varyings.color;
     PbrInputs<float> in = factor_inputs<float>(material, {c.r, c.g, c.b}, c.a);
     if (material.face_colors) multiply_face_color(material.face_colors[f.primitive], in);
@@ -140,7 +140,7 @@ struct BasicPbrShader : PbrUniforms {
     PbrInputs<float> in = inputs(f);
     if (screen_occlusion) in.occlusion = in.occlusion * screen_open(f.screen.x, f.screen.y);
     brdf::Rgb<float> radiance = shade(in, n, n_coat, f.varyings.world);
-    if (material.color_after_lighting) {
+    if (material.pyrender_lighting) {
       const glm::vec4 c = f.varyings.color;
       radiance = radiance * brdf::Rgb<float>{c.r, c.g, c.b};
     }
@@ -169,7 +169,7 @@ struct BasicPbrShader : PbrUniforms {
       }
       const Vec3 world = f.get(&Varyings::world);
       brdf::Rgb<Float> radiance = shade(in, n, n, world);
-      if (material.color_after_lighting) {
+      if (material.pyrender_lighting) {
         const Color c = f.get(&Varyings::color);
         radiance = radiance * brdf::Rgb<Float>{c.r, c.g, c.b};
       }
@@ -186,7 +186,7 @@ struct BasicPbrShader : PbrUniforms {
     FACET_LANE_TYPES(L);
     const Color c = f.get(&Varyings::color);
     const Float one = splat<L>(1.0f);
-    PbrInputs<Float> in = material.color_after_lighting ? factor_inputs<Float>(material, {one, one, one}, c.a)
+    PbrInputs<Float> in = material.pyrender_lighting ? factor_inputs<Float>(material, {one, one, one}, c.a)
                                                         : factor_inputs<Float>(material, {c.r, c.g, c.b}, c.a);
     if constexpr (kTextured) {
       if (material.face_colors || material.textured()) {
@@ -215,7 +215,7 @@ struct BasicPbrShader : PbrUniforms {
     const V3 v = normalize(eye - world);
     const F n_dot_v = brdf::saturate(dot(n, v));
     const Layers<F> layer = layers(in, n_dot_v, n_coat, v);
-    Rgb<F> color = in.emissive, coat = brdf::black<F>();
+    Rgb<F> lit = brdf::black<F>(), coat = brdf::black<F>();
     for (const PunctualLight& light : lights) {
       V3 l;
       F falloff;
@@ -232,7 +232,7 @@ struct BasicPbrShader : PbrUniforms {
       }
       const glm::vec3 c = light.color;
       const Rgb<F> incident{c.r * falloff, c.g * falloff, c.b * falloff};
-      color = color + r * incident;
+      lit = lit + r * incident;
       if (material.coated()) {
         const F coat_n_dot_l = brdf::saturate(dot(n_coat, l)), coat_n_dot_h = brdf::saturate(dot(n_coat, h));
         coat = coat + incident * brdf::reflect_coat(coat_n_dot_l, layer.coat_n_dot_v, coat_n_dot_h, v_dot_h,
@@ -246,7 +246,8 @@ struct BasicPbrShader : PbrUniforms {
     if (material.sheened())
       ambient = ambient * (1.0f - layer.sheen_max * layer.sheen_albedo) +
                 in.sheen_color * irradiance * (layer.sheen_albedo * (1.0f / brdf::kPi));
-    color = color + ambient * in.occlusion;
+    if (material.pyrender_lighting) return in.emissive + (lit + ambient) * in.occlusion;
+    const Rgb<F> color = in.emissive + lit + ambient * in.occlusion;
     if (!material.coated()) return color;
     if (environment) {
       const Rgb<F> l = radiance_along(reflected(n_coat, v, layer.coat_roughness), layer.coat_roughness);

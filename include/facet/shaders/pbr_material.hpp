@@ -47,7 +47,7 @@ struct PbrMaterial {
   std::uint32_t uv1_maps = 0;  // the maps that read the second uv set, as texture_slot bits
   Sampler sampler{};
   bool opaque = false;  // alpha 1 whatever the inputs say (AlphaMode::opaque)
-  bool color_after_lighting = false;  // Material::color_after_lighting
+  bool pyrender_lighting = false;  // Material::pyrender_lighting
 
   bool textured() const {
     return base_color_map || metallic_roughness_map || occlusion_map || emissive_map || normal_map || specular_map ||
