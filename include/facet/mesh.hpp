@@ -93,8 +93,8 @@ struct Material {
   // the model (SceneOptions::cull_single_sided).
   bool double_sided = true;
   // Lit as pyrender's shader lights it (the physically based shading only): the vertex colours multiply the lit
-  // colour rather than the base colour (highlights and ambient light take them too), and occlusion darkens every
-  // light rather than the ambient (environment) light alone.
+  // colour rather than the base colour (highlights and ambient light take them too), occlusion darkens every light
+  // rather than the ambient (environment) light alone, and points without normals are lit as facing the eye.
   bool pyrender_lighting = false;
 };
 
@@ -128,6 +128,7 @@ struct Mesh {
   // Vertices drawn as points (Renderer::draw_points), one index each: a point cloud's vertices, glTF POINTS
   // primitives. A mesh may have triangles, points or both.
   std::vector<std::uint32_t> points;
+  std::int32_t point_material = -1;          // the material the points are drawn with; -1 = the default
   std::vector<glm::vec4> face_colors;        // empty or one per triangle
   std::vector<std::int32_t> face_materials;  // empty or one per triangle; -1 = no material, else into materials
   std::vector<Material> materials;

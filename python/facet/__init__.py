@@ -6,7 +6,7 @@
     color, depth = facet.OffscreenRenderer(640, 480).render(scene)
     buffers = facet.render("model.glb", width=640, height=480, buffers=["color", "depth", "normal", "ids"])
 """
-from ._facet import LoadError
+from ._facet import LoadError, __version__
 from .camera import Camera, IntrinsicsCamera, OrthographicCamera, PerspectiveCamera
 from .constants import GLTF, RenderFlags
 from .light import DirectionalLight, Light, PointLight, SpotLight
@@ -21,4 +21,4 @@ from .texture import Sampler, Texture
 __all__ = ["BUFFERS", "Camera", "DirectionalLight", "GLTF", "IntrinsicsCamera", "Light", "LoadError", "Material",
            "Mesh", "MetallicRoughnessMaterial", "Node", "OffscreenRenderer", "OrthographicCamera",
            "PerspectiveCamera", "PointLight", "Primitive", "RenderFlags", "Sampler", "Scene", "SpotLight", "Texture",
-           "render"]
+           "__version__", "render"]

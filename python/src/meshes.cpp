@@ -76,6 +76,7 @@ MeshCore MeshCore::from_arrays(py::handle positions, py::handle faces, py::handl
   }
   mesh.materials.push_back(std::move(look));
   mesh.face_materials.assign(mesh.triangle_count(), 0);
+  if (!mesh.points.empty()) mesh.point_material = 0;
   try {
     validate(mesh, "mesh");
   } catch (const InputError& e) {

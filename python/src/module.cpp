@@ -288,6 +288,7 @@ PYBIND11_MODULE(_facet, m) {
       py::arg("max_texture_size"));
   m.def("render_file", &render_file);
   // The load limits' defaults, for the Python keywords.
+  m.attr("__version__") = FACET_VERSION;
   m.attr("DEFAULT_MAX_TRIANGLES") = facet::kDefaultMaxTriangles;
   m.attr("DEFAULT_MAX_POINTS") = facet::kDefaultMaxPoints;
   m.attr("MAX_TEXTURE_SIZE") = facet::kMaxTextureSize;

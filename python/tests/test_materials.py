@@ -222,3 +222,42 @@ def test_pyrenders_default_material_a_white_metal_is_lit():
     mesh = facet.Mesh.from_arrays(SQUARE, SQUARE_FACES, normals=SQUARE_NORMALS, material=facet.MetallicRoughnessMaterial())
     color, depth = draw(square_scene(mesh, light=facet.DirectionalLight(intensity=3.0)))
     assert np.median(color[depth > 0]) > 50
+
+
+def test_a_primitives_vertex_colours_tint_the_lit_colour_as_pyrenders_do():
+    """pyrender multiplies the lit colour, highlight included, by COLOR_0 (a linear value); Mesh.from_arrays'
+    colours are facet's: displayed values multiplying the base colour, under a white highlight."""
+    positions, faces, normals = uv_sphere(rings=32, segments=64)
+    red = np.tile([1.0, 0.0, 0.0, 1.0], (len(positions), 1))
+    material = facet.MetallicRoughnessMaterial(metallicFactor=0.2, roughnessFactor=0.3)
+
+    def brightest(mesh):
+        scene = facet.Scene(ambient_light=(0.0, 0.0, 0.0), bg_color=(0.0, 0.0, 0.0, 1.0))
+        scene.add(mesh)
+        scene.add(facet.PerspectiveCamera(yfov=0.8), pose=look_at((0, 0, 4)))
+        scene.add(facet.DirectionalLight(intensity=4.0), pose=look_at((0, 0, 4)))
+        color = draw(scene, size=(64, 48))[0].astype(int)
+        return color.reshape(-1, 3)[color.sum(axis=-1).argmax()]
+
+    primitive = facet.Primitive(positions=positions, normals=normals, indices=faces, color_0=red, material=material)
+    tinted = brightest(facet.Mesh([primitive]))
+    assert tinted[0] > 200 and tinted[1] < 10 and tinted[2] < 10
+    white_highlight = brightest(facet.Mesh.from_arrays(positions, faces, normals=normals, colors=red,
+                                                       material=material))
+    assert white_highlight[0] > 200 and white_highlight[1] > 60
+
+
+def test_a_point_cloud_without_normals_is_lit_as_facing_the_camera():
+    """pyrender lights points without normals as if each faced the camera: a light from the camera lights them
+    more than one from the side, and FLAT draws them in their colours."""
+    def centre(light, flags=facet.RenderFlags.NONE):
+        scene = facet.Scene(bg_color=(0.0, 0.0, 0.0, 1.0))
+        scene.add(facet.Mesh.from_points(np.zeros((1, 3)), colors=[[0.2, 0.6, 1.0]]))
+        scene.add(facet.PerspectiveCamera(yfov=0.5), pose=look_at((0, 0, 3)))
+        scene.add(facet.DirectionalLight(intensity=2.0), pose=look_at(light))
+        renderer = facet.OffscreenRenderer(32, 24, point_size=5, threads=1, samples=1)
+        return renderer.render(scene, flags)[0][12, 16].astype(int)
+
+    front, side = centre((0, 0, 3)), centre((3, 0, 0.3))
+    assert front[2] > side[2] + 60
+    np.testing.assert_array_equal(centre((3, 0, 0.3), facet.RenderFlags.FLAT), [51, 153, 255])

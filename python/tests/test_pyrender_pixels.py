@@ -44,6 +44,11 @@ def _pyrender_images(tmp_path):
     return np.load(out)
 
 
+def _box5(image):
+    """The image's mean over each 5 x 5 window."""
+    return np.lib.stride_tricks.sliding_window_view(image.astype(float), (5, 5), axis=(0, 1)).mean(axis=(-1, -2))
+
+
 def test_pyrender_and_facet_draw_the_same_scenes_alike(tmp_path):
     theirs = _pyrender_images(tmp_path)
     ours = pyrender_scenes.render_all(facet)
@@ -51,6 +56,16 @@ def test_pyrender_and_facet_draw_the_same_scenes_alike(tmp_path):
     for name, (color, depth) in ours.items():
         their_color, their_depth = theirs[f"{name}_color"], theirs[f"{name}_depth"]
         assert color.shape == their_color.shape and depth.shape == their_depth.shape
+        if name == "points":
+            # Which pixel a 1-pixel point lands in turns on the sample positions (pyrender's depth is its first
+            # sample's, a third of a pixel off the centre), so the cloud's images are compared filtered over 5 x 5
+            # pixels, and by all the light they hold.
+            near = _box5((depth > 0) | (their_depth > 0)) > 0
+            mean = np.abs(_box5(color) - _box5(their_color))[near].mean()
+            light = color.sum() / their_color.sum()
+            report.append(f"{name}: mean {mean:.2f} over 5 x 5 pixels, light ratio {light:.4f}")
+            assert mean <= MEAN_LEVELS / 4 and abs(light - 1.0) < 0.02, "; ".join(report)
+            continue
         both, either = (depth > 0) & (their_depth > 0), (depth > 0) | (their_depth > 0)
         iou = both.sum() / max(either.sum(), 1)
         mean = np.abs(color.astype(int) - their_color.astype(int))[both].mean()

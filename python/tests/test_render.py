@@ -259,14 +259,14 @@ def test_a_point_cloud_covers_a_square_of_point_size_around_each_projected_point
     scene.add(camera, pose=np.eye(4))
     for size in (1.0, 3.0, 5.5):
         renderer = facet.OffscreenRenderer(width, height, point_size=size, threads=1, samples=1)
-        out = renderer.render_buffers(scene, ["color", "mask", "depth"])
+        out = renderer.render_buffers(scene, ["color", "mask", "depth"], facet.RenderFlags.FLAT)
         rows, cols = np.mgrid[0:height, 0:width]
         predicted = np.zeros((height, width), dtype=bool)
         for (x, y, z), color in zip(points, colors):
             u, v = fx * x / -z + cx, fy * -y / -z + cy  # OpenCV: pixel (0, 0)'s centre at u = v = 0
             square = (np.abs(cols - u) < size / 2) & (np.abs(rows - v) < size / 2)
             predicted |= square
-            # Drawn unlit (no normals) in its own colour, at its distance.
+            # Drawn flat (unlit) in its own colour, at its distance.
             np.testing.assert_array_equal(out["color"][square], np.broadcast_to(color, (square.sum(), 3)))
             np.testing.assert_allclose(out["depth"][square], -z, rtol=1e-5)
         np.testing.assert_array_equal(out["mask"] == 255, predicted)

@@ -99,6 +99,7 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
       shader.eye = frame.eye;
       shader.tone_mapping = options.tone_mapping;
       shader.exposure = options.exposure;
+      shader.normal_towards_eye = draw.points && !prepared.point_normals;
       // A blended surface lies in front of the opaque surfaces the occlusion was measured on.
       if (material.alpha_mode != AlphaMode::blend) {
         shader.screen_occlusion = frame.occlusion;
@@ -269,7 +270,10 @@ void draw_points(Renderer& renderer, Framebuffer& target, const FrameContext& fr
         options.point_size * std::abs(frame.view->clip_from_view[1][1]) * static_cast<float>(target.height()) * 0.5f;
   const std::span<const MeshVertex> vertices(prepared.vertices);
   const GroupDraw draw{renderer, target, vertices, prepared.points.indices, state, true};
-  const Shading shading = point_shading(options.shading, prepared.point_normals);
+  // Points without normals are drawn unlit, but for pyrender's lighting, which lights them as facing the eye.
+  const bool lit = prepared.point_normals || (options.shading == Shading::automatic &&
+                                              material_of(*instance.mesh, prepared.points).pyrender_lighting);
+  const Shading shading = point_shading(options.shading, lit);
   if (shading == options.shading) {
     draw_group(draw, frame, instance, transforms, prepared, prepared.points);
     return;

@@ -243,6 +243,9 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
       out.points.indices.push_back(v >= n ? kNoVertex : out.first_copy.empty() ? v : out.first_copy[v]);
   }
   out.point_normals = mesh.normals.size() == mesh.positions.size();
+  // An index out of range (a mesh that skipped validate()) draws the points in the default material.
+  if (mesh.point_material >= 0 && static_cast<std::size_t>(mesh.point_material) < mesh.materials.size())
+    out.points.material = mesh.point_material;
 
   // Only materials some triangle uses are loaded, so unused ones cannot cost time or warnings.
   out.textures.assign(mesh.materials.size(), nullptr);

@@ -1,5 +1,5 @@
 // test_cloud_looks.cpp - the looks of clouds: eye-dome lighting against its formula and as bare clouds' default,
-// and the height colour map.
+// the height colour map, and the points' material and lighting.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -11,8 +11,10 @@
 #include <memory>
 #include <stdexcept>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "facet/error.hpp"
 #include "facet/image_io.hpp"
 #include "facet/render_job.hpp"
 #include "facet/renderer.hpp"
@@ -256,6 +258,61 @@ TEST(EyeDomeLighting, OnByDefaultForABareCloudAlone) {
   look.eye_dome_lighting = 3.0f;
   EXPECT_EQ(eye_dome_lighting_for(look, bare), 3.0f);
   EXPECT_EQ(eye_dome_lighting_for(look, coloured), 3.0f);
+}
+
+// One point of material colour seen head-on, under one directional light from `towards_light`; the centre pixel.
+std::uint32_t one_point(Mesh mesh, Shading shading, glm::vec3 towards_light) {
+  Scene scene;
+  scene.add(Instance{std::make_shared<Mesh>(std::move(mesh)), glm::mat4(1.0f)});
+  View view;
+  view.view_from_world = glm::lookAt(glm::vec3(0, 0, 3), glm::vec3(0), glm::vec3(0, 1, 0));
+  view.clip_from_view = glm::perspective(glm::radians(40.0f), 1.0f, 0.5f, 10.0f);
+  SceneOptions options;
+  options.shading = shading;
+  options.point_size = 5.0f;
+  options.ambient = glm::vec3(0.0f);
+  options.lights = {Light{.vector = towards_light, .intensity = 3.0f}};
+  Framebuffer fb(kSize, kSize);
+  Renderer renderer(1);
+  renderer.clear(fb, glm::vec4(0.0f, 0.0f, 0.0f, 1.0f), 1.0f);
+  scene.render(renderer, fb, view, options);
+  return fb.color()[static_cast<std::size_t>(kSize / 2 * kSize + kSize / 2)];
+}
+
+Mesh point_of(std::int32_t point_material, bool pyrender_lighting) {
+  Mesh m;
+  m.positions = {{0, 0, 0}};
+  m.points = {0};
+  Material red;
+  red.diffuse = glm::vec4(0.9f, 0.1f, 0.1f, 1.0f);
+  red.pyrender_lighting = pyrender_lighting;
+  m.materials = {red};
+  m.point_material = point_material;
+  return m;
+}
+
+// Points are drawn in Mesh::point_material (the default white without one); validate() refuses an index past the
+// materials.
+TEST(PointMaterial, PointsTakeTheirMaterial) {
+  const std::uint32_t red = one_point(point_of(0, false), Shading::unlit, {0, 0, 1});
+  EXPECT_GT(channel(red, 0), 200);
+  EXPECT_LT(channel(red, 1), 60);
+  const std::uint32_t white = one_point(point_of(-1, false), Shading::unlit, {0, 0, 1});
+  EXPECT_GT(channel(white, 1), 200);
+  Mesh bad = point_of(1, false);
+  EXPECT_THROW(validate(bad, "cloud.ply"), InputError);
+}
+
+// Without normals points are drawn unlit, but under pyrender's lighting they are lit as facing the eye: brighter
+// under a light from the eye than under one from the side, and darker than unlit under a grazing one.
+TEST(PointMaterial, PyrenderLightsPointsWithoutNormalsAsFacingTheEye) {
+  const auto red = [](std::uint32_t c) { return channel(c, 0); };
+  const int front = red(one_point(point_of(0, true), Shading::automatic, {0, 0, 1}));
+  const int side = red(one_point(point_of(0, true), Shading::automatic, {1, 0, 0.2f}));
+  EXPECT_GT(front, side + 60);
+  const int unlit_front = red(one_point(point_of(0, false), Shading::automatic, {0, 0, 1}));
+  const int unlit_side = red(one_point(point_of(0, false), Shading::automatic, {1, 0, 0.2f}));
+  EXPECT_EQ(unlit_front, unlit_side);
 }
 
 }  // namespace

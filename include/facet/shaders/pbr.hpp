@@ -74,6 +74,8 @@ struct PbrUniforms {
   // top row first); multiplies the material's occlusion. nullptr: none.
   const float* screen_occlusion = nullptr;
   int screen_occlusion_width = 0, screen_occlusion_height = 0;
+  // Each vertex's normal is the direction towards the eye: points without normals, as pyrender lights them.
+  bool normal_towards_eye = false;
 };
 
 template <bool kTextured, bool kTangents = false>
@@ -89,7 +91,8 @@ struct BasicPbrShader : PbrUniforms {
     const float* decode = detail::srgb_decode_curve_table();
     const glm::vec4 color(detail::srgb_decode(v.color.r, decode), detail::srgb_decode(v.color.g, decode),
                           detail::srgb_decode(v.color.b, decode), v.color.a);
-    const glm::vec3 world(transforms.world_from_object * p), normal = transforms.normal_from_object * v.normal;
+    const glm::vec3 world(transforms.world_from_object * p);
+    const glm::vec3 normal = normal_towards_eye ? eye - world : transforms.normal_from_object * v.normal;
     if constexpr (kTangents) {
       // A tangent is a direction along the surface: it moves as positions do. A mirroring transform turns the
       // bitangent cross(normal, tangent) around, as in model.cpp's flattening.

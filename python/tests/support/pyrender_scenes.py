@@ -121,6 +121,18 @@ def instanced(pr):
     return scene
 
 
+def points(pr):
+    """A point cloud with a colour per point and no normals, under a directional light."""
+    scene = _stage(pr, (0.1, 0.1, 0.1))
+    rng = np.random.default_rng(7)
+    cloud = rng.uniform(-1.0, 1.0, size=(4000, 3))
+    cloud = cloud[np.linalg.norm(cloud, axis=1) < 1.0]
+    colors = np.clip(cloud * 0.5 + 0.5, 0.0, 1.0)
+    scene.add(pr.Mesh.from_points(cloud, colors=colors))
+    scene.add(pr.DirectionalLight(color=np.ones(3), intensity=2.0), pose=look_at((1.0, 1.0, 2.0)))
+    return scene
+
+
 def flat(pr):
     return directional(pr)
 
@@ -128,7 +140,7 @@ def flat(pr):
 # name: (scene, flags as RenderFlags attribute names)
 SCENES = {"directional": (directional, []), "point": (point, []), "spot": (spot, []), "metal": (metal, []), "rough_metal": (rough_metal, []),
           "face_colours": (face_colours, []), "vertex_colours": (vertex_colours, []), "textured": (textured, []),
-          "instanced": (instanced, []), "flat": (flat, ["FLAT"])}
+          "instanced": (instanced, []), "points": (points, []), "flat": (flat, ["FLAT"])}
 
 
 def render_all(pr):

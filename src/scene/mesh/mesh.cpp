@@ -68,6 +68,10 @@ void validate(const Mesh& mesh, const std::string& source) {
       throw InputError(source, "triangle " + std::to_string(t) + " uses material " + std::to_string(m) +
                                    " but there are " + std::to_string(mesh.materials.size()) + " materials");
   }
+  if (mesh.point_material < -1 || (mesh.point_material >= 0 &&
+                                    static_cast<std::size_t>(mesh.point_material) >= mesh.materials.size()))
+    throw InputError(source, "the points use material " + std::to_string(mesh.point_material) + " but there are " +
+                                 std::to_string(mesh.materials.size()) + " materials");
   for (std::size_t v = 0; v < n; ++v)
     if (!finite(mesh.positions[v]))
       throw InputError(source, "non-finite vertex position (vertex " + std::to_string(v) + ")");
