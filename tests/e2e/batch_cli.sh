@@ -138,7 +138,8 @@ if [ "$killed_status" = 137 ] && [ "$resumed_status" = 0 ] && [ "$(sums killed)"
   [ "$left" = "./.$last.png.$$.3.tmp ./.other.png.999999999.0.tmp " ]; then
   ok "SIGKILL: the rerun removes dead writers' temporaries and matches an uninterrupted run"
 else
-  bad "SIGKILL" "exit $killed_status, rerun $resumed_status, hidden files left: $left"
+  unlike=$(diff <(sums killed) <(sums whole) | head -4 | tr '\n' ' ')
+  bad "SIGKILL" "exit $killed_status, rerun $resumed_status, hidden files left: $left; unlike the uninterrupted run: $unlike"
 fi
 
 # A plain list of models with an output template.
