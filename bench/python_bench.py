@@ -67,7 +67,7 @@ def main():
         pose = np.eye(4)
         pose[2, 3] = 3.0
         scene.add(facet.PerspectiveCamera(yfov=0.8, znear=0.5, zfar=10.0), pose=pose)
-        renderer = facet.OffscreenRenderer(WIDTH, HEIGHT, threads=THREADS)
+        renderer = facet.OffscreenRenderer(WIDTH, HEIGHT, threads=THREADS, samples=1)  # as the C++ bench draws
         rows = []
         for k in range(rounds):
             run_cpp = lambda: float(subprocess.run([str(cpp), model, str(WIDTH), str(HEIGHT), str(FRAMES),

@@ -198,11 +198,14 @@ struct FrameBuffers {
 };
 
 // Clears target, draws the scene and reads back the buffers asked for, all from one frame, so a pixel is empty in
-// all of them or in none. Normals and ids take a second pass (Scene::render_ids) over a framebuffer of target's
-// size. Throws std::invalid_argument when normals or ids are asked of a wireframe or edges look (their lines are
-// no surface).
+// all of them or in none. Normals and ids take a second pass (Scene::render_ids), and the depth and mask of a
+// multisampled target one more, over `centres`: a one-sample framebuffer of target's size that a caller drawing
+// many frames keeps (its memory is then fresh once), or, when null or of another size, one made for the frame.
+// Throws std::invalid_argument when normals or ids are asked of a wireframe or edges look (their lines are no
+// surface).
 FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
-                          const SceneOptions& options, glm::vec4 clear, const BufferRequest& request);
+                          const SceneOptions& options, glm::vec4 clear, const BufferRequest& request,
+                          Framebuffer* centres = nullptr);
 
 // Per pixel of `surfaces` (from this scene), the file's ids of the triangle seen: its mesh's Mesh::instance_id and
 // Mesh::face_id, two values per pixel; kNoSurface for both where empty. What --output-ids writes. A caller that

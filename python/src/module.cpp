@@ -117,7 +117,8 @@ py::dict arrays_of(FrameBuffers&& b, const BufferRequest& request, bool rgba, st
 // One renderer per Python OffscreenRenderer: its threads and framebuffer, used by one render at a time.
 class RendererCore {
  public:
-  RendererCore(int width, int height, int threads, int samples) : renderer_(threads), target_(width, height, samples) {}
+  RendererCore(int width, int height, int threads, int samples)
+      : renderer_(threads), target_(width, height, samples), centres_(width, height) {}
 
   int width() const { return target_.width(); }
   int height() const { return target_.height(); }
@@ -153,7 +154,7 @@ class RendererCore {
       std::shared_lock shared(scene.mutex);
       BufferRequest drawn = request;
       drawn.color = false;  // read below straight from the framebuffer, in the array's own layout
-      frame = draw_buffers(renderer_, target_, scene.scene, view, options, clear, drawn);
+      frame = draw_buffers(renderer_, target_, scene.scene, view, options, clear, drawn, &centres_);
       if (request.color) frame.color = color_bytes(target_.color(), rgba);
       // Python numbers instances by their nodes, not by the file's ids that draw_buffers gives.
       if (request.ids) ids = file_ids(scene.scene, frame.surfaces, scene.node_ids);
@@ -172,6 +173,7 @@ class RendererCore {
 
   Renderer renderer_;
   Framebuffer target_;
+  Framebuffer centres_;  // draw_buffers' one-sample passes (depth, ids) of a multisampled target, kept between frames
   std::mutex mutex_;
 };
 

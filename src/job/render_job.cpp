@@ -8,6 +8,7 @@
 #include <iterator>
 #include <map>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <string_view>
@@ -78,7 +79,8 @@ std::optional<OutputClash> find_output_clash(std::span<const OutputSpec> outputs
 }
 
 FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
-                          const SceneOptions& options, glm::vec4 clear, const BufferRequest& request) {
+                          const SceneOptions& options, glm::vec4 clear, const BufferRequest& request,
+                          Framebuffer* centres) {
   const bool surface_pass = request.normal || request.ids;
   if (surface_pass && (options.wireframe || options.edges))
     throw std::invalid_argument("normal and id outputs show surfaces: not with wireframe or edges");
@@ -95,17 +97,26 @@ FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene,
   // colour pass does with one sample: with several, depth and mask come from a pass of the same scene at one sample,
   // unlit (its depth is the colour pass's at the centres), and ids from the id pass at one sample. The depth and the
   // mask come from one depth read, so every buffer agrees on which pixels are empty.
+  std::optional<Framebuffer> made;
+  const auto centre_target = [&]() -> Framebuffer& {
+    if (centres && centres->width() == target.width() && centres->height() == target.height() &&
+        centres->samples() == 1)
+      return *centres;
+    if (!made) made.emplace(target.width(), target.height());
+    return *made;
+  };
   if (request.depth || request.mask) {
     if (target.samples() == 1) {
       out.depth = linear_depth(renderer, target, view.clip_from_view);
     } else {
-      Framebuffer centres(target.width(), target.height());
+      Framebuffer& plain_target = centre_target();
+      plain_target.keep_depth(true);
       SceneOptions plain = options;
       plain.shading = Shading::unlit;
       plain.environment_background = plain.shadows = plain.ambient_occlusion = false;
-      renderer.clear(centres, clear, 1.0f);
-      scene.render(renderer, centres, view, plain);
-      out.depth = linear_depth(renderer, centres, view.clip_from_view);
+      renderer.clear(plain_target, clear, 1.0f);
+      scene.render(renderer, plain_target, view, plain);
+      out.depth = linear_depth(renderer, plain_target, view.clip_from_view);
     }
   }
   if (request.mask) {
@@ -115,8 +126,7 @@ FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene,
   }
   if (surface_pass) {
     // Ids and the normals found from them come from pixel centres, as depth and the mask do: never a blend.
-    Framebuffer id_target(target.width(), target.height());
-    out.surfaces = scene.render_ids(renderer, id_target, view, options);
+    out.surfaces = scene.render_ids(renderer, centre_target(), view, options);
     if (request.normal) out.normal = scene.camera_normals(out.surfaces, view);
     if (request.ids) out.ids = file_ids(scene, out.surfaces);
   }
