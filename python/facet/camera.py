@@ -3,6 +3,7 @@ import math
 
 import numpy as np
 
+from ._shared import name_property
 from .constants import DEFAULT_Z_FAR, DEFAULT_Z_NEAR
 
 
@@ -24,13 +25,7 @@ class Camera:
         self.znear = znear
         self.zfar = zfar
 
-    @property
-    def name(self):
-        return self._name
-
-    @name.setter
-    def name(self, value):
-        self._name = None if value is None else str(value)
+    name = name_property()
 
     @property
     def znear(self):

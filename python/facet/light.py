@@ -3,6 +3,7 @@ import math
 
 import numpy as np
 
+from ._shared import name_property
 from .camera import OrthographicCamera, PerspectiveCamera
 from .constants import SHADOW_TEX_SZ
 from .texture import Texture
@@ -48,13 +49,7 @@ class Light:
         self.intensity = 1.0 if intensity is None else intensity
         self._shadow_texture = None
 
-    @property
-    def name(self):
-        return self._name
-
-    @name.setter
-    def name(self, value):
-        self._name = None if value is None else str(value)
+    name = name_property()
 
     @property
     def color(self):

@@ -3,6 +3,7 @@ import copy
 
 import numpy as np
 
+from ._shared import BoxMeasures, name_property
 from . import _facet
 from .constants import GLTF
 from .material import MetallicRoughnessMaterial, _material_description
@@ -70,20 +71,14 @@ def _material_of_visual(mat):
                                      baseColorTexture=getattr(mat, "image", None))
 
 
-class Mesh:
+class Mesh(BoxMeasures):
     """Primitives drawn together, placed by one node, as pyrender's Mesh. Made from Primitives, from trimesh
     objects (from_trimesh), points (from_points), a model file (from_file) or plain arrays (from_arrays)."""
 
     def __init__(self, primitives, name=None, weights=None, is_visible=True):
         self.primitives, self.name, self.weights, self.is_visible = primitives, name, weights, is_visible
 
-    @property
-    def name(self):
-        return self._name
-
-    @name.setter
-    def name(self, value):
-        self._name = None if value is None else str(value)
+    name = name_property()
 
     @property
     def primitives(self):
@@ -105,18 +100,6 @@ class Mesh:
             b = p.bounds
             out = np.array([np.minimum(out[0], b[0]), np.maximum(out[1], b[1])])
         return out
-
-    @property
-    def centroid(self):
-        return self.bounds.mean(axis=0)
-
-    @property
-    def extents(self):
-        return np.diff(self.bounds, axis=0).reshape(-1)
-
-    @property
-    def scale(self):
-        return float(np.linalg.norm(self.extents))
 
     @property
     def is_transparent(self):

@@ -1,6 +1,8 @@
 """node.py - pyrender's Node: a mesh, camera or light with a local transform and children, in a scene's tree."""
 import numpy as np
 
+from ._shared import name_property
+
 
 def matrix_from_trs(translation, rotation, scale):
     """T R S as a 4x4 matrix; rotation is a unit quaternion (x, y, z, w), as glTF stores it."""
@@ -72,13 +74,7 @@ class Node:
         self.children = [] if children is None else children
         self.skin, self.weights, self.id = skin, weights, id
 
-    @property
-    def name(self):
-        return self._name
-
-    @name.setter
-    def name(self, value):
-        self._name = None if value is None else str(value)
+    name = name_property()
 
     @property
     def mesh(self):

@@ -1,6 +1,7 @@
 """primitive.py - pyrender's Primitive: one draw's vertex arrays, indices, mode, material and instance poses."""
 import numpy as np
 
+from ._shared import BoxMeasures
 from . import _facet
 from .constants import GLTF
 from .material import Material, MetallicRoughnessMaterial, _material_description
@@ -86,7 +87,7 @@ def triangle_indices(mode, indices, count):
     return np.column_stack([np.where(odd, i[k + 1], i[k]), np.where(odd, i[k], i[k + 1]), i[k + 2]])
 
 
-class Primitive:
+class Primitive(BoxMeasures):
     """Vertex arrays with one material and one mode, as pyrender's Primitive: positions N x 3; normals N x 3,
     tangents N x 4, texcoord_0 and texcoord_1 N x 2, color_0 N x 3 or 4 (floats in 0..1 or uint8); indices into
     them; mode, one of GLTF.POINTS to GLTF.TRIANGLE_FAN; poses, K x 4 x 4 instancing poses. Values are checked as
@@ -142,18 +143,6 @@ class Primitive:
             return np.zeros((2, 3))
         box = np.array([self.positions.min(axis=0), self.positions.max(axis=0)], dtype=np.float64)
         return posed_bounds(box, self.poses)
-
-    @property
-    def centroid(self):
-        return self.bounds.mean(axis=0)
-
-    @property
-    def extents(self):
-        return np.diff(self.bounds, axis=0).reshape(-1)
-
-    @property
-    def scale(self):
-        return float(np.linalg.norm(self.extents))
 
     @property
     def is_transparent(self):

@@ -1,6 +1,7 @@
 """scene.py - pyrender's Scene: a tree of nodes placing meshes, cameras and lights, and how it is drawn."""
 import numpy as np
 
+from ._shared import BoxMeasures, name_property
 from . import _facet
 from .camera import Camera, OrthographicCamera, PerspectiveCamera
 from .light import DirectionalLight, Light, PointLight, SpotLight
@@ -23,7 +24,7 @@ def _color(value, length, name):
     return np.concatenate([v, np.ones(max(0, length - v.size))])[:length]
 
 
-class Scene:
+class Scene(BoxMeasures):
     """Nodes in a tree, each placing a mesh, camera or light by its matrix relative to its parent (cameras'
     poses are camera-to-world in OpenGL axes). bg_color: RGBA, white by default; ambient_light: linear RGB, none by
     default, as in pyrender. A scene without lights is lit by a headlight from the camera, above left, as
@@ -45,13 +46,7 @@ class Scene:
             if parent.get(node) is None:
                 self.add_node(node)
 
-    @property
-    def name(self):
-        return self._name
-
-    @name.setter
-    def name(self, value):
-        self._name = None if value is None else str(value)
+    name = name_property()
 
     @property
     def bg_color(self):
@@ -151,18 +146,6 @@ class Scene:
             return np.zeros((2, 3))
         boxes = np.array(boxes)
         return np.array([boxes[:, 0].min(axis=0), boxes[:, 1].max(axis=0)])
-
-    @property
-    def centroid(self):
-        return self.bounds.mean(axis=0)
-
-    @property
-    def extents(self):
-        return np.diff(self.bounds, axis=0).reshape(-1)
-
-    @property
-    def scale(self):
-        return float(np.linalg.norm(self.extents))
 
     # Changing the tree.
     def add(self, obj, name=None, pose=None, parent_node=None, parent_name=None, node_id=None):

@@ -1,6 +1,7 @@
 """texture.py - pyrender's Texture and Sampler: an image for a material, and how it is filtered and wrapped."""
 import numpy as np
 
+from ._shared import name_property
 from .constants import GLTF
 
 _FILTERS = (None, GLTF.NEAREST, GLTF.LINEAR, GLTF.NEAREST_MIPMAP_NEAREST, GLTF.LINEAR_MIPMAP_NEAREST,
@@ -13,12 +14,14 @@ class Sampler:
     the sampler says; the values are checked and kept."""
 
     def __init__(self, name=None, magFilter=None, minFilter=None, wrapS=GLTF.REPEAT, wrapT=GLTF.REPEAT):
-        self.name = None if name is None else str(name)
+        self.name = name
         for key, value, allowed in (("magFilter", magFilter, _FILTERS), ("minFilter", minFilter, _FILTERS),
                                     ("wrapS", wrapS, _WRAPS), ("wrapT", wrapT, _WRAPS)):
             if value not in allowed:
                 raise ValueError(f"{key}: {value!r} is not a glTF value for it")
             setattr(self, key, value)
+
+    name = name_property()
 
 
 def image_array(source, name="texture"):
@@ -45,13 +48,15 @@ class Texture:
 
     def __init__(self, name=None, sampler=None, source=None, source_channels=None, width=None, height=None,
                  tex_type=None, data_format=None):
-        self.name = None if name is None else str(name)
+        self.name = name
         self.sampler = Sampler() if sampler is None else sampler
         self.source_channels = source_channels
         self.tex_type, self.data_format = tex_type, data_format
         self.source = source
         if source is None:
             self.width, self.height = width, height
+
+    name = name_property()
 
     @property
     def source(self):

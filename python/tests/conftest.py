@@ -1,6 +1,12 @@
 """conftest.py - shared helpers for the facet Python tests: a UV sphere, camera poses, reading /proc."""
+import os
+import sys
+
 import numpy as np
 import pytest
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "support"))
+from poses import look_at  # noqa: E402,F401  (the tests import it from here)
 
 
 def uv_sphere(radius=1.0, rings=128, segments=256, center=(0.0, 0.0, 0.0)):
@@ -21,18 +27,6 @@ def uv_sphere(radius=1.0, rings=128, segments=256, center=(0.0, 0.0, 0.0)):
     area = np.linalg.norm(np.cross(positions[faces[:, 1]] - positions[faces[:, 0]],
                                    positions[faces[:, 2]] - positions[faces[:, 0]]), axis=1)
     return positions, faces[area > 1e-12], normals
-
-
-def look_at(eye, target=(0.0, 0.0, 0.0), up=(0.0, 1.0, 0.0)):
-    """A camera-to-world pose in OpenGL axes (looking down -z) at eye, looking at target."""
-    eye, target, up = (np.asarray(v, dtype=np.float64) for v in (eye, target, up))
-    back = eye - target
-    back /= np.linalg.norm(back)
-    right = np.cross(up, back)
-    right /= np.linalg.norm(right)
-    pose = np.eye(4)
-    pose[:3, 0], pose[:3, 1], pose[:3, 2], pose[:3, 3] = right, np.cross(back, right), back, eye
-    return pose
 
 
 def rss_bytes():

@@ -2,19 +2,9 @@
 import numpy as np
 import trimesh
 
+from poses import look_at
+
 SIZE = (320, 240)
-
-
-def look_at(eye, target=(0.0, 0.0, 0.0), up=(0.0, 1.0, 0.0)):
-    """A camera-to-world pose in OpenGL axes, looking from eye at target."""
-    eye, target, up = (np.asarray(v, dtype=float) for v in (eye, target, up))
-    z = eye - target
-    z /= np.linalg.norm(z)
-    x = np.cross(up, z)
-    x /= np.linalg.norm(x)
-    pose = np.eye(4)
-    pose[:3, 0], pose[:3, 1], pose[:3, 2], pose[:3, 3] = x, np.cross(z, x), z, eye
-    return pose
 
 
 def _stage(pr, ambient=(0.0, 0.0, 0.0)):
@@ -28,41 +18,34 @@ def _sphere(pr, **material):
     return pr.Mesh.from_trimesh(trimesh.creation.icosphere(subdivisions=4, radius=1.0), material=look)
 
 
-def directional(pr):
-    scene = _stage(pr, (0.05, 0.05, 0.05))
-    scene.add(_sphere(pr, baseColorFactor=[0.8, 0.3, 0.2, 1.0], metallicFactor=0.0, roughnessFactor=0.5))
-    scene.add(pr.DirectionalLight(color=np.ones(3), intensity=3.0), pose=look_at((1.0, 1.0, 2.0)))
-    return scene
+def _lit_sphere(ambient, material, light, position):
+    """A scene of one sphere of `material` (MetallicRoughnessMaterial's keywords) lit by `light`, a function of pr
+    making the light, placed at `position` looking at the sphere."""
+    def make(pr):
+        scene = _stage(pr, ambient)
+        scene.add(_sphere(pr, **material))
+        scene.add(light(pr), pose=look_at(position))
+        return scene
+    return make
 
 
-def point(pr):
-    scene = _stage(pr)
-    scene.add(_sphere(pr, baseColorFactor=[0.5, 0.5, 0.9, 1.0], metallicFactor=0.0, roughnessFactor=0.7))
-    scene.add(pr.PointLight(color=np.ones(3), intensity=20.0), pose=look_at((1.5, 1.0, 2.0)))
-    return scene
-
-
-def spot(pr):
-    scene = _stage(pr)
-    scene.add(_sphere(pr, baseColorFactor=[0.9, 0.9, 0.9, 1.0], metallicFactor=0.0, roughnessFactor=0.6))
-    scene.add(pr.SpotLight(color=np.ones(3), intensity=30.0, innerConeAngle=0.1, outerConeAngle=0.3),
-              pose=look_at((0.0, 0.5, 3.0)))
-    return scene
-
-
-def metal(pr):
-    scene = _stage(pr, (0.1, 0.1, 0.1))
-    scene.add(_sphere(pr, baseColorFactor=[0.9, 0.7, 0.3, 1.0], metallicFactor=1.0, roughnessFactor=0.35))
-    scene.add(pr.DirectionalLight(color=np.ones(3), intensity=4.0), pose=look_at((-1.0, 1.0, 2.0)))
-    return scene
-
-
-def rough_metal(pr):
-    scene = _stage(pr, (0.02, 0.02, 0.02))
-    scene.add(_sphere(pr, baseColorFactor=[0.95, 0.95, 0.95, 1.0], metallicFactor=1.0, roughnessFactor=1.0))
-    scene.add(pr.SpotLight(color=np.ones(3), intensity=25.0, innerConeAngle=0.2, outerConeAngle=0.5),
-              pose=look_at((0.5, 0.5, 3.0)))
-    return scene
+directional = _lit_sphere((0.05, 0.05, 0.05), dict(baseColorFactor=[0.8, 0.3, 0.2, 1.0], metallicFactor=0.0,
+                                                   roughnessFactor=0.5),
+                          lambda pr: pr.DirectionalLight(color=np.ones(3), intensity=3.0), (1.0, 1.0, 2.0))
+point = _lit_sphere((0.0, 0.0, 0.0), dict(baseColorFactor=[0.5, 0.5, 0.9, 1.0], metallicFactor=0.0,
+                                          roughnessFactor=0.7),
+                    lambda pr: pr.PointLight(color=np.ones(3), intensity=20.0), (1.5, 1.0, 2.0))
+spot = _lit_sphere((0.0, 0.0, 0.0), dict(baseColorFactor=[0.9, 0.9, 0.9, 1.0], metallicFactor=0.0,
+                                         roughnessFactor=0.6),
+                   lambda pr: pr.SpotLight(color=np.ones(3), intensity=30.0, innerConeAngle=0.1,
+                                           outerConeAngle=0.3), (0.0, 0.5, 3.0))
+metal = _lit_sphere((0.1, 0.1, 0.1), dict(baseColorFactor=[0.9, 0.7, 0.3, 1.0], metallicFactor=1.0,
+                                          roughnessFactor=0.35),
+                    lambda pr: pr.DirectionalLight(color=np.ones(3), intensity=4.0), (-1.0, 1.0, 2.0))
+rough_metal = _lit_sphere((0.02, 0.02, 0.02), dict(baseColorFactor=[0.95, 0.95, 0.95, 1.0], metallicFactor=1.0,
+                                                   roughnessFactor=1.0),
+                          lambda pr: pr.SpotLight(color=np.ones(3), intensity=25.0, innerConeAngle=0.2,
+                                                  outerConeAngle=0.5), (0.5, 0.5, 3.0))
 
 
 def face_colours(pr):
@@ -133,14 +116,10 @@ def points(pr):
     return scene
 
 
-def flat(pr):
-    return directional(pr)
-
-
 # name: (scene, flags as RenderFlags attribute names)
 SCENES = {"directional": (directional, []), "point": (point, []), "spot": (spot, []), "metal": (metal, []), "rough_metal": (rough_metal, []),
           "face_colours": (face_colours, []), "vertex_colours": (vertex_colours, []), "textured": (textured, []),
-          "instanced": (instanced, []), "points": (points, []), "flat": (flat, ["FLAT"])}
+          "instanced": (instanced, []), "points": (points, []), "flat": (directional, ["FLAT"])}
 
 
 def render_all(pr):
