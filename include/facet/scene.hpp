@@ -56,7 +56,8 @@ struct SceneOptions {
   glm::vec4 edge_color{0.05f, 0.05f, 0.05f, 1.0f};
   float line_width = 1.0f;
   // Points (Mesh::points): their size in pixels and shape. A cloud with normals is lit like a surface; one without
-  // is drawn in its colours (vertex colours, or the material's), unlit.
+  // is drawn in its colours (vertex colours, or the material's), unlit, unless its material asks for pyrender's
+  // lighting (Material::pyrender_lighting), which lights each point as facing the eye.
   float point_size = 2.0f;
   PointShape point_shape = PointShape::square;
   // point_size in world units rather than pixels: each point then covers as much of the image as a square (or
@@ -70,7 +71,7 @@ struct SceneOptions {
   float eye_dome_lighting = 0.0f;
   Sampler sampler{};
   // The physically based look (Shading::automatic): the environment that lights it besides `lights` (none: the
-  // ambient colour lights it evenly instead), and how its light becomes displayed colour.
+  // ambient colour, as light of that radiance from every direction), and how its light becomes displayed colour.
   std::shared_ptr<const Environment> environment{};
   ToneMapping tone_mapping = ToneMapping::neutral;
   float exposure = 1.0f;

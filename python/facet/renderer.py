@@ -104,8 +104,7 @@ class OffscreenRenderer:
         core.sync([(mesh, pose, node_id, _wireframe(flags, wire)) for mesh, pose, node_id, wire in instances])
         casting = {"directional": bool(flags & RenderFlags.SHADOWS_DIRECTIONAL),
                    "spot": bool(flags & RenderFlags.SHADOWS_SPOT), "point": False}
-        lights = [light_tuple(node.light, scene.get_pose(node), casting[node.light.kind])
-                  for node in scene._parent if node.light is not None]
+        lights = [light_tuple(light, pose, casting[light.kind]) for light, pose in scene._placed_lights()]
         if not lights:
             lights.append(light_tuple(_HEADLIGHT, view["pose"] @ _HEADLIGHT_POSE))
         return self._core.render(core, view["view"], view["projection"], view["near"], view["far"],

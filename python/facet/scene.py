@@ -259,6 +259,10 @@ class Scene(BoxMeasures):
                 out.extend((core, p, node.id, wireframe) for p in poses)
         return out
 
+    def _placed_lights(self):
+        """(light, world pose) of each light node, in the order they were added."""
+        return [(node.light, self.get_pose(node)) for node in self._parent if node.light is not None]
+
     @staticmethod
     def from_trimesh_scene(trimesh_scene, bg_color=None, ambient_light=None):
         """A trimesh.Scene's geometry placed by its graph (read by duck typing), each as Mesh.from_trimesh makes
