@@ -17,20 +17,9 @@ import time
 
 WIDTH, HEIGHT, FRAMES, THREADS = 640, 480, 50, 2
 HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, HERE)
+from uv_sphere import uv_sphere  # noqa: E402
 SUPPORT = os.path.join(HERE, "..", "python", "tests", "support")
-
-
-def sphere(rings=224, segments=448):
-    """A UV sphere's positions, normals and triangles (2 x rings x segments of them)."""
-    import numpy as np
-    theta = np.linspace(0.0, np.pi, rings + 1)
-    phi = np.linspace(0.0, 2.0 * np.pi, segments + 1)
-    t, p = np.meshgrid(theta, phi, indexing="ij")
-    normals = np.stack([np.sin(t) * np.cos(p), np.cos(t), -np.sin(t) * np.sin(p)], axis=-1).reshape(-1, 3)
-    a = (np.arange(rings)[:, None] * (segments + 1) + np.arange(segments)[None, :]).reshape(-1)
-    b = a + segments + 1
-    faces = np.concatenate([np.stack([a, b, a + 1], 1), np.stack([a + 1, b, b + 1], 1)])
-    return normals, normals, faces
 
 
 def child(module, mode):
@@ -38,7 +27,7 @@ def child(module, mode):
     import importlib
     import numpy as np
     pr = importlib.import_module(module)
-    positions, normals, faces = sphere()
+    positions, normals, faces = uv_sphere(224, 448)
     scene = pr.Scene(bg_color=[0.0, 0.0, 0.0, 1.0], ambient_light=[0.1, 0.1, 0.1])
     material = pr.MetallicRoughnessMaterial(baseColorFactor=[0.8, 0.5, 0.3, 1.0], metallicFactor=0.0,
                                             roughnessFactor=0.5)

@@ -18,24 +18,19 @@ import numpy as np
 
 import facet
 
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+from uv_sphere import uv_sphere  # noqa: E402
+
 WIDTH, HEIGHT, FRAMES, THREADS = 640, 480, 200, 2
 
 
 def write_sphere(path, rings=160, segments=320):
-    theta = np.linspace(0.0, np.pi, rings + 1)
-    phi = np.linspace(0.0, 2.0 * np.pi, segments + 1)
-    t, p = np.meshgrid(theta, phi, indexing="ij")
-    normals = np.stack([np.sin(t) * np.cos(p), np.cos(t), -np.sin(t) * np.sin(p)], axis=-1).reshape(-1, 3)
-    faces = []
-    for r in range(rings):
-        for s in range(segments):
-            a = r * (segments + 1) + s
-            b = a + segments + 1
-            faces += [(a, b, a + 1), (a + 1, b, b + 1)]
+    """The UV sphere as a binary PLY of positions and normals; returns its triangle count."""
+    positions, normals, faces = uv_sphere(rings, segments)
     header = (f"ply\nformat binary_little_endian 1.0\nelement vertex {len(normals)}\nproperty float x\n"
               f"property float y\nproperty float z\nproperty float nx\nproperty float ny\nproperty float nz\n"
               f"element face {len(faces)}\nproperty list uchar int vertex_indices\nend_header\n")
-    vertices = np.hstack([normals, normals]).astype("<f4")
+    vertices = np.hstack([positions, normals]).astype("<f4")
     face_records = np.zeros(len(faces), dtype=[("n", "u1"), ("i", "<i4", 3)])
     face_records["n"] = 3
     face_records["i"] = faces

@@ -1,4 +1,4 @@
-"""_shared.py - what pyrender's classes share: a name that is None or a str, and the measures of a bounding box."""
+"""_shared.py - what pyrender's classes share: a name that is None or a str, colours, a bounding box's measures."""
 import numpy as np
 
 
@@ -28,3 +28,18 @@ class BoxMeasures:
     def scale(self):
         """The length of the box's diagonal."""
         return float(np.linalg.norm(self.extents))
+
+
+def color_vector(value, length, name, fewest=1):
+    """A colour as pyrender formats one, `length` values: integers are 0..255, one number stands for every channel,
+    missing channels are 1 and extra ones are cut. ValueError for fewer than `fewest` values (one number aside),
+    more than 4, or a value that is not finite."""
+    v = np.asarray(value)
+    if v.dtype.kind in "iub":
+        v = v / 255.0
+    v = np.asarray(v, dtype=np.float64).reshape(-1)
+    if v.size == 1 and fewest <= 1:
+        v = np.repeat(v, length)
+    if not fewest <= v.size <= 4 or not np.all(np.isfinite(v)):
+        raise ValueError(f"{name}: expected {fewest} to 4 finite values, got {value!r}")
+    return np.concatenate([v, np.ones(max(0, length - v.size))])[:length]

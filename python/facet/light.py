@@ -3,23 +3,10 @@ import math
 
 import numpy as np
 
-from ._shared import name_property
+from ._shared import color_vector, name_property
 from .camera import OrthographicCamera, PerspectiveCamera
 from .constants import SHADOW_TEX_SZ
 from .texture import Texture
-
-
-def _color(value, default, name):
-    """An RGB(A) colour as a float array of 4, alpha 1 if not given; uint8 values are scaled by 1/255."""
-    if value is None:
-        value = default
-    c = np.asarray(value)
-    if c.dtype.kind in "iu":
-        c = c / 255.0
-    c = np.asarray(c, dtype=np.float64).reshape(-1)
-    if c.size not in (3, 4) or not np.all(np.isfinite(c)):
-        raise ValueError(f"{name}: expected 3 or 4 finite values, got {value!r}")
-    return np.append(c, 1.0) if c.size == 3 else c
 
 
 def _range(value):
@@ -59,7 +46,7 @@ class Light:
     def color(self, value):
         if value is None:
             raise ValueError("color: expected 3 or 4 finite values, got None")
-        self._color = _color(value, None, "color")[:3]
+        self._color = color_vector(value, 3, "color", fewest=3)
 
     @property
     def intensity(self):

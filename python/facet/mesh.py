@@ -111,7 +111,8 @@ class Mesh(BoxMeasures):
         return self.primitives[0].material if self.primitives else None
 
     def _counts(self, name):
-        return sum(getattr(p._mesh_core(), name) for p in self.primitives if p._mesh_core() is not None)
+        cores = (p._mesh_core() for p in self.primitives)
+        return sum(getattr(core, name) for core in cores if core is not None)
 
     @property
     def vertex_count(self):

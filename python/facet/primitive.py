@@ -11,18 +11,6 @@ _MODE_NAMES = {GLTF.POINTS: "POINTS", GLTF.LINES: "LINES", GLTF.LINE_LOOP: "LINE
                GLTF.TRIANGLE_FAN: "TRIANGLE_FAN"}
 
 
-def srgb_encode(linear):
-    """sRGB's encoding of linear values in 0..1."""
-    c = np.clip(np.asarray(linear, dtype=np.float64), 0.0, 1.0)
-    return np.where(c <= 0.0031308, 12.92 * c, 1.055 * np.power(c, 1.0 / 2.4) - 0.055)
-
-
-def srgb_decode(encoded):
-    """sRGB's decoding of encoded values in 0..1."""
-    c = np.clip(np.asarray(encoded, dtype=np.float64), 0.0, 1.0)
-    return np.where(c <= 0.04045, c / 12.92, np.power((c + 0.055) / 1.055, 2.4))
-
-
 def _rows(value, columns, count, name, at_least=False):
     """value as a contiguous float32 array count x columns (more columns allowed, and cut, when at_least)."""
     v = np.ascontiguousarray(np.asanyarray(value, dtype=np.float32))
@@ -135,14 +123,19 @@ class Primitive(BoxMeasures):
             value = instance_poses(value)
         object.__setattr__(self, key, value)
         object.__setattr__(self, "_built", None)
+        object.__setattr__(self, "_box", None)
 
     @property
     def bounds(self):
-        """2 x 3: the box around the positions, placed by every instancing pose."""
-        if len(self.positions) == 0:
-            return np.zeros((2, 3))
-        box = np.array([self.positions.min(axis=0), self.positions.max(axis=0)], dtype=np.float64)
-        return posed_bounds(box, self.poses)
+        """2 x 3: the box around the positions, placed by every instancing pose; kept until an attribute is set
+        (a frame through a camera without zfar asks for it)."""
+        if self._box is None:
+            box = np.zeros((2, 3))
+            if len(self.positions):
+                box = np.array([self.positions.min(axis=0), self.positions.max(axis=0)], dtype=np.float64)
+                box = posed_bounds(box, self.poses)
+            object.__setattr__(self, "_box", box)
+        return self._box.copy()
 
     @property
     def is_transparent(self):
@@ -165,22 +158,9 @@ class Primitive(BoxMeasures):
         if self.mode in (GLTF.LINES, GLTF.LINE_LOOP, GLTF.LINE_STRIP):
             raise ValueError(f"Primitive: facet draws no line primitives (mode {_MODE_NAMES[self.mode]}); "
                              "RenderFlags.ALL_WIREFRAME draws triangles' edges")
-        description = _material_description(self.material)
-        colors = self.color_0
-        if flat:
-            # pyrender's flat shader writes base colour x texture x vertex colour unconverted: the factor, which
-            # the renderer would encode as linear, is given as the value it encodes to.
-            description = {**description, "base_color": np.append(srgb_decode(description["base_color"][:3]),
-                                                                  description["base_color"][3])}
-        else:
-            # pyrender's shader multiplies the lit colour by COLOR_0, a linear value (the renderer decodes vertex
-            # colours from their displayed values, so they are given encoded), and adds the emissive factor
-            # squared (it multiplies the emission, the factor times the texture, by the factor again).
-            description = {**description, "pyrender_lighting": True,
-                           "emissive": description["emissive"] * description["emissive"]}
-            if colors is not None:
-                colors = np.column_stack([srgb_encode(colors[:, :3]), colors[:, 3]])
-        columns = (self.normals, self.texcoord_0, colors)
+        # Drawn by pyrender's conventions (python/src/materials.cpp): its lit shader's, or its flat shader's.
+        description = {**_material_description(self.material), "convention": "pyrender_flat" if flat else "pyrender"}
+        columns = (self.normals, self.texcoord_0, self.color_0)
         if self.mode == GLTF.POINTS:
             positions = self.positions
             if self.indices is not None:  # only the points the indices name
@@ -208,10 +188,11 @@ class CorePrimitive:
 
     def __init__(self, core, material=None):
         self._core, self.material = core, material
+        self._box = core.bounds  # the core never changes
 
     @property
     def bounds(self):
-        return self._core.bounds
+        return self._box.copy()
 
     @property
     def is_transparent(self):

@@ -121,8 +121,6 @@ class OffscreenRenderer:
             if c.size != 3 or not np.all((c >= 0.0) & (c <= 255.0)):
                 raise ValueError(f"seg_node_map: expected 0..255 RGB colours or grey values, got {color!r}")
             colors[node] = np.rint(c).astype(np.uint8)
-        if not hasattr(scene, "_seg_core"):
-            scene._seg_core = _facet.SceneCore()  # its own meshes' prepared data, the others not being drawn
         out = self._draw(scene, scene._seg_core, scene._instances(only=colors), flags & ~RenderFlags.FLAT,
                          ["ids", "depth"], True, np.array([0.0, 0.0, 0.0, 1.0]))
         ids = out["ids"][..., 0]

@@ -1,27 +1,13 @@
 """scene.py - pyrender's Scene: a tree of nodes placing meshes, cameras and lights, and how it is drawn."""
 import numpy as np
 
-from ._shared import BoxMeasures, name_property
+from ._shared import BoxMeasures, color_vector, name_property
 from . import _facet
 from .camera import Camera, OrthographicCamera, PerspectiveCamera
 from .light import DirectionalLight, Light, PointLight, SpotLight
 from .mesh import DEFAULT_MAX_POINTS, DEFAULT_MAX_TEXTURE_SIZE, DEFAULT_MAX_TRIANGLES, Mesh
 from .node import Node
 from .primitive import CorePrimitive, posed_bounds
-
-
-def _color(value, length, name):
-    """A colour as pyrender formats one: integers are 0..255, a number stands for every channel, missing channels
-    are 1 (the cut to `length` drops the rest)."""
-    v = np.asarray(value)
-    if v.dtype.kind in "iub":
-        v = v / 255.0
-    v = np.asarray(v, dtype=np.float64).reshape(-1)
-    if v.size == 1:
-        v = np.repeat(v, length)
-    if not 1 <= v.size <= 4 or not np.all(np.isfinite(v)):
-        raise ValueError(f"{name}: expected up to 4 finite values, got {value!r}")
-    return np.concatenate([v, np.ones(max(0, length - v.size))])[:length]
 
 
 class Scene(BoxMeasures):
@@ -35,6 +21,8 @@ class Scene(BoxMeasures):
         self.clear()
         self._next_id = 0
         self._core = _facet.SceneCore()
+        # What RenderFlags.SEG draws: the mapped nodes alone, prepared apart from the frames of the whole scene.
+        self._seg_core = _facet.SceneCore()
         nodes = list(nodes or [])
         parent = {}
         for node in nodes:
@@ -54,7 +42,7 @@ class Scene(BoxMeasures):
 
     @bg_color.setter
     def bg_color(self, value):
-        self._bg_color = np.ones(4) if value is None else _color(value, 4, "bg_color")
+        self._bg_color = np.ones(4) if value is None else color_vector(value, 4, "bg_color")
 
     @property
     def ambient_light(self):
@@ -62,7 +50,7 @@ class Scene(BoxMeasures):
 
     @ambient_light.setter
     def ambient_light(self, value):
-        self._ambient_light = np.zeros(3) if value is None else _color(value, 3, "ambient_light")
+        self._ambient_light = np.zeros(3) if value is None else color_vector(value, 3, "ambient_light")
 
     def clear(self):
         """Removes every node."""

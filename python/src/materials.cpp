@@ -74,8 +74,14 @@ Material material_of(py::handle description, bool has_uvs) {
   const auto d = description.cast<py::dict>();
   Material out;
   out.name = d["name"].cast<std::string>();
+  // Whose conventions the values follow: facet's own (Mesh.from_arrays), pyrender's lit shader, or pyrender's flat
+  // shader, which writes base colour x texture x vertex colour unconverted.
+  const std::string convention = d.contains("convention") ? d["convention"].cast<std::string>() : "facet";
+  if (convention != "facet" && convention != "pyrender" && convention != "pyrender_flat")
+    value_error("material: unknown convention '" + convention + "'");
   // pyrender's factors are linear, as glTF's are; Material holds the base colour as displayed (mesh.hpp).
-  out.diffuse = linear_to_srgb(glm::clamp(vector_of<4>(d, "base_color"), 0.0f, 1.0f));
+  const glm::vec4 base = glm::clamp(vector_of<4>(d, "base_color"), 0.0f, 1.0f);
+  out.diffuse = convention == "pyrender_flat" ? base : linear_to_srgb(base);
   out.metallic = factor(d, "metallic", 0.0f, 1.0f);
   out.roughness = factor(d, "roughness", 0.0f, 1.0f);
   // For the classic shadings, as the glTF reader derives them: rough surfaces get a weak, broad highlight.
@@ -83,13 +89,15 @@ Material material_of(py::handle description, bool has_uvs) {
   out.shininess = 2.0f + 126.0f * (1.0f - out.roughness) * (1.0f - out.roughness);
   // Emission is linear radiance in Material as in pyrender: no encoding.
   out.emissive = glm::max(vector_of<3>(d, "emissive"), glm::vec3(0.0f));
+  out.pyrender_lighting = convention == "pyrender";
+  // pyrender's shader multiplies the emission (the factor times the texture) by the factor again.
+  if (out.pyrender_lighting) out.emissive *= out.emissive;
   const std::string mode = d["alpha_mode"].cast<std::string>();
   if (mode == "BLEND") out.alpha_mode = AlphaMode::blend;
   else if (mode == "MASK") out.alpha_mode = AlphaMode::mask;
   else if (mode != "OPAQUE") value_error("material: alphaMode must be OPAQUE, MASK or BLEND, got '" + mode + "'");
   out.alpha_cutoff = factor(d, "alpha_cutoff", 0.0f, 1.0f);
   out.double_sided = d["double_sided"].cast<bool>();
-  out.pyrender_lighting = d.contains("pyrender_lighting") && d["pyrender_lighting"].cast<bool>();
 
   // Colour images (base colour, emission) are sRGB-encoded and data images linear, as glTF has them.
   const auto texture = [&](const char* key, const char* name, TexelEncoding encoding) {

@@ -5,6 +5,7 @@
 #include <string>
 #include <utility>
 
+#include "facet/color.hpp"
 #include "facet/error.hpp"
 #include "facet/model_io.hpp"
 #include "facet/texture.hpp"
@@ -65,6 +66,9 @@ MeshCore MeshCore::from_arrays(py::handle positions, py::handle faces, py::handl
   }
   // Every triangle gets a material, so that it is culled as its material's sides say (make_sides_explicit).
   Material look = material.is_none() ? default_material() : material_of(material, !mesh.uvs.empty());
+  // pyrender's COLOR_0 is linear and multiplies the lit colour; Mesh keeps vertex colours as displayed.
+  if (look.pyrender_lighting)
+    for (glm::vec4& c : mesh.colors) c = linear_to_srgb(c);
   if (!texture.is_none()) {
     if (mesh.uvs.empty()) value_error("texture: a textured mesh needs uvs");
     if (material.is_none()) {
