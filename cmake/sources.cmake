@@ -32,9 +32,11 @@ set(FACET_SCENE_SOURCES
   src/scene/lighting/brdf_table.cpp
   src/scene/lighting/environment.cpp
   src/scene/lighting/studio.cpp
+  src/scene/mesh/animation.cpp
   src/scene/mesh/crease_normals.cpp
   src/scene/mesh/mesh.cpp
   src/scene/mesh/model.cpp
+  src/scene/mesh/pose.cpp
   src/scene/mesh/primitives.cpp
   src/scene/mesh/topology.cpp
   src/scene/prepare.cpp
@@ -57,6 +59,7 @@ set(FACET_SCENE_SOURCES
 # The job: facet's own model and environment readers and the view specifications, which run everywhere.
 set(FACET_JOB_SOURCES
   src/job/io/environment_io.cpp
+  src/job/io/gltf_animation.cpp
   src/job/io/gltf_draco.cpp
   src/job/io/gltf_lights.cpp
   src/job/io/gltf_loader.cpp

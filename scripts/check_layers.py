@@ -15,7 +15,7 @@ LAYERS = ("core", "scene", "job")
 HEADERS = {
     "core": """camera color cpu_level draw error fragment_lanes framebuffer named projection render_state renderer shader
                simd simd_shuffles simd_vectors text transform vertex_lanes warnings detail/*""",
-    "scene": """demo_scenes environment light mesh model primitives sampler scene splats texture texture_slots shaders/*
+    "scene": """animation demo_scenes environment light mesh model primitives sampler scene splats texture texture_slots shaders/*
                 detail/brdf_table detail/octahedral_map detail/texel_math""",
     "job": "image_io model_io names output_template render_job sheet_views view_spec",
 }

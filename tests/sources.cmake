@@ -23,6 +23,7 @@ set(FACET_LIGHT_TEST_SOURCES
   property/test_setup_cull.cpp
   property/test_vertex_batches.cpp
   unit/test_allocations.cpp
+  unit/test_animation.cpp
   unit/test_animation_job.cpp
   unit/test_assimp_loader.cpp
   unit/test_camera.cpp
@@ -36,6 +37,7 @@ set(FACET_LIGHT_TEST_SOURCES
   unit/test_punctual_lights.cpp
   unit/test_format_parity.cpp
   unit/test_fuzz_regressions.cpp
+  unit/test_gltf_animation.cpp
   unit/test_gltf_loader.cpp
   unit/test_gltf_specular.cpp
   unit/test_gltf_tangents.cpp

@@ -42,7 +42,13 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
 #elif FACET_FUZZ_FORMAT == 3
     (void)facet::load_stl(bytes, source);
 #elif FACET_FUZZ_FORMAT == 4
-    (void)facet::load_gltf(model_path(), bytes, source, options);
+    // The model is posed too: at rest (skins and morph weights), and each of its first animations half way through
+    // and past its end, so hostile keys, joints and weights reach the sampler and the skinning.
+    const facet::Model model = facet::load_gltf(model_path(), bytes, source, options);
+    (void)facet::pose(model, std::nullopt, 0.0, source);
+    for (std::size_t a = 0; a < model.animations.size() && a < 3; ++a)
+      for (const double t : {0.5 * model.animations[a].duration(), 1e6})
+        (void)facet::pose(model, a, t, source);
 #elif FACET_FUZZ_FORMAT == 5
     (void)facet::load_xyz(bytes, source);
 #elif FACET_FUZZ_FORMAT == 6

@@ -14,11 +14,13 @@
 #include <string>
 #include <vector>
 
+#include "core/file_util.hpp"
 #include "facet/color.hpp"
 #include "facet/error.hpp"
 #include "facet/model.hpp"
 #include "facet/texture.hpp"
-#include "core/file_util.hpp"
+#include "job/io/gltf_accessors.hpp"
+#include "job/io/gltf_animation.hpp"
 #include "job/io/gltf_lights.hpp"
 #include "job/io/gltf_material.hpp"
 #include "job/io/gltf_meshopt.hpp"
@@ -36,157 +38,15 @@ namespace {
 // (KHR_materials_emissive_strength); Draco-compressed primitives are decoded
 // (KHR_draco_mesh_compression), and so are compressed buffer views where meshoptimizer is built in
 // (EXT_meshopt_compression).
-const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization", "KHR_texture_transform",
-                                                  "KHR_materials_unlit", "KHR_materials_emissive_strength",
-                                                  "KHR_materials_ior", "KHR_materials_specular",
-                                                  "KHR_materials_clearcoat", "KHR_materials_sheen",
+const std::set<std::string> kSupportedRequired = {"KHR_mesh_quantization",      "KHR_texture_transform",
+                                                  "KHR_materials_unlit",        "KHR_materials_emissive_strength",
+                                                  "KHR_materials_ior",          "KHR_materials_specular",
+                                                  "KHR_materials_clearcoat",    "KHR_materials_sheen",
                                                   "KHR_materials_transmission", "KHR_lights_punctual",
                                                   "KHR_draco_mesh_compression",
 #ifndef FACET_NO_MESHOPT
                                                   "EXT_meshopt_compression"
 #endif
-};
-
-struct Reader {
-  const tinygltf::Model& model;
-  const std::string& source;
-
-  [[noreturn]] void fail(const std::string& problem) const { throw InputError(source, problem); }
-
-  // The accessor's elements as floats, `components` per element (normalized integers scaled to 0..1 or -1..1),
-  // sparse substitutions applied. Every byte range is checked against its buffer.
-  std::vector<float> floats(int index, int components, const char* what) const {
-    const tinygltf::Accessor& a = accessor(index, what);
-    if (tinygltf::GetNumComponentsInType(static_cast<std::uint32_t>(a.type)) != components)
-      fail(std::string(what) + ": accessor " + std::to_string(index) + " has the wrong type for this attribute");
-    // Checked before anything is allocated: a count the buffer cannot hold (or, for an accessor of sparse values
-    // alone, more vertices than any model may have) would otherwise claim gigabytes.
-    const bool dense = a.bufferView >= 0;
-    const Span span = dense ? elements(a, components, what) : Span{nullptr, 0};
-    if (a.count > kMaxModelVertices)
-      fail(std::string(what) + ": accessor " + std::to_string(index) + " has " + std::to_string(a.count) +
-           " elements, more than 2^27");
-    std::vector<float> out(a.count * static_cast<std::size_t>(components), 0.0f);
-    if (dense) {
-      for (std::size_t i = 0; i < a.count; ++i)
-        for (int c = 0; c < components; ++c)
-          out[i * components + c] = component(span.data + i * span.stride, a.componentType, c, a.normalized);
-    }
-    if (a.sparse.isSparse) {
-      const std::vector<std::uint32_t> targets = sparse_indices(a, what);
-      tinygltf::Accessor values = a;
-      values.bufferView = a.sparse.values.bufferView;
-      values.byteOffset = static_cast<std::size_t>(a.sparse.values.byteOffset);
-      values.count = targets.size();
-      const Span span = elements(values, components, what);
-      for (std::size_t k = 0; k < targets.size(); ++k)
-        for (int c = 0; c < components; ++c)
-          out[targets[k] * components + c] = component(span.data + k * span.stride, a.componentType, c, a.normalized);
-    }
-    return out;
-  }
-
-  std::vector<std::uint32_t> indices(int index) const {
-    const tinygltf::Accessor& a = accessor(index, "indices");
-    if (a.type != TINYGLTF_TYPE_SCALAR || a.sparse.isSparse || a.bufferView < 0)
-      fail("indices: accessor " + std::to_string(index) + " is not a plain scalar index list");
-    const Span span = elements(a, 1, "indices");
-    std::vector<std::uint32_t> out(a.count);
-    for (std::size_t i = 0; i < a.count; ++i) out[i] = integer(span.data + i * span.stride, a.componentType, "indices");
-    return out;
-  }
-
- private:
-  struct Span {
-    const unsigned char* data;
-    std::size_t stride;
-  };
-
-  const tinygltf::Accessor& accessor(int index, const char* what) const {
-    if (index < 0 || static_cast<std::size_t>(index) >= model.accessors.size())
-      fail(std::string(what) + ": accessor " + std::to_string(index) + " does not exist");
-    return model.accessors[static_cast<std::size_t>(index)];
-  }
-
-  Span elements(const tinygltf::Accessor& a, int components, const char* what) const {
-    const int size = tinygltf::GetComponentSizeInBytes(static_cast<std::uint32_t>(a.componentType));
-    if (size <= 0) fail(std::string(what) + ": unknown component type " + std::to_string(a.componentType));
-    if (a.bufferView < 0 || static_cast<std::size_t>(a.bufferView) >= model.bufferViews.size())
-      fail(std::string(what) + ": buffer view " + std::to_string(a.bufferView) + " does not exist");
-    const tinygltf::BufferView& view = model.bufferViews[static_cast<std::size_t>(a.bufferView)];
-    if (view.buffer < 0 || static_cast<std::size_t>(view.buffer) >= model.buffers.size())
-      fail(std::string(what) + ": buffer " + std::to_string(view.buffer) + " does not exist");
-    const std::vector<unsigned char>& buffer = model.buffers[static_cast<std::size_t>(view.buffer)].data;
-    const std::size_t element = static_cast<std::size_t>(size) * static_cast<std::size_t>(components);
-    const std::size_t stride = view.byteStride ? view.byteStride : element;
-    // Sizes come from the file: each sum is checked before it is formed, so none can wrap.
-    const std::size_t limit = buffer.size();
-    const auto fits = [&](std::size_t offset, std::size_t length) {
-      return offset <= limit && length <= limit - offset;
-    };
-    if (!fits(view.byteOffset, view.byteLength))
-      fail(std::string(what) + ": buffer view " + std::to_string(a.bufferView) + " reaches past the end of its buffer");
-    const std::size_t needed = a.count == 0 ? 0 : (a.count - 1) * stride + element;
-    if (a.count != 0 && (a.count - 1) > (std::numeric_limits<std::size_t>::max() - element) / stride)
-      fail(std::string(what) + ": accessor count " + std::to_string(a.count) + " is too large");
-    if (a.byteOffset > view.byteLength || needed > view.byteLength - a.byteOffset)
-      fail(std::string(what) + ": accessor of " + std::to_string(a.count) +
-           " elements does not fit in its buffer view");
-    return {buffer.data() + view.byteOffset + a.byteOffset, stride};
-  }
-
-  std::vector<std::uint32_t> sparse_indices(const tinygltf::Accessor& a, const char* what) const {
-    tinygltf::Accessor list;
-    list.bufferView = a.sparse.indices.bufferView;
-    list.byteOffset = static_cast<std::size_t>(a.sparse.indices.byteOffset);
-    list.componentType = a.sparse.indices.componentType;
-    list.count = static_cast<std::size_t>(std::max(a.sparse.count, 0));
-    list.type = TINYGLTF_TYPE_SCALAR;
-    const Span span = elements(list, 1, what);
-    std::vector<std::uint32_t> out(list.count);
-    for (std::size_t i = 0; i < list.count; ++i) {
-      out[i] = integer(span.data + i * span.stride, list.componentType, what);
-      if (out[i] >= a.count) fail(std::string(what) + ": sparse index " + std::to_string(out[i]) + " is out of range");
-    }
-    return out;
-  }
-
-  std::uint32_t integer(const unsigned char* p, int type, const char* what) const {
-    switch (type) {
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return p[0];
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: return load<std::uint16_t>(p);
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return load<std::uint32_t>(p);
-      default: fail(std::string(what) + ": index component type " + std::to_string(type) + " is not unsigned");
-    }
-  }
-
-  template <class T>
-  static T load(const unsigned char* p) {
-    T v;
-    std::memcpy(&v, p, sizeof v);  // glTF is little-endian, as is every machine facet targets
-    return v;
-  }
-
-  static float component(const unsigned char* element, int type, int c, bool normalized) {
-    switch (type) {
-      case TINYGLTF_COMPONENT_TYPE_FLOAT: return load<float>(element + 4 * c);
-      case TINYGLTF_COMPONENT_TYPE_BYTE: {
-        const float v = static_cast<std::int8_t>(element[c]);
-        return normalized ? std::max(v / 127.0f, -1.0f) : v;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_BYTE: return normalized ? element[c] / 255.0f : element[c];
-      case TINYGLTF_COMPONENT_TYPE_SHORT: {
-        const float v = load<std::int16_t>(element + 2 * c);
-        return normalized ? std::max(v / 32767.0f, -1.0f) : v;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_SHORT: {
-        const float v = load<std::uint16_t>(element + 2 * c);
-        return normalized ? v / 65535.0f : v;
-      }
-      case TINYGLTF_COMPONENT_TYPE_UNSIGNED_INT: return static_cast<float>(load<std::uint32_t>(element + 4 * c));
-      default: return 0.0f;
-    }
-  }
 };
 
 glm::mat4 local_transform(const tinygltf::Node& node) {
@@ -215,7 +75,7 @@ glm::mat4 local_transform(const tinygltf::Node& node) {
 class SceneReader {
  public:
   SceneReader(const tinygltf::Model& model, const std::string& source)
-      : model_(model), reader_{model, source}, slots_(model.meshes.size(), kUnread) {
+      : model_(model), reader_{model, source}, deformation_(reader_), slots_(model.meshes.size(), kUnread) {
     std::set<int> warned_textures;
     for (const tinygltf::Material& m : model.materials) {
       uv_transforms_.push_back(uv_transform_of(m.pbrMetallicRoughness.baseColorTexture, source));
@@ -233,7 +93,7 @@ class SceneReader {
       reader_.fail("the node hierarchy is more than 64 levels deep (at node " + std::to_string(index) + ")");
     const tinygltf::Node& n = model_.nodes[static_cast<std::size_t>(index)];
     const glm::mat4 world = parent * local_transform(n);
-    if (n.mesh >= 0) place(n.mesh, world, static_cast<std::uint32_t>(index));
+    if (n.mesh >= 0) place(n.mesh, world, index, n.skin);
     if (n.camera >= 0) camera(n.camera, world);
     if (std::optional<Light> light = light_of(model_, n, world, reader_.source, warned_lights_))
       out_.lights.push_back(std::move(*light));
@@ -244,6 +104,12 @@ class SceneReader {
 
   Model finish() {
     if (out_.instances.empty()) reader_.fail("the default scene has no triangles and no points");
+    out_.nodes = read_nodes(reader_);
+    out_.skins = read_skins(reader_);
+    out_.animations = read_animations(reader_);
+    if (std::all_of(out_.deformations.begin(), out_.deformations.end(),
+                    [](const MeshDeformation& d) { return d.empty(); }))
+      out_.deformations.clear();
     return std::move(out_);
   }
 
@@ -252,7 +118,7 @@ class SceneReader {
 
   // Each node placing a mesh is an instance (its node index). Instancing can multiply a small file's triangles, so
   // the vertices the scene expands to are counted as it is walked, and a graph that would pass the limit is refused.
-  void place(int index, const glm::mat4& world, std::uint32_t node) {
+  void place(int index, const glm::mat4& world, int node, int skin) {
     if (static_cast<std::size_t>(index) >= model_.meshes.size())
       reader_.fail("mesh " + std::to_string(index) + " does not exist");
     std::uint32_t& slot = slots_[static_cast<std::size_t>(index)];
@@ -261,7 +127,9 @@ class SceneReader {
     const std::size_t count = out_.meshes[slot].vertex_count();
     if (count > kMaxModelVertices - expanded_) reader_.fail("the scene expands to more than 2^27 vertices");
     expanded_ += count;
-    out_.instances.push_back(ModelInstance{slot, world, node});
+    if (skin >= 0 && static_cast<std::size_t>(skin) >= model_.skins.size())
+      reader_.fail("node " + std::to_string(node) + "'s skin " + std::to_string(skin) + " does not exist");
+    out_.instances.push_back(ModelInstance{slot, world, static_cast<std::uint32_t>(node), node, skin});
   }
 
   // The mesh's triangles are numbered across its primitives, in order; its materials are those its primitives use.
@@ -271,6 +139,7 @@ class SceneReader {
     all_normals_ = true;
     any_uvs_ = any_uvs1_ = any_tangents_ = any_colors_ = false;
     std::uint32_t face = 0;
+    deformation_.start(index);
     for (const tinygltf::Primitive& p : model_.meshes[static_cast<std::size_t>(index)].primitives) primitive(p, face);
     if (mesh_.indices.empty() && mesh_.points.empty()) return kNoTriangles;
     if (!all_normals_) mesh_.normals.clear();
@@ -281,6 +150,7 @@ class SceneReader {
     if (std::all_of(mesh_.face_materials.begin(), mesh_.face_materials.end(), [](int m) { return m < 0; }))
       mesh_.face_materials.clear();
     validate(mesh_, reader_.source);
+    out_.deformations.push_back(deformation_.finish());
     out_.meshes.push_back(std::move(mesh_));
     return static_cast<std::uint32_t>(out_.meshes.size() - 1);
   }
@@ -389,6 +259,7 @@ class SceneReader {
     append_uvs(mesh_.uvs, any_uvs_, data.uvs, count, base_on_set1 ? glm::mat3(1.0f) : transform);
     append_uvs(mesh_.uvs1, any_uvs1_, data.uvs1, count, base_on_set1 ? transform : glm::mat3(1.0f));
     append_colors(data.colors, data.color_components, count);
+    deformation_.primitive(p, count, draco);
 
     // A POINTS primitive's corners are points; they take the mesh's default material (and their vertex colours).
     if (points) {
@@ -475,6 +346,7 @@ class SceneReader {
 
   const tinygltf::Model& model_;
   Reader reader_;
+  DeformationReader deformation_;
   Model out_;
   std::vector<Material> materials_;       // the file's, decoded once
   std::vector<glm::mat3> uv_transforms_;  // per material: its base colour texture's KHR_texture_transform
@@ -576,8 +448,8 @@ bool load_image(tinygltf::Image* image, const int index, std::string*, std::stri
     const bool inside = view < views.size() && views[view].buffer >= 0 &&
                         static_cast<std::size_t>(views[view].buffer) < buffers.size() &&
                         views[view].byteOffset <= buffers[static_cast<std::size_t>(views[view].buffer)].data.size() &&
-                        views[view].byteLength <= buffers[static_cast<std::size_t>(views[view].buffer)].data.size() -
-                                                      views[view].byteOffset;
+                        views[view].byteLength <=
+                            buffers[static_cast<std::size_t>(views[view].buffer)].data.size() - views[view].byteOffset;
     if (!inside) {
       if (access.refused.empty())
         access.refused = "image " + std::to_string(index) + ": buffer view " + std::to_string(view) +

@@ -171,6 +171,8 @@ Mesh load_model(const fs::path& path, const LoadOptions& options) {
 Mesh load_model(const fs::path& path, std::string& format_name, const LoadOptions& options) {
   Model model = read_model(path, format_name, options);
   try {
+    // Skins and morph weights deform the meshes even at rest, as every glTF viewer draws them.
+    if (!model.deformations.empty()) model = pose(model, std::nullopt, 0.0, path.string(), options.threads);
     return flatten(std::move(model), path.string());
   } catch (const std::bad_alloc&) {
     throw InputError(path.string(), "out of memory while loading");
