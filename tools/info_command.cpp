@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <cstring>
 #include <map>
+#include <string>
 #include <utility>
 
 #include "cli_options.hpp"
@@ -20,6 +21,22 @@ namespace {
 void print_vec3(const char* label, glm::vec3 v) { std::printf("%s: %g %g %g\n", label, v.x, v.y, v.z); }
 
 const char* yes_no(bool b) { return b ? "yes" : "no"; }
+
+// "animation 0: \"Walk\", 1.25 s, 3 channels (translation 1, rotation 2)": what --animation NAME|INDEX picks.
+void print_animation(std::size_t index, const Animation& clip) {
+  constexpr const char* kProperties[] = {"translation", "rotation", "scale", "weights"};
+  std::size_t counts[4] = {};
+  for (const AnimationChannel& c : clip.channels) ++counts[static_cast<int>(c.property)];
+  std::string kinds;
+  for (int p = 0; p < 4; ++p)
+    if (counts[p]) kinds += (kinds.empty() ? "" : ", ") + std::string(kProperties[p]) + " " + std::to_string(counts[p]);
+  std::string name = clip.name;  // a file's text: control characters and quotes are not printed as they are
+  std::replace_if(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == '"'; },
+                  '?');
+  std::printf("animation %zu: \"%s\", %g s, %zu channel%s%s\n", index, name.c_str(), clip.duration(),
+              clip.channels.size(), clip.channels.size() == 1 ? "" : "s",
+              kinds.empty() ? "" : (" (" + kinds + ")").c_str());
+}
 
 // The loader splits a corner wherever its uv or normal differs, so vertex indices over-count the model's own
 // vertices and edges; welding by exact position counts them as the modeller sees them.
@@ -62,6 +79,12 @@ int run_info(const InfoArgs& args) {
   std::string format;
   Model model = read_model(args.model, format, load_options(args.input));
   const std::size_t meshes = model.meshes.size(), instances = model.instances.size();
+  const std::vector<Animation> animations = model.animations;
+  const std::size_t skins = model.skins.size();
+  std::size_t morph_targets = 0;
+  for (const MeshDeformation& d : model.deformations) morph_targets += d.morph_targets.size();
+  // Drawn as `facet render` draws it: skins and morph targets at rest.
+  if (!model.deformations.empty()) model = pose(model, std::nullopt, 0.0, args.model);
   const Mesh mesh = flatten(std::move(model), args.model);
   const Bounds box = bounds(mesh);
   std::printf("file: %s\n", args.model.c_str());
@@ -91,6 +114,10 @@ int run_info(const InfoArgs& args) {
   std::printf("normals: %s\n", yes_no(!mesh.normals.empty()));
   std::printf("uvs: %s\n", yes_no(!mesh.uvs.empty()));
   std::printf("vertex colors: %s\n", yes_no(!mesh.colors.empty()));
+  std::printf("skins: %zu\n", skins);
+  std::printf("morph targets: %zu\n", morph_targets);
+  std::printf("animations: %zu\n", animations.size());
+  for (std::size_t i = 0; i < animations.size(); ++i) print_animation(i, animations[i]);
   return std::fflush(stdout) == 0 ? 0 : 1;
 }
 

@@ -59,6 +59,26 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
           "Render N frames round the model's up axis, 3 s a turn: --output NAME.gif, .mp4, .webm or {frame} PNGs")
       ->check(number_in(1, kMaxAnimationFrames, true))
       ->type_name("N");
+  render
+      ->add_option("--animation", args.animation.name,
+                   "Pose the model by this animation (glTF), by name or index; see `facet info`. Default: the "
+                   "first, when --time or --animate asks for one")
+      ->type_name("NAME|INDEX");
+  render
+      ->add_option("--time", args.animation.time,
+                   "Draw the animation this many seconds in (clamped to the clip); with --animate, where it starts")
+      ->check(number_in(-1e9, 1e9))
+      ->type_name("SECONDS");
+  render->add_flag("--animate", args.animation.play,
+                   "Render the animation to its end (with --turntable, for N frames while the camera turns): "
+                   "--output NAME.gif, .mp4, .webm or {frame} PNGs");
+  render->add_option("--fps", args.animation.fps, "Frames a second of --animate (default 30)")
+      ->check(number_in(1, kMaxAnimationFps))
+      ->type_name("FPS");
+  render
+      ->add_option("--frames", args.animation.frames, "Frames of --animate, 1/fps apart (default: to the clip's end)")
+      ->check(number_in(1, kMaxAnimationFrames, true))
+      ->type_name("N");
   render->add_flag("--timings", args.timings,
                    "Print the time of each stage (load, prepare, draw, write), the peak memory and the page faults "
                    "on stderr");
@@ -78,6 +98,7 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
   base.samples = args.look.samples;
   if (!args.views.empty()) base.views = parse_sheet_views(args.views);
   base.turntable = args.turntable;
+  base.animation = args.animation;
   base.load = load_options(args.input);
   base.load.threads = args.look.threads;
   const std::pair<const char*, const std::string*> outputs[] = {{"--output", &args.output.output},
@@ -106,7 +127,7 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
                    .ids = expand(args.output.output_ids),
                    .mask = expand(args.output.output_mask),
                    .camera = expand(args.output.output_camera)};
-    check_output_formats(job.outputs, job.turntable > 0);
+    check_output_formats(job.outputs, job.turntable > 0 || job.animation.play);
     jobs.push_back(std::move(job));
   }
   std::vector<OutputSpec> specs;

@@ -15,6 +15,7 @@ struct RenderArgs {
   bool timings = false;  // print each render's stage times on stderr
   std::string views;     // a contact sheet: comma-separated view names
   int turntable = 0;     // a turntable GIF of this many frames
+  AnimationSpec animation;
   CameraArgs camera;
   LookArgs look;
   OutputArgs output;

@@ -20,6 +20,10 @@
 
 namespace facet {
 
+// A model's animation is drawn at 30 frames a second unless the job says otherwise; at most 240.
+inline constexpr double kDefaultAnimationFps = 30.0;
+inline constexpr double kMaxAnimationFps = 240.0;
+
 // Colours given to every vertex from where it lies (LookSpec::color_map): none (the model's own), or by height along
 // the model's up axis, through blue, cyan, green and yellow to red from the lowest vertex to the highest.
 enum class ColorMap { none, height };
@@ -98,6 +102,21 @@ std::optional<OutputClash> find_output_clash(std::span<const OutputSpec> outputs
 // before rendering again. Errors are ignored: the sweep only tidies.
 std::size_t remove_stale_temporaries(std::span<const OutputSpec> outputs);
 
+// A model's animation (glTF's animations: nodes moving, skins, morph targets) in a render: one moment of it, or the
+// whole clip. A job without any of these draws the model unanimated, its skins and morph targets at rest.
+struct AnimationSpec {
+  // The animation, by name or index (find_animation); empty: the file's first, when another field asks for one.
+  std::string name{};
+  // Seconds into it: the one moment drawn, or where the clip starts; clamped to the clip, with a warning.
+  std::optional<double> time{};
+  // The whole clip, from `time` (or 0) to its end, written as a turntable is (one GIF or video, or {frame} PNGs).
+  bool play = false;
+  double fps = kDefaultAnimationFps;  // frames a second, 1..kMaxAnimationFps
+  int frames = 0;                     // with play: this many frames, 1/fps apart; 0: as many as reach the clip's end
+  // Whether the job asks for the animation at all.
+  bool any() const { return !name.empty() || time.has_value() || play; }
+};
+
 struct RenderJob {
   std::filesystem::path model;
   // A built-in demo scene (demo_scenes.hpp) instead of a model file: its own meshes, motion, camera, shading and
@@ -124,6 +143,7 @@ struct RenderJob {
   int samples = 4;
   // What the model file may make facet read and allocate (model_io.hpp).
   LoadOptions load;
+  AnimationSpec animation;
 };
 
 // The most frames a turntable or a demo's animation may have.

@@ -42,6 +42,21 @@ void check_video_size(const RenderJob& job, int frames, const char* flag) {
                                 " are over 2^30 pixels; use fewer frames or a smaller resolution");
 }
 
+// Refuses outputs that cannot hold `frames` frames: a video of more than colour, or of too many pixels; files that
+// their names' {frame} does not number.
+void check_frame_outputs(const RenderJob& job, int frames, const char* flag) {
+  if (is_video(job)) check_colour_only(job, "an animation", flag);
+  check_video_size(job, frames, flag);
+  if (frames > 1 && !is_video(job))
+    for (const std::filesystem::path& path : output_paths(job.outputs))
+      if (!template_has(path.string(), "frame"))
+        throw std::invalid_argument(path.string() + ": " + std::to_string(frames) +
+                                    " frames need {frame} in the name, one file per frame");
+}
+
+// A clip is framed by the model at this many moments through it and its start.
+constexpr int kFramingMoments = 8;
+
 // Draws frames 0 .. count - 1 of `source` and writes them as the job's outputs say: one GIF or video of them all,
 // `seconds_per_frame` apart; else each frame's outputs, their names' {frame} expanded, as soon as it is drawn (a
 // failure leaves the frames already written, which a rerun replaces). Times the drawing and the writing.
@@ -105,19 +120,66 @@ void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* t
   draw_frames(job, job.turntable, std::max(0.02, 3.0 / job.turntable), frame.clear, turned, renderer, timings);
 }
 
+void render_model_animation(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
+  const AnimationSpec& spec = job.animation;
+  if (!job.views.empty()) throw std::invalid_argument("animation: a contact sheet is one image, not an animation");
+  if (!(spec.fps >= 1.0 && spec.fps <= kMaxAnimationFps))
+    throw std::invalid_argument("fps: must lie in 1.." + std::to_string(static_cast<int>(kMaxAnimationFps)));
+  if (spec.frames < 0) throw std::invalid_argument("frames: at least 1, or 0 for the whole clip");
+  Stopwatch clock;
+  const MovingModel motion = read_moving_model(job);
+  // Every frame is 1/fps after the last; a turntable's frames turn the camera once round and loop the clip.
+  const int turns = job.turntable;
+  const double remaining = motion.duration - motion.start;
+  const int count = spec.frames > 0 ? spec.frames
+                    : turns > 0     ? turns
+                                    : std::max(1, static_cast<int>(std::ceil(remaining * spec.fps - 1e-6)));
+  check_frame_outputs(job, count, "frames");
+  const auto moment = [&](int k) {
+    const double t = motion.start + k / spec.fps;
+    return motion.duration > 0.0 && t > motion.duration ? std::fmod(t, motion.duration) : t;
+  };
+  // Framed once, by the model at rest and at moments through the clip, so that the camera holds still.
+  std::vector<glm::vec3> corners;
+  for (int s = 0; s <= kFramingMoments; ++s) {
+    const Bounds b = bounds(posed_mesh(job, motion, motion.start + remaining * s / kFramingMoments));
+    corners.insert(corners.end(), {b.min, b.max});
+  }
+  Mesh hull;
+  hull.positions = std::move(corners);
+  const Framing framing = framing_of(hull, job.model.string());
+  if (timings) timings->load = clock.lap();
+  auto first = std::make_shared<Mesh>(posed_mesh(job, motion, moment(0)));
+  const float eye_dome = eye_dome_lighting_for(job.look, *first);
+  std::optional<JobFrame> frame;
+  frame.emplace(frame_job(job, first, framing, eye_dome));
+  const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
+  if (timings) timings->prepare = clock.lap();
+  const auto posed = [&](int k) {
+    View view = frame->view;
+    if (turns > 0 && !job.camera.file_camera) {
+      CameraSpec camera = job.camera;
+      camera.azimuth_degrees += 360.0f * static_cast<float>(k) / static_cast<float>(count);
+      view = make_view(camera, framing, aspect);
+    }
+    if (k > 0) {
+      auto mesh = std::make_shared<Mesh>(posed_mesh(job, motion, moment(k)));
+      apply_look_color(*mesh, job.look);
+      apply_color_map(*mesh, job.look, job.camera.up);
+      frame.emplace(frame_job(job, std::move(mesh), framing, eye_dome));
+    }
+    return AnimationFrame{&frame->scene, view, options_for_view(job, *frame, view)};
+  };
+  draw_frames(job, count, 1.0 / spec.fps, frame->clear, posed, renderer, timings);
+}
+
 void render_demo(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
   if (!job.model.empty()) throw std::invalid_argument("demo: a demo draws its own scene, not " + job.model.string());
   if (!job.views.empty() || job.turntable > 0)
     throw std::invalid_argument("demo: a demo has its own camera and motion: no views or turntable");
   if (job.frames < 1) throw std::invalid_argument("frames: at least 1");
   if (!std::isfinite(job.time)) throw std::invalid_argument("time: must be a finite number of seconds");
-  if (is_video(job)) check_colour_only(job, "an animation", "frames");
-  check_video_size(job, job.frames, "frames");
-  if (job.frames > 1 && !is_video(job))
-    for (const std::filesystem::path& path : output_paths(job.outputs))
-      if (!template_has(path.string(), "frame"))
-        throw std::invalid_argument(path.string() + ": " + std::to_string(job.frames) +
-                                    " frames need {frame} in the name, one file per frame");
+  check_frame_outputs(job, job.frames, "frames");
   Stopwatch clock;
   const DemoModel demo = prepare_demo(job);
   std::optional<JobFrame> frame;

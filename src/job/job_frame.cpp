@@ -1,6 +1,9 @@
 // job_frame.cpp - a job's scene made ready to draw: a model file loaded and framed, or a demo at a moment.
 #include "job/job_frame.hpp"
 
+#include <algorithm>
+#include <cmath>
+#include <cstdio>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -9,6 +12,7 @@
 #include "facet/demo_scenes.hpp"
 #include "facet/error.hpp"
 #include "facet/model_io.hpp"
+#include "facet/warnings.hpp"
 
 namespace facet::detail {
 
@@ -33,17 +37,59 @@ bool drawable(const Mesh& mesh) {
 
 }  // namespace
 
+MovingModel read_moving_model(const RenderJob& job) {
+  const std::string source = job.model.string();
+  MovingModel out{read_model(job.model, job.load)};
+  const std::vector<Animation>& clips = out.model.animations;
+  if (clips.empty()) throw InputError(source, "has no animation to play");
+  const std::string& name = job.animation.name;
+  const std::optional<std::size_t> found = name.empty() ? std::optional<std::size_t>(0) : find_animation(clips, name);
+  if (!found) {
+    std::string names;
+    for (std::size_t i = 0; i < clips.size(); ++i)
+      names += (i ? ", " : "") + (clips[i].name.empty() ? std::to_string(i) : "'" + clips[i].name + "'");
+    throw InputError(source, "has no animation '" + name + "' (it has " + names + ")");
+  }
+  out.animation = *found;
+  out.duration = clips[*found].duration();
+  const double time = job.animation.time.value_or(0.0);
+  if (!std::isfinite(time)) throw std::invalid_argument("time: must be a finite number of seconds");
+  out.start = std::clamp(time, 0.0, out.duration);
+  if (out.start != time) {
+    char text[160];
+    std::snprintf(text, sizeof text, "%g s lies outside the animation (0 to %g s); drawing %g s", time, out.duration,
+                  out.start);
+    warn(source + ": " + text);
+  }
+  return out;
+}
+
+Mesh posed_mesh(const RenderJob& job, const MovingModel& motion, double seconds) {
+  const std::string source = job.model.string();
+  return flatten(pose(motion.model, motion.animation, seconds, source, job.load.threads), source);
+}
+
 JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
   check_resolution(job);
   Stopwatch clock;
-  auto mesh = std::make_shared<Mesh>(load_model(job.model, job.load));
-  if (!drawable(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
+  const auto load = [&] {
+    if (!job.animation.any()) return load_model(job.model, job.load);
+    const MovingModel motion = read_moving_model(job);
+    return posed_mesh(job, motion, motion.start);
+  };
+  auto mesh = std::make_shared<Mesh>(load());
   // Taken from the model as loaded: a bare cloud keeps eye-dome lighting when a colour map colours it.
   const float eye_dome = eye_dome_lighting_for(job.look, *mesh);
   apply_look_color(*mesh, job.look);
   apply_color_map(*mesh, job.look, job.camera.up);
+  if (!drawable(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
   if (timings) timings->load = clock.lap();
-  const Framing framing = framing_of(*mesh, job.model.string());
+  JobFrame frame = frame_job(job, mesh, framing_of(*mesh, job.model.string()), eye_dome);
+  if (timings) timings->prepare = clock.lap();
+  return frame;
+}
+
+JobFrame frame_job(const RenderJob& job, std::shared_ptr<Mesh> mesh, const Framing& framing, float eye_dome) {
   const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
   JobFrame frame;
   frame.view = job.camera.file_camera
@@ -53,8 +99,7 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
   frame.options = scene_options(job.look, frame.view.view_from_world, Shading::automatic, glm::vec3(frame.clear),
                                 mesh->lights, job.camera.up);
   frame.options.eye_dome_lighting = eye_dome;
-  frame.scene.add(Instance{mesh, glm::mat4(1.0f)});
-  if (timings) timings->prepare = clock.lap();
+  frame.scene.add(Instance{std::move(mesh), glm::mat4(1.0f)});
   return frame;
 }
 

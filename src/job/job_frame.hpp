@@ -2,6 +2,7 @@
 #pragma once
 
 #include <chrono>
+#include <memory>
 
 #include <glm/glm.hpp>
 
@@ -32,8 +33,24 @@ struct JobFrame {
   Scene scene;
 };
 
-// Loads job.model and frames it as job.camera says; times the load and the preparation.
+// Loads job.model (posed at the moment job.animation asks for, if it asks) and frames it as job.camera says; times
+// the load and the preparation.
 JobFrame prepare_job(const RenderJob& job, RenderTimings* timings = nullptr);
+// The same for a mesh already loaded, framed by `framing`; `eye_dome` is eye_dome_lighting_for the mesh as loaded.
+JobFrame frame_job(const RenderJob& job, std::shared_ptr<Mesh> mesh, const Framing& framing, float eye_dome);
+
+// A job's model read for its animation (job.animation): the file's nodes, skins and clips, and the clip chosen.
+struct MovingModel {
+  Model model;
+  std::size_t animation = 0;  // into model.animations
+  double duration = 0;        // the clip's, in seconds
+  double start = 0;           // job.animation.time clamped to the clip
+};
+// Reads job.model and chooses its animation. Throws InputError naming the file when it has no animation, or none of
+// that name or index (listing the names it has); warns when the time lies outside the clip.
+MovingModel read_moving_model(const RenderJob& job);
+// The model `seconds` into its clip as one world-space mesh.
+Mesh posed_mesh(const RenderJob& job, const MovingModel& motion, double seconds);
 // frame.options for another view of the same model (a sheet's cell, a turntable's frame): the look's lights follow
 // the view (the headlight), and what prepare_job took from the model as loaded (a bare cloud's eye-dome lighting)
 // stays.
@@ -49,8 +66,10 @@ JobFrame demo_job_frame(const RenderJob& job, const DemoModel& demo, int frame);
 // Refuses a job of several images (a sheet, a turntable: `what`, set by `flag`) that asks for more than colour.
 void check_colour_only(const RenderJob& job, const char* what, const char* flag);
 
-// The jobs of many frames (animation.cpp): the turntable, and a demo's frames.
+// The jobs of many frames (animation.cpp): the turntable, a model's animation (with a turntable or without), and a
+// demo's frames.
 void render_turntable(const RenderJob& job, Renderer& renderer, RenderTimings* timings);
+void render_model_animation(const RenderJob& job, Renderer& renderer, RenderTimings* timings);
 void render_demo(const RenderJob& job, Renderer& renderer, RenderTimings* timings);
 
 }  // namespace facet::detail

@@ -257,12 +257,13 @@ void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
     for (std::size_t k = i + 1; k < paths.size(); ++k)
       if (paths[i].lexically_normal() == paths[k].lexically_normal())
         throw std::invalid_argument("outputs: " + paths[k].string() + " is named twice");
-  const bool animated =
-      job.turntable > 0 || (job.demo && (job.frames > 1 || is_animation_path(job.outputs.color)));
+  const bool animated = job.turntable > 0 || job.animation.play ||
+                        (job.demo && (job.frames > 1 || is_animation_path(job.outputs.color)));
   check_output_formats(job.outputs, animated);
   if (job.demo) return detail::render_demo(job, renderer, timings);
   if (!job.views.empty() && job.turntable > 0)
     throw std::invalid_argument("views: a contact sheet is one image, not a turntable");
+  if (job.animation.play) return detail::render_model_animation(job, renderer, timings);
   if (!job.views.empty()) return render_sheet(job, renderer, timings);
   if (job.turntable > 0) return detail::render_turntable(job, renderer, timings);
   JobFrame frame = detail::prepare_job(job, timings);
