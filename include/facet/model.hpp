@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -106,6 +107,26 @@ Mesh flatten(Model model, const std::string& source);
 // std::out_of_range for an animation index past the model's.
 Model pose(const Model& model, std::optional<std::size_t> animation, double seconds, const std::string& source,
            int threads = 1);
+
+// pose() frame after frame: the posed model's memory and the threads that skin large meshes are kept from one call
+// to the next, so that a clip's frames do not each take a model's worth of fresh memory.
+//
+//   facet::Poser poser(2);
+//   for (int k = 0; k < frames; ++k) draw(poser(model, 0, k / 30.0, "walk.glb"));
+class Poser {
+ public:
+  explicit Poser(int threads = 1);  // 0: the machine's cores
+  ~Poser();
+  Poser(Poser&&) noexcept;
+  Poser& operator=(Poser&&) noexcept;
+  // What pose(model, animation, seconds, source) returns, valid until the next call; throws as pose() does.
+  Model& operator()(const Model& model, std::optional<std::size_t> animation, double seconds,
+                    const std::string& source);
+
+ private:
+  struct Kept;
+  std::unique_ptr<Kept> kept_;
+};
 
 // Each node's transform in the world: its parents' composed with its own. Throws as pose() does for a broken
 // hierarchy.

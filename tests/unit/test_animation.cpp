@@ -194,6 +194,27 @@ TEST(Pose, ArmsSkinnedOnSeveralThreadsMatchOneThread) {
     EXPECT_NEAR(glm::length(single.meshes[0].positions[v] - bent(mesh.positions[v], 0.7f * kPi / 2)), 0.0f, 1e-5f);
 }
 
+TEST(Pose, APoserGivesWhatPoseGivesFrameAfterFrame) {
+  const Model arm = two_bone_arm();
+  Model two = arm;  // the arm placed twice, the second time unskinned: two meshes out
+  two.instances.push_back(ModelInstance{0, glm::mat4(1.0f), 1, 0, -1});
+  Poser poser(2);
+  for (const double t : {0.0, 0.4, 0.9, 0.4}) {
+    for (const Model* model : std::vector<const Model*>{&arm, &two, &arm}) {
+      const Model& kept = poser(*model, 0, t, "arm");
+      const Model fresh = pose(*model, 0, t, "arm");
+      ASSERT_EQ(kept.meshes.size(), fresh.meshes.size());
+      ASSERT_EQ(kept.instances.size(), fresh.instances.size());
+      for (std::size_t m = 0; m < kept.meshes.size(); ++m)
+        EXPECT_EQ(kept.meshes[m].positions, fresh.meshes[m].positions);
+      for (std::size_t i = 0; i < kept.instances.size(); ++i) {
+        EXPECT_EQ(kept.instances[i].mesh, fresh.instances[i].mesh);
+        EXPECT_EQ(kept.instances[i].world_from_object, fresh.instances[i].world_from_object);
+      }
+    }
+  }
+}
+
 TEST(Pose, MorphTargetsBlendByTheNodesAnimatedWeights) {
   Model model;
   Mesh quad;

@@ -1,7 +1,7 @@
 // pose.cpp - a model at a moment: its clip's channels set the nodes, morph targets and skins move the vertices.
 #include <algorithm>
 #include <cmath>
-#include <map>
+#include <memory>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -137,8 +137,7 @@ void skin(Mesh& mesh, const MeshDeformation& d, std::span<const glm::mat4> joint
     }
   };
   const std::size_t parts = (n + kPart - 1) / kPart;
-  if (pool)
-    pool->parallel_for(parts, [&](std::size_t index, int thread) { part(index, thread); });
+  if (pool) pool->parallel_for(parts, [&](std::size_t index, int thread) { part(index, thread); });
   else
     for (std::size_t p = 0; p < parts; ++p) part(p, 0);
 }
@@ -192,8 +191,28 @@ std::vector<glm::mat4> world_from_nodes(const std::vector<ModelNode>& nodes, con
   return world;
 }
 
+struct Poser::Kept {
+  int threads = 1;
+  std::optional<ThreadPool> pool;  // made when a mesh first needs it
+  Model out;
+  std::vector<std::uint32_t> slot_of_mesh;  // per input mesh nothing moves: its index in out.meshes, or kNoSlot
+};
+
+Poser::Poser(int threads) : kept_(std::make_unique<Kept>()) {
+  kept_->threads = threads == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) : threads;
+}
+Poser::~Poser() = default;
+Poser::Poser(Poser&&) noexcept = default;
+Poser& Poser::operator=(Poser&&) noexcept = default;
+
 Model pose(const Model& model, std::optional<std::size_t> animation, double seconds, const std::string& source,
            int threads) {
+  Poser poser(threads);
+  return std::move(poser(model, animation, seconds, source));
+}
+
+Model& Poser::operator()(const Model& model, std::optional<std::size_t> animation, double seconds,
+                         const std::string& source) {
   if (!std::isfinite(seconds)) throw std::invalid_argument("time: must be a finite number of seconds");
   if (!model.deformations.empty() && model.deformations.size() != model.meshes.size())
     throw InputError(source, std::to_string(model.deformations.size()) + " mesh deformations for " +
@@ -204,12 +223,24 @@ Model pose(const Model& model, std::optional<std::size_t> animation, double seco
   if (animation) apply_clip(model.animations.at(*animation), static_cast<float>(seconds), nodes, source);
   const std::vector<glm::mat4> world = world_from_nodes(nodes, source);
 
-  Model out;
+  // The meshes are copied into the last frame's, whose vectors keep their memory.
+  Model& out = kept_->out;
   out.cameras = model.cameras;
   out.lights = model.lights;
   out.skins = model.skins;
-  std::map<std::uint32_t, std::uint32_t> shared;  // a mesh nothing moves: its index in out.meshes
-  std::optional<ThreadPool> pool;
+  out.animations.clear();
+  out.deformations.clear();
+  out.instances.clear();
+  std::size_t meshes = 0;
+  const auto next_mesh = [&](const Mesh& from) -> Mesh& {
+    if (meshes == out.meshes.size()) out.meshes.emplace_back();
+    Mesh& mesh = out.meshes[meshes++];
+    mesh = from;
+    return mesh;
+  };
+  constexpr std::uint32_t kNoSlot = 0xFFFFFFFFu;
+  std::vector<std::uint32_t>& slot_of_mesh = kept_->slot_of_mesh;
+  slot_of_mesh.assign(model.meshes.size(), kNoSlot);
   for (const ModelInstance& instance : model.instances) {
     if (instance.mesh >= model.meshes.size())
       throw InputError(source, "instance " + std::to_string(instance.id) + " places mesh " +
@@ -233,13 +264,17 @@ Model pose(const Model& model, std::optional<std::size_t> animation, double seco
         !d.morph_targets.empty() && std::any_of(weights.begin(), weights.end(), [](float w) { return w != 0.0f; });
     const bool skinned = instance.skin >= 0 && d.influences > 0;
     if (!morphed && !skinned) {
-      const auto [it, added] = shared.try_emplace(instance.mesh, static_cast<std::uint32_t>(out.meshes.size()));
-      if (added) out.meshes.push_back(mesh);
-      placed.mesh = it->second;
+      std::uint32_t& slot = slot_of_mesh[instance.mesh];
+      if (slot == kNoSlot) {
+        slot = static_cast<std::uint32_t>(meshes);
+        next_mesh(mesh);
+      }
+      placed.mesh = slot;
       out.instances.push_back(placed);
       continue;
     }
-    Mesh moved = mesh;
+    placed.mesh = static_cast<std::uint32_t>(meshes);
+    Mesh& moved = next_mesh(mesh);
     if (morphed) {
       if (weights.size() != d.morph_targets.size())
         throw InputError(source, "instance " + std::to_string(instance.id) + " has " + std::to_string(weights.size()) +
@@ -261,15 +296,14 @@ Model pose(const Model& model, std::optional<std::size_t> animation, double seco
           throw InputError(source, "vertex " + std::to_string(i / d.influences) + " is weighted to joint " +
                                        std::to_string(d.joints[i]) + ", but skin " + std::to_string(instance.skin) +
                                        " has " + std::to_string(s.joints.size()) + " joints");
-      const int count = threads == 0 ? static_cast<int>(std::max(1u, std::thread::hardware_concurrency())) : threads;
-      if (!pool && count > 1 && moved.vertex_count() >= 32768) pool.emplace(count);
+      std::optional<ThreadPool>& pool = kept_->pool;
+      if (!pool && kept_->threads > 1 && moved.vertex_count() >= 32768) pool.emplace(kept_->threads);
       skin(moved, d, joint_matrices, placed.world_from_object, pool ? &*pool : nullptr);
       placed.world_from_object = glm::mat4(1.0f);
     }
-    placed.mesh = static_cast<std::uint32_t>(out.meshes.size());
-    out.meshes.push_back(std::move(moved));
     out.instances.push_back(placed);
   }
+  out.meshes.resize(meshes);
   out.nodes = std::move(nodes);
   return out;
 }
