@@ -41,6 +41,7 @@ set(FACET_SCENE_SOURCES
   src/scene/mesh/topology.cpp
   src/scene/prepare.cpp
   src/scene/scene.cpp
+  src/scene/screen_motion.cpp
   src/scene/shaders/lit_instances.cpp
   src/scene/shaders/masked_instances.cpp
   src/scene/shaders/pbr_instance.cpp

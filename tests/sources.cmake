@@ -62,6 +62,7 @@ set(FACET_LIGHT_TEST_SOURCES
   unit/test_projection.cpp
   unit/test_render_job.cpp
   unit/test_scene.cpp
+  unit/test_screen_motion.cpp
   unit/test_shared_library.cpp
   unit/test_shaders.cpp
   unit/test_simd.cpp

@@ -130,7 +130,7 @@ LoadOptions load_options(const InputArgs& args);
 
 // The output flags: --output, --output-depth, --resolution (and, for render, --output-mask, --output-camera).
 struct OutputArgs {
-  std::string output, output_depth, output_normal, output_ids, output_mask, output_camera;
+  std::string output, output_depth, output_normal, output_ids, output_mask, output_camera, output_motion;
   std::string resolution;
 };
 void add_output_options(CLI::App& app, OutputArgs& args, const std::string& default_resolution);

@@ -35,6 +35,11 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
   render->add_option("--output-mask", args.output.output_mask, "Also write a mask: 8-bit PNG, 255 where drawn")
       ->type_name("FILE.png");
   render
+      ->add_option("--output-motion", args.output.output_motion,
+                   "Also write each pixel's motion on the image to the next frame (the animation 1/fps later): "
+                   "float32 H x W x 2 in pixels, +x right, +y down, .npy or .exr")
+      ->type_name("FILE.npy");
+  render
       ->add_option("--output-camera", args.output.output_camera,
                    "Also write the camera as JSON: intrinsics K (OpenCV), poses, near, far")
       ->type_name("FILE.json");
@@ -75,8 +80,7 @@ CLI::App* add_render_command(CLI::App& app, RenderArgs& args) {
   render->add_option("--fps", args.animation.fps, "Frames a second of --animate (default 30)")
       ->check(number_in(1, kMaxAnimationFps))
       ->type_name("FPS");
-  render
-      ->add_option("--frames", args.animation.frames, "Frames of --animate, 1/fps apart (default: to the clip's end)")
+  render->add_option("--frames", args.animation.frames, "Frames of --animate, 1/fps apart (default: to the clip's end)")
       ->check(number_in(1, kMaxAnimationFrames, true))
       ->type_name("N");
   render->add_flag("--timings", args.timings,
@@ -106,7 +110,8 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
                                                                 {"--output-normal", &args.output.output_normal},
                                                                 {"--output-ids", &args.output.output_ids},
                                                                 {"--output-mask", &args.output.output_mask},
-                                                                {"--output-camera", &args.output.output_camera}};
+                                                                {"--output-camera", &args.output.output_camera},
+                                                                {"--output-motion", &args.output.output_motion}};
   if (args.models.size() > 1)
     for (const auto& [flag, pattern] : outputs)
       if (!pattern->empty() && !template_has(*pattern, "model") && !template_has(*pattern, "stem") &&
@@ -126,7 +131,8 @@ std::vector<RenderJob> render_jobs(const RenderArgs& args, std::size_t first_n) 
                    .normal = expand(args.output.output_normal),
                    .ids = expand(args.output.output_ids),
                    .mask = expand(args.output.output_mask),
-                   .camera = expand(args.output.output_camera)};
+                   .camera = expand(args.output.output_camera),
+                   .motion = expand(args.output.output_motion)};
     check_output_formats(job.outputs, job.turntable > 0 || job.animation.play);
     jobs.push_back(std::move(job));
   }

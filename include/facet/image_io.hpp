@@ -56,7 +56,7 @@ void write_npy(const std::filesystem::path& path, int width, int height, int cha
 
 // Float values, pixel by pixel with `channels` values each, top row first: as .npy of shape (height, width) or
 // (height, width, channels), or, when the path ends in .exr (any case), as OpenEXR with 32-bit float channels and
-// ZIP compression (1 channel: Y; 3 channels: R G B; other counts are refused with std::invalid_argument). Written
+// ZIP compression (1 channel: Y; 2: R G; 3: R G B; other counts are refused with std::invalid_argument). Written
 // like write_png.
 void write_float_image(const std::filesystem::path& path, int width, int height, int channels,
                        std::span<const float> values);

@@ -26,7 +26,8 @@ std::span<const Named<PointShape>> point_shape_names();
 std::span<const Named<ColorMap>> color_map_names();
 // "perspective", "orthographic", "frustum", "oblique", "isometric", "dimetric", "trimetric", "front", "top", "side".
 std::span<const Named<Projection>> projection_names();
-// The buffers a render can return: "color", "depth", "normal", "ids", "mask", each a field of BufferRequest.
+// The buffers a render can return: "color", "depth", "normal", "ids", "mask", "motion", each a field of
+// BufferRequest.
 std::span<const Named<bool BufferRequest::*>> buffer_names();
 
 // A shading by its name, or by the spelling with underscores ("blinn_phong") that Python used first.

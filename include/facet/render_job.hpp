@@ -76,6 +76,9 @@ struct OutputSpec {
   std::filesystem::path ids{};     // uint32 H x W x 2 .npy: instance (node) id, face id; kNoSurface where empty
   std::filesystem::path mask{};    // 8-bit greyscale PNG: 255 where a surface is drawn, 0 where empty
   std::filesystem::path camera{};  // JSON: size, near, far, intrinsics and poses (camera_json in view_spec.hpp)
+  // Each pixel's motion on the image to the next frame (screen_motion in scene.hpp), float32 H x W x 2 (.npy or
+  // .exr): +x right, +y down, in pixels; from the model's animation at its time to 1/fps later.
+  std::filesystem::path motion{};
 };
 
 // The files an OutputSpec names, the empty ones left out, in the order of its fields.
@@ -204,6 +207,13 @@ struct BufferRequest {
   bool normal = false;
   bool ids = false;
   bool mask = false;
+  bool motion = false;  // needs a LaterFrame
+};
+
+// The frame after the one drawn, for the motion buffer: the same scene a moment later, and its view.
+struct LaterFrame {
+  const Scene* scene = nullptr;
+  View view;
 };
 
 // One frame's buffers, width * height pixels each, top row first; those not asked for are empty.
@@ -215,17 +225,18 @@ struct FrameBuffers {
   SurfaceIds surfaces;              // ids: the scene instance and its mesh's triangle; kNoSurface where empty
   std::vector<std::uint32_t> ids;   // ids: file_ids(), 2 per pixel
   std::vector<std::uint8_t> mask;   // 255 where a surface is drawn, 0 where empty
+  std::vector<glm::vec2> motion;    // screen_motion() to the LaterFrame
 };
 
 // Clears target, draws the scene and reads back the buffers asked for, all from one frame, so a pixel is empty in
 // all of them or in none. Normals and ids take a second pass (Scene::render_ids), and the depth and mask of a
 // multisampled target one more, over `centres`: a one-sample framebuffer of target's size that a caller drawing
 // many frames keeps (its memory is then fresh once), or, when null or of another size, one made for the frame.
-// Throws std::invalid_argument when normals or ids are asked of a wireframe or edges look (their lines are no
-// surface).
+// Motion needs `later`. Throws std::invalid_argument when normals, ids or motion are asked of a wireframe or edges
+// look (their lines are no surface), or motion without a later frame.
 FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
                           const SceneOptions& options, glm::vec4 clear, const BufferRequest& request,
-                          Framebuffer* centres = nullptr);
+                          Framebuffer* centres = nullptr, const LaterFrame* later = nullptr);
 
 // Per pixel of `surfaces` (from this scene), the file's ids of the triangle seen: its mesh's Mesh::instance_id and
 // Mesh::face_id, two values per pixel; kNoSurface for both where empty. What --output-ids writes. A caller that
@@ -239,7 +250,7 @@ std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfac
 // any output removes those already written, so a failed render leaves no file behind. Throws as draw_buffers.
 void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
                     const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs,
-                    RenderTimings* timings = nullptr);
+                    RenderTimings* timings = nullptr, const LaterFrame* later = nullptr);
 
 // What render() draws, read back as buffers instead of written (job.outputs is ignored); `camera`, when given,
 // receives camera_json of the view. Throws as render() does.

@@ -156,6 +156,15 @@ class Scene {
   std::unique_ptr<Impl> impl_;
 };
 
+// Per pixel of `ids` (from `now` through `view`), how far the surface point under the pixel centre moves on the
+// image, in pixels (+x right, +y down), when the scene becomes `later` seen through `later_view`: the point keeps its
+// place on its triangle (its barycentric coordinates) and is projected at both moments. `later` holds the same
+// instances, in order, of meshes with the same triangles (a clip's next frame, or the same scene through another
+// camera). (0, 0) where nothing is drawn, NaN where the point ends behind the eye. What --output-motion writes.
+// Throws std::invalid_argument for ids of another size, or scenes that differ in instances or triangles.
+std::vector<glm::vec2> screen_motion(const Scene& now, const SurfaceIds& ids, const View& view, const Scene& later,
+                                     const View& later_view);
+
 // True when a sphere (world space) lies at least partly inside the frustum of clip_from_world.
 bool sphere_in_frustum(const glm::mat4& clip_from_world, glm::vec3 center, float radius);
 

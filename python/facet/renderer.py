@@ -11,7 +11,7 @@ from .light import DirectionalLight, light_tuple
 from .mesh import DEFAULT_MAX_POINTS, DEFAULT_MAX_TEXTURE_SIZE, DEFAULT_MAX_TRIANGLES
 
 
-BUFFERS = ("color", "depth", "normal", "ids", "mask")
+BUFFERS = ("color", "depth", "normal", "ids", "mask")  # what one frame gives; facet.render adds "motion"
 
 # The headlight of a scene without lights: from the camera, above left, as `facet render` lights models; its pose
 # relative to the camera's turns its +z axis towards that direction.
@@ -91,6 +91,8 @@ class OffscreenRenderer:
         flags = render_flags(flags)
         buffers = list(buffers)
         for name in buffers:
+            if name == "motion":
+                raise ValueError("buffers: motion needs a model file's animation: facet.render gives it")
             if name not in BUFFERS:
                 raise ValueError(f"buffers: unknown buffer {name!r} (one of {', '.join(BUFFERS)})")
         if flags & (RenderFlags.VERTEX_NORMALS | RenderFlags.FACE_NORMALS):
@@ -176,21 +178,26 @@ def render(model, width=640, height=480, buffers=("color", "depth"), shading="au
            elevation=0.0, projection="perspective", up="+Y", camera_index=None, background=None, rgba=False,
            threads=0, samples=4, *, allow_external_files=False, max_triangles=DEFAULT_MAX_TRIANGLES,
            max_points=DEFAULT_MAX_POINTS, max_texture_size=DEFAULT_MAX_TEXTURE_SIZE, eye_dome_lighting=None,
-           color_map="none"):
+           color_map="none", animation=None, time=None, fps=30.0):
     """Renders a model file as `facet render` does (framed from the front right, above, lit by a headlight,
     anti-aliased with `samples` samples per pixel: 1, 2, 4 or 8) and returns a dict of the buffers named (see
     OffscreenRenderer.render_buffers, ids holding the file's node and face ids) plus "camera", the camera as
     render_buffers' camera_json gives it. The model is read within the limits Mesh.from_file takes.
     eye_dome_lighting: its strength, 0 (off) to 100, as `--eye-dome-lighting`; None: on for a point cloud with
-    neither normals nor colours, off otherwise. color_map: "none" or "height", as `--color-map`."""
+    neither normals nor colours, off otherwise. color_map: "none" or "height", as `--color-map`.
+    animation, time: the model's animation (a glTF file's, by name or index; None: the first) posed `time` seconds
+    in, as `--animation` and `--time`; skins and morph targets are drawn at rest without either. The "motion"
+    buffer (H x W x 2 float32) is each pixel's motion on the image, in pixels (+x right, +y down), from `time` to
+    1/fps later, as `--output-motion` writes it."""
     for name in buffers:
-        if name not in BUFFERS:
-            raise ValueError(f"buffers: unknown buffer {name!r} (one of {', '.join(BUFFERS)})")
+        if name not in BUFFERS + ("motion",):
+            raise ValueError(f"buffers: unknown buffer {name!r} (one of {', '.join(BUFFERS)}, motion)")
     return _facet.render_file(os.fspath(model), int(width), int(height), int(threads), int(samples), shading,
                               float(azimuth), float(elevation), projection, up, camera_index, background,
                               list(buffers), bool(rgba), bool(allow_external_files), max_triangles, max_points,
                               max_texture_size, None if eye_dome_lighting is None else float(eye_dome_lighting),
-                              str(color_map))
+                              str(color_map), None if animation is None else str(animation),
+                              None if time is None else float(time), float(fps))
 
 
 __all__ = ["BUFFERS", "RenderFlags", "OffscreenRenderer", "render"]

@@ -111,6 +111,11 @@ py::dict arrays_of(FrameBuffers&& b, const BufferRequest& request, bool rgba, st
   }
   if (request.ids) out["ids"] = to_numpy(std::move(ids), {h, w, 2});
   if (request.mask) out["mask"] = to_numpy(std::move(b.mask), {h, w});
+  if (request.motion) {
+    std::vector<float> m(2 * b.motion.size());
+    for (std::size_t i = 0; i < b.motion.size(); ++i) m[2 * i] = b.motion[i].x, m[2 * i + 1] = b.motion[i].y;
+    out["motion"] = to_numpy(std::move(m), {h, w, 2});
+  }
   return out;
 }
 
@@ -183,7 +188,8 @@ py::dict render_file(const std::string& model, int width, int height, int thread
                      const std::string& up, std::optional<int> camera_index, py::handle background,
                      const std::vector<std::string>& buffers, bool rgba, bool allow_external_files,
                      py::handle max_triangles, py::handle max_points, py::handle max_texture_size,
-                     std::optional<float> eye_dome_lighting, const std::string& color_map) {
+                     std::optional<float> eye_dome_lighting, const std::string& color_map,
+                     std::optional<std::string> animation, std::optional<double> time, double fps) {
   if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
     value_error("width and height must lie in 1.." + std::to_string(kMaxDimension));
   if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
@@ -213,6 +219,12 @@ py::dict render_file(const std::string& model, int width, int height, int thread
     job.look.background = glm::vec3(bg);
     job.look.transparent_background = bg.a < 1.0f;
   }
+  if (animation) job.animation.name = *animation;
+  if (time && !std::isfinite(*time)) value_error("time: must be a finite number of seconds");
+  job.animation.time = time;
+  if (!(fps >= 1.0 && fps <= kMaxAnimationFps))
+    value_error("fps: must lie in 1.." + std::to_string(static_cast<int>(kMaxAnimationFps)));
+  job.animation.fps = fps;
   const BufferRequest request = request_of(buffers);
   FrameBuffers frame;
   std::string camera;

@@ -23,6 +23,7 @@ struct AnimationFrame {
   Scene* scene;  // the source's
   View view;
   SceneOptions options;
+  LaterFrame later{};  // the next frame, for the motion buffer
 };
 using AnimationSource = std::function<AnimationFrame(int frame)>;
 
@@ -88,9 +89,10 @@ void draw_frames(const RenderJob& job, int count, double seconds_per_frame, glm:
                              .normal = expand(o.normal),
                              .ids = expand(o.ids),
                              .mask = expand(o.mask),
-                             .camera = expand(o.camera)};
+                             .camera = expand(o.camera),
+                             .motion = expand(o.motion)};
     RenderTimings t;
-    draw_and_write(renderer, target, *frame.scene, frame.view, frame.options, clear, outputs, &t);
+    draw_and_write(renderer, target, *frame.scene, frame.view, frame.options, clear, outputs, &t, &frame.later);
     spent.draw += t.draw;
     spent.write += t.write;
     clock.lap();
@@ -155,20 +157,24 @@ void render_model_animation(const RenderJob& job, Renderer& renderer, RenderTimi
   frame.emplace(frame_job(job, first, framing, eye_dome));
   const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
   if (timings) timings->prepare = clock.lap();
+  const auto view_of = [&](int k) {
+    if (turns == 0 || job.camera.file_camera) return frame->view;
+    CameraSpec camera = job.camera;
+    camera.azimuth_degrees += 360.0f * static_cast<float>(k) / static_cast<float>(count);
+    return make_view(camera, framing, aspect);
+  };
+  std::optional<Scene> later;  // the next frame's model, for the motion buffer
   const auto posed = [&](int k) {
-    View view = frame->view;
-    if (turns > 0 && !job.camera.file_camera) {
-      CameraSpec camera = job.camera;
-      camera.azimuth_degrees += 360.0f * static_cast<float>(k) / static_cast<float>(count);
-      view = make_view(camera, framing, aspect);
-    }
+    const View view = view_of(k);
     if (k > 0) {
       auto mesh = std::make_shared<Mesh>(posed_mesh(job, motion, moment(k)));
       apply_look_color(*mesh, job.look);
       apply_color_map(*mesh, job.look, job.camera.up);
       frame.emplace(frame_job(job, std::move(mesh), framing, eye_dome));
     }
-    return AnimationFrame{&frame->scene, view, options_for_view(job, *frame, view)};
+    if (!job.outputs.motion.empty()) later.emplace(later_scene(job, motion, moment(k)));
+    return AnimationFrame{&frame->scene, view, options_for_view(job, *frame, view),
+                          LaterFrame{later ? &*later : nullptr, view_of(k + 1)}};
   };
   draw_frames(job, count, 1.0 / spec.fps, frame->clear, posed, renderer, timings);
 }

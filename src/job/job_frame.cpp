@@ -23,8 +23,8 @@ void check_resolution(const RenderJob& job) {
     throw std::invalid_argument("resolution: width and height must lie in 1.." + std::to_string(kMaxDimension));
 }
 
-// Whether the mesh has points or splats, or a triangle that spans an area (a model of collinear or coincident corners draws
-// no pixel).
+// Whether the mesh has points or splats, or a triangle that spans an area (a model of collinear or coincident corners
+// draws no pixel).
 bool drawable(const Mesh& mesh) {
   if (!mesh.points.empty() || mesh.splats) return true;
   for (std::size_t t = 0; t + 2 < mesh.indices.size(); t += 3) {
@@ -37,10 +37,12 @@ bool drawable(const Mesh& mesh) {
 
 }  // namespace
 
-MovingModel read_moving_model(const RenderJob& job) {
+MovingModel read_moving_model(const RenderJob& job, bool required) {
   const std::string source = job.model.string();
-  MovingModel out{read_model(job.model, job.load)};
+  MovingModel out;
+  out.model = read_model(job.model, job.load);
   const std::vector<Animation>& clips = out.model.animations;
+  if (clips.empty() && !required && job.animation.name.empty()) return out;
   if (clips.empty()) throw InputError(source, "has no animation to play");
   const std::string& name = job.animation.name;
   const std::optional<std::size_t> found = name.empty() ? std::optional<std::size_t>(0) : find_animation(clips, name);
@@ -69,15 +71,21 @@ Mesh posed_mesh(const RenderJob& job, const MovingModel& motion, double seconds)
   return flatten(pose(motion.model, motion.animation, seconds, source, job.load.threads), source);
 }
 
-JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
+Scene later_scene(const RenderJob& job, const MovingModel& motion, double seconds) {
+  Scene scene;
+  scene.add(
+      Instance{std::make_shared<Mesh>(posed_mesh(job, motion, seconds + 1.0 / job.animation.fps)), glm::mat4(1.0f)});
+  return scene;
+}
+
+JobFrame prepare_job(const RenderJob& job, RenderTimings* timings, bool next_frame) {
   check_resolution(job);
   Stopwatch clock;
-  const auto load = [&] {
-    if (!job.animation.any()) return load_model(job.model, job.load);
-    const MovingModel motion = read_moving_model(job);
-    return posed_mesh(job, motion, motion.start);
-  };
-  auto mesh = std::make_shared<Mesh>(load());
+  // A job asking for motion reads the model as it reads it for an animation, and poses it a frame later too.
+  std::optional<MovingModel> motion;
+  if (job.animation.any() || next_frame) motion.emplace(read_moving_model(job, job.animation.any()));
+  auto mesh =
+      std::make_shared<Mesh>(motion ? posed_mesh(job, *motion, motion->start) : load_model(job.model, job.load));
   // Taken from the model as loaded: a bare cloud keeps eye-dome lighting when a colour map colours it.
   const float eye_dome = eye_dome_lighting_for(job.look, *mesh);
   apply_look_color(*mesh, job.look);
@@ -85,6 +93,7 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings) {
   if (!drawable(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
   if (timings) timings->load = clock.lap();
   JobFrame frame = frame_job(job, mesh, framing_of(*mesh, job.model.string()), eye_dome);
+  if (next_frame) frame.later_scene.emplace(later_scene(job, *motion, motion->start));
   if (timings) timings->prepare = clock.lap();
   return frame;
 }

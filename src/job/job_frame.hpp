@@ -3,6 +3,7 @@
 
 #include <chrono>
 #include <memory>
+#include <optional>
 
 #include <glm/glm.hpp>
 
@@ -31,24 +32,34 @@ struct JobFrame {
   SceneOptions options;
   glm::vec4 clear{};
   Scene scene;
+  // The next frame, when the job asks for motion: the model 1/fps later, seen through the same view.
+  std::optional<Scene> later_scene{};
+  LaterFrame later() const { return {later_scene ? &*later_scene : nullptr, view}; }
 };
 
 // Loads job.model (posed at the moment job.animation asks for, if it asks) and frames it as job.camera says; times
-// the load and the preparation.
-JobFrame prepare_job(const RenderJob& job, RenderTimings* timings = nullptr);
+// the load and the preparation. With `next_frame` (by default when the job writes motion), poses the model a frame
+// later too (JobFrame::later_scene).
+JobFrame prepare_job(const RenderJob& job, RenderTimings* timings, bool next_frame);
+inline JobFrame prepare_job(const RenderJob& job, RenderTimings* timings = nullptr) {
+  return prepare_job(job, timings, !job.outputs.motion.empty());
+}
 // The same for a mesh already loaded, framed by `framing`; `eye_dome` is eye_dome_lighting_for the mesh as loaded.
 JobFrame frame_job(const RenderJob& job, std::shared_ptr<Mesh> mesh, const Framing& framing, float eye_dome);
 
 // A job's model read for its animation (job.animation): the file's nodes, skins and clips, and the clip chosen.
 struct MovingModel {
   Model model;
-  std::size_t animation = 0;  // into model.animations
-  double duration = 0;        // the clip's, in seconds
-  double start = 0;           // job.animation.time clamped to the clip
+  std::optional<std::size_t> animation;  // into model.animations; none for a file without animations
+  double duration = 0;                   // the clip's, in seconds
+  double start = 0;                      // job.animation.time clamped to the clip
 };
-// Reads job.model and chooses its animation. Throws InputError naming the file when it has no animation, or none of
-// that name or index (listing the names it has); warns when the time lies outside the clip.
-MovingModel read_moving_model(const RenderJob& job);
+// Reads job.model and chooses its animation. Throws InputError naming the file when it has none of that name or
+// index (listing the names it has), or none at all when `required` (a job asking for motion alone does not require
+// one: a model that does not move has none); warns when the time lies outside the clip.
+MovingModel read_moving_model(const RenderJob& job, bool required = true);
+// The scene of the model 1/fps after `seconds` (the clip's last pose past its end), for the motion buffer.
+Scene later_scene(const RenderJob& job, const MovingModel& motion, double seconds);
 // The model `seconds` into its clip as one world-space mesh.
 Mesh posed_mesh(const RenderJob& job, const MovingModel& motion, double seconds);
 // frame.options for another view of the same model (a sheet's cell, a turntable's frame): the look's lights follow

@@ -55,8 +55,9 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
     options.ambient_occlusion = look.ambient_occlusion;
     if (look.shadows && std::none_of(options.lights.begin(), options.lights.end(),
                                      [](const Light& l) { return l.kind != Light::Kind::point && l.casts_shadows; }))
-      warn("shadows: no directional or spot light to cast them (the environment casts none); give a light "
-           "direction");
+      warn(
+          "shadows: no directional or spot light to cast them (the environment casts none); give a light "
+          "direction");
   } else {
     if (look.ambient || !look.lights.empty()) options.lights = look.lights;
     else options.lights = {Light{Light::Kind::directional, light, glm::vec3(1.0f), 1.0f}};
@@ -70,9 +71,10 @@ SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_worl
   options.edges = look.edges;
   if (look.world_point_size ? !(look.point_size > 0.0f && std::isfinite(look.point_size))
                             : !(look.point_size > 0.0f && look.point_size <= kMaxPointSize))
-    throw std::invalid_argument(look.world_point_size ? "point size: must be a finite size above 0"
-                                                      : "point size: must be above 0 and at most " +
-                                                            std::to_string(static_cast<int>(kMaxPointSize)) + " pixels");
+    throw std::invalid_argument(look.world_point_size
+                                    ? "point size: must be a finite size above 0"
+                                    : "point size: must be above 0 and at most " +
+                                          std::to_string(static_cast<int>(kMaxPointSize)) + " pixels");
   options.point_size = look.point_size;
   options.world_point_size = look.world_point_size;
   if (look.eye_dome_lighting) options.eye_dome_lighting = *look.eye_dome_lighting;  // checked by Scene::render
@@ -95,8 +97,8 @@ std::shared_ptr<const Environment> environment_for(const LookSpec& look, UpAxis 
   if (!found) {
     const EnvironmentImage image = look.hdri.empty() ? studio_environment() : read_environment_image(look.hdri);
     // The environment's up (+Y) turned to the model's up axis, as the camera's view up is.
-    found = std::make_shared<const Environment>(image, look.hdri_rotation, 1.0f,
-                                                glm::transpose(upright_from_model(up)));
+    found =
+        std::make_shared<const Environment>(image, look.hdri_rotation, 1.0f, glm::transpose(upright_from_model(up)));
   }
   return found;
 }
@@ -111,8 +113,8 @@ void apply_color_map(Mesh& mesh, const LookSpec& look, UpAxis up) {
   if (look.color_map == ColorMap::none) return;
   if (look.color) throw std::invalid_argument("colour map: cannot be combined with a colour for the whole model");
   // Display values (Mesh::colors), evenly spaced from the lowest height to the highest.
-  constexpr glm::vec3 kStops[] = {{0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 1.0f}, {0.0f, 1.0f, 0.0f}, {1.0f, 1.0f, 0.0f},
-                                  {1.0f, 0.0f, 0.0f}};
+  constexpr glm::vec3 kStops[] = {
+      {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 1.0f}, {0.0f, 1.0f, 0.0f}, {1.0f, 1.0f, 0.0f}, {1.0f, 0.0f, 0.0f}};
   constexpr int kLast = static_cast<int>(std::size(kStops)) - 1;
   const glm::vec3 axis = glm::transpose(upright_from_model(up))[1];  // the model's up, in its own coordinates
   float low = std::numeric_limits<float>::infinity(), high = -low;

@@ -6,16 +6,16 @@
 namespace facet {
 
 std::span<const Named<Shading>> shading_names() {
-  static constexpr Named<Shading> kNames[] = {
-      {"automatic", Shading::automatic}, {"unlit", Shading::unlit},   {"flat", Shading::flat},
-      {"gouraud", Shading::gouraud},     {"phong", Shading::phong},   {"blinn-phong", Shading::blinn_phong},
-      {"normals", Shading::normals},     {"depth", Shading::depth}};
+  static constexpr Named<Shading> kNames[] = {{"automatic", Shading::automatic}, {"unlit", Shading::unlit},
+                                              {"flat", Shading::flat},           {"gouraud", Shading::gouraud},
+                                              {"phong", Shading::phong},         {"blinn-phong", Shading::blinn_phong},
+                                              {"normals", Shading::normals},     {"depth", Shading::depth}};
   return kNames;
 }
 
 std::span<const Named<CullMode>> cull_mode_names() {
-  static constexpr Named<CullMode> kNames[] = {{"back", CullMode::back}, {"front", CullMode::front},
-                                               {"none", CullMode::none}};
+  static constexpr Named<CullMode> kNames[] = {
+      {"back", CullMode::back}, {"front", CullMode::front}, {"none", CullMode::none}};
   return kNames;
 }
 
@@ -36,12 +36,16 @@ std::span<const Named<ColorMap>> color_map_names() {
 }
 
 std::span<const Named<Projection>> projection_names() {
-  static constexpr Named<Projection> kNames[] = {
-      {"perspective", Projection::perspective}, {"orthographic", Projection::orthographic},
-      {"frustum", Projection::frustum},         {"oblique", Projection::oblique},
-      {"isometric", Projection::isometric},     {"dimetric", Projection::dimetric},
-      {"trimetric", Projection::trimetric},     {"front", Projection::front},
-      {"top", Projection::top},                 {"side", Projection::side}};
+  static constexpr Named<Projection> kNames[] = {{"perspective", Projection::perspective},
+                                                 {"orthographic", Projection::orthographic},
+                                                 {"frustum", Projection::frustum},
+                                                 {"oblique", Projection::oblique},
+                                                 {"isometric", Projection::isometric},
+                                                 {"dimetric", Projection::dimetric},
+                                                 {"trimetric", Projection::trimetric},
+                                                 {"front", Projection::front},
+                                                 {"top", Projection::top},
+                                                 {"side", Projection::side}};
   return kNames;
 }
 
@@ -50,7 +54,8 @@ std::span<const Named<bool BufferRequest::*>> buffer_names() {
                                                             {"depth", &BufferRequest::depth},
                                                             {"normal", &BufferRequest::normal},
                                                             {"ids", &BufferRequest::ids},
-                                                            {"mask", &BufferRequest::mask}};
+                                                            {"mask", &BufferRequest::mask},
+                                                            {"motion", &BufferRequest::motion}};
   return kNames;
 }
 

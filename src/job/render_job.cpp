@@ -14,14 +14,14 @@
 #include <string_view>
 #include <vector>
 
+#include "core/file_util.hpp"
 #include "facet/error.hpp"
 #include "facet/image_io.hpp"
 #include "facet/model_io.hpp"
 #include "facet/output_template.hpp"
 #include "facet/text.hpp"
-#include "core/file_util.hpp"
-#include "job/job_frame.hpp"
 #include "job/io/output_file.hpp"
+#include "job/job_frame.hpp"
 
 namespace facet {
 
@@ -30,7 +30,7 @@ using detail::Stopwatch;
 
 std::vector<std::filesystem::path> output_paths(const OutputSpec& o) {
   std::vector<std::filesystem::path> paths;
-  for (const std::filesystem::path* p : {&o.color, &o.depth, &o.normal, &o.ids, &o.mask, &o.camera})
+  for (const std::filesystem::path* p : {&o.color, &o.depth, &o.normal, &o.ids, &o.mask, &o.camera, &o.motion})
     if (!p->empty()) paths.push_back(*p);
   return paths;
 }
@@ -43,16 +43,17 @@ void check_output_formats(const OutputSpec& o, bool animation) {
   };
   // An animation is one GIF or video, or PNG frames when its name numbers them ({frame}).
   const bool sequence = animation && template_has(o.color.string(), "frame");
-  const Rule rules[] = {
-      animation && !sequence
-          ? Rule{&o.color, "an animation as .gif, .mp4 or .webm, or as PNG frames named with {frame}",
-                 {".gif", ".mp4", ".webm"}}
-          : Rule{&o.color, "the colour image as PNG (.png)", {".png"}},
-      {&o.depth, "depth as .npy or .exr", {".npy", ".exr"}},
-      {&o.normal, "normals as .npy or .exr", {".npy", ".exr"}},
-      {&o.ids, "ids as .npy", {".npy"}},
-      {&o.mask, "the mask as PNG (.png)", {".png"}},
-      {&o.camera, "the camera as JSON (.json)", {".json"}}};
+  const Rule rules[] = {animation && !sequence
+                            ? Rule{&o.color,
+                                   "an animation as .gif, .mp4 or .webm, or as PNG frames named with {frame}",
+                                   {".gif", ".mp4", ".webm"}}
+                            : Rule{&o.color, "the colour image as PNG (.png)", {".png"}},
+                        {&o.depth, "depth as .npy or .exr", {".npy", ".exr"}},
+                        {&o.normal, "normals as .npy or .exr", {".npy", ".exr"}},
+                        {&o.ids, "ids as .npy", {".npy"}},
+                        {&o.mask, "the mask as PNG (.png)", {".png"}},
+                        {&o.camera, "the camera as JSON (.json)", {".json"}},
+                        {&o.motion, "motion as .npy or .exr", {".npy", ".exr"}}};
   for (const Rule& rule : rules) {
     const std::string extension = lower_extension(*rule.path);
     if (extension.empty()) continue;
@@ -80,10 +81,12 @@ std::optional<OutputClash> find_output_clash(std::span<const OutputSpec> outputs
 
 FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
                           const SceneOptions& options, glm::vec4 clear, const BufferRequest& request,
-                          Framebuffer* centres) {
-  const bool surface_pass = request.normal || request.ids;
+                          Framebuffer* centres, const LaterFrame* later) {
+  const bool surface_pass = request.normal || request.ids || request.motion;
   if (surface_pass && (options.wireframe || options.edges))
-    throw std::invalid_argument("normal and id outputs show surfaces: not with wireframe or edges");
+    throw std::invalid_argument("normal, id and motion outputs show surfaces: not with wireframe or edges");
+  if (request.motion && !(later && later->scene))
+    throw std::invalid_argument("motion: needs the next frame (a model's animation, or a later camera)");
   // The colour pass's depth is read only for a 1-sample depth or mask; otherwise it stays in tile memory.
   target.keep_depth((request.depth || request.mask) && target.samples() == 1);
   renderer.clear(target, clear, 1.0f);
@@ -129,6 +132,7 @@ FrameBuffers draw_buffers(Renderer& renderer, Framebuffer& target, Scene& scene,
     out.surfaces = scene.render_ids(renderer, centre_target(), view, options);
     if (request.normal) out.normal = scene.camera_normals(out.surfaces, view);
     if (request.ids) out.ids = file_ids(scene, out.surfaces);
+    if (request.motion) out.motion = screen_motion(scene, out.surfaces, view, *later->scene, later->view);
   }
   return out;
 }
@@ -147,15 +151,17 @@ std::vector<std::uint32_t> file_ids(const Scene& scene, const SurfaceIds& surfac
 }
 
 void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const View& view,
-                    const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs, RenderTimings* timings) {
+                    const SceneOptions& options, glm::vec4 clear, const OutputSpec& outputs, RenderTimings* timings,
+                    const LaterFrame* later) {
   Stopwatch clock;
   // The colour image is encoded straight from the framebuffer, not from a copy.
   const BufferRequest request{.color = false,
                               .depth = !outputs.depth.empty(),
                               .normal = !outputs.normal.empty(),
                               .ids = !outputs.ids.empty(),
-                              .mask = !outputs.mask.empty()};
-  const FrameBuffers buffers = draw_buffers(renderer, target, scene, view, options, clear, request);
+                              .mask = !outputs.mask.empty(),
+                              .motion = !outputs.motion.empty()};
+  const FrameBuffers buffers = draw_buffers(renderer, target, scene, view, options, clear, request, nullptr, later);
   if (timings) timings->draw = clock.lap();
   std::vector<std::filesystem::path> written;
   try {
@@ -180,6 +186,10 @@ void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const
       write_png_gray(outputs.mask, w, h, buffers.mask);
       written.push_back(outputs.mask);
     }
+    if (!outputs.motion.empty()) {
+      write_float_image(outputs.motion, w, h, 2, std::span(&buffers.motion.data()->x, 2 * buffers.motion.size()));
+      written.push_back(outputs.motion);
+    }
     if (!outputs.camera.empty()) write_text(outputs.camera, camera_json(view, w, h));
     if (timings) timings->write = clock.lap();
   } catch (...) {
@@ -191,9 +201,11 @@ void draw_and_write(Renderer& renderer, Framebuffer& target, Scene& scene, const
 // A contact sheet or turntable is a colour output alone, seen through cameras of its own.
 void detail::check_colour_only(const RenderJob& job, const char* what, const char* flag) {
   const OutputSpec& o = job.outputs;
-  if (!o.depth.empty() || !o.normal.empty() || !o.ids.empty() || !o.mask.empty() || !o.camera.empty())
+  if (!o.depth.empty() || !o.normal.empty() || !o.ids.empty() || !o.mask.empty() || !o.camera.empty() ||
+      !o.motion.empty())
     throw std::invalid_argument(std::string(flag) + ": " + what +
-                                " is a colour output alone; it has no depth, normal, ids, mask or camera output");
+                                " is a colour output alone; it has no depth, normal, ids, mask, motion or camera "
+                                "output");
   if (job.camera.file_camera)
     throw std::invalid_argument(std::string(flag) + ": " + what + " places its own cameras, not the file's");
   if (o.color.empty()) throw std::invalid_argument(std::string(flag) + ": " + what + " needs a colour output to write");
@@ -257,8 +269,8 @@ void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
     for (std::size_t k = i + 1; k < paths.size(); ++k)
       if (paths[i].lexically_normal() == paths[k].lexically_normal())
         throw std::invalid_argument("outputs: " + paths[k].string() + " is named twice");
-  const bool animated = job.turntable > 0 || job.animation.play ||
-                        (job.demo && (job.frames > 1 || is_animation_path(job.outputs.color)));
+  const bool animated =
+      job.turntable > 0 || job.animation.play || (job.demo && (job.frames > 1 || is_animation_path(job.outputs.color)));
   check_output_formats(job.outputs, animated);
   if (job.demo) return detail::render_demo(job, renderer, timings);
   if (!job.views.empty() && job.turntable > 0)
@@ -268,14 +280,17 @@ void render(const RenderJob& job, Renderer& renderer, RenderTimings* timings) {
   if (job.turntable > 0) return detail::render_turntable(job, renderer, timings);
   JobFrame frame = detail::prepare_job(job, timings);
   Framebuffer target(job.width, job.height, job.samples);
-  draw_and_write(renderer, target, frame.scene, frame.view, frame.options, frame.clear, job.outputs, timings);
+  const LaterFrame later = frame.later();
+  draw_and_write(renderer, target, frame.scene, frame.view, frame.options, frame.clear, job.outputs, timings, &later);
 }
 
 FrameBuffers render_buffers(const RenderJob& job, Renderer& renderer, const BufferRequest& request,
                             std::string* camera) {
-  JobFrame frame = detail::prepare_job(job, nullptr);
+  JobFrame frame = detail::prepare_job(job, nullptr, request.motion);
   Framebuffer target(job.width, job.height, job.samples);
-  FrameBuffers buffers = draw_buffers(renderer, target, frame.scene, frame.view, frame.options, frame.clear, request);
+  const LaterFrame later = frame.later();
+  FrameBuffers buffers =
+      draw_buffers(renderer, target, frame.scene, frame.view, frame.options, frame.clear, request, nullptr, &later);
   if (camera) *camera = camera_json(frame.view, job.width, job.height);
   return buffers;
 }

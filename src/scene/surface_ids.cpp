@@ -5,6 +5,7 @@
 #include <utility>
 
 #include "facet/shaders/stock.hpp"
+#include "scene/pixel_ray.hpp"
 #include "scene/scene_impl.hpp"
 
 namespace facet {
@@ -116,11 +117,7 @@ std::vector<glm::vec3> Scene::camera_normals(const SurfaceIds& ids, const View& 
     return it->second;
   };
 
-  const glm::mat4 view_from_clip = glm::inverse(view.clip_from_view);
-  const auto view_point = [&](float ndc_x, float ndc_y, float ndc_z) {
-    const glm::vec4 p = view_from_clip * glm::vec4(ndc_x, ndc_y, ndc_z, 1.0f);
-    return glm::vec3(p) / p.w;
-  };
+  const detail::PixelRays rays(view.clip_from_view, ids.width, ids.height);
   // The instance of the previous pixel, whose matrices and corner table are at hand.
   std::uint32_t current = kNoSurface;
   const detail::PreparedMesh* prepared = nullptr;
@@ -129,7 +126,6 @@ std::vector<glm::vec3> Scene::camera_normals(const SurfaceIds& ids, const View& 
   glm::mat3 normal_from_object{1.0f};
   bool mirrored = false;
   for (int y = 0; y < ids.height; ++y) {
-    const float ndc_y = 1.0f - 2.0f * (static_cast<float>(y) + 0.5f) / static_cast<float>(ids.height);
     for (int x = 0; x < ids.width; ++x) {
       const std::size_t p = static_cast<std::size_t>(y) * ids.width + x;
       if (ids.instance[p] >= impl_->instances.size()) continue;
@@ -150,25 +146,16 @@ std::vector<glm::vec3> Scene::camera_normals(const SurfaceIds& ids, const View& 
         q[k] = glm::vec3(view_from_object * glm::vec4(v.position, 1.0f));
         n[k] = v.normal;
       }
-      // The pixel centre's ray (through the near and far planes, so oblique and orthographic views work too)
-      // meets the triangle's plane at barycentric (1 - u - v, u, v) (Moller-Trumbore, without the range test).
-      const float ndc_x = 2.0f * (static_cast<float>(x) + 0.5f) / static_cast<float>(ids.width) - 1.0f;
-      const glm::vec3 origin = view_point(ndc_x, ndc_y, -1.0f), direction = view_point(ndc_x, ndc_y, 1.0f) - origin;
-      const glm::vec3 e1 = q[1] - q[0], e2 = q[2] - q[0], h = glm::cross(direction, e2);
-      const float det = glm::dot(e1, h);
-      float u = 1.0f / 3.0f, w = 1.0f / 3.0f;
-      if (std::abs(det) > 0.0f && std::isfinite(det)) {
-        const glm::vec3 s = origin - q[0];
-        u = std::clamp(glm::dot(s, h) / det, 0.0f, 1.0f);
-        w = std::clamp(glm::dot(direction, glm::cross(s, e1)) / det, 0.0f, 1.0f - u);
-      }
-      const glm::vec3 object_normal = (1.0f - u - w) * n[0] + u * n[1] + w * n[2];
+      // The pixel centre's ray meets the triangle's plane at barycentric (1 - u - w, u, w).
+      const detail::PixelRays::Ray ray = rays.at(x, y);
+      const glm::vec2 b = ray_barycentric(ray, q);
+      const glm::vec3 object_normal = (1.0f - b.x - b.y) * n[0] + b.x * n[1] + b.y * n[2];
       const glm::vec3 normal = normal_from_object * object_normal;
       const float length = glm::length(normal);
       const glm::vec3 unit = length > 0.0f && std::isfinite(length) ? normal / length : glm::vec3(0.0f, 0.0f, 1.0f);
       // The stock shaders light a back face with the normal reversed; so does this buffer. The triangle faces the
       // camera when its corners run counter-clockwise as the ray sees them; a mirroring instance swaps its sides.
-      const bool facing = glm::dot(glm::cross(e1, e2), direction) < 0.0f;
+      const bool facing = glm::dot(glm::cross(q[1] - q[0], q[2] - q[0]), ray.direction) < 0.0f;
       normals[p] = facing != mirrored ? unit : -unit;
     }
   }

@@ -113,6 +113,31 @@ if "$facet" render "$cube" --animate --turntable 4 --resolution 80,60 --output "
 else
   bad "animated turntable" "$(head -n 2 "$scratch/turn.log")"
 fi
+# Motion to the next frame beside each numbered frame, as .npy and .exr: H x W x 2 floats, some of them moving.
+if "$facet" render "$skin" --animate --frames 2 --time 0.6 --resolution 64,48 --output "$scratch/flow_{frame}.png" \
+  --output-motion "$scratch/flow_{frame}.npy" 2>"$scratch/flow.log" &&
+  "$facet" render "$skin" --time 0.6 --resolution 64,48 --output "$scratch/flow.png" \
+    --output-motion "$scratch/flow.exr" 2>>"$scratch/flow.log" &&
+  msg=$(python3 - "$scratch" <<'PY' 2>&1
+import struct, sys
+d = sys.argv[1]
+for name in ("flow_0.npy", "flow_1.npy"):
+    data = open(f"{d}/{name}", "rb").read()
+    length = int.from_bytes(data[8:10], "little")
+    header = data[10:10 + length].decode()
+    assert "'shape': (48, 64, 2)" in header and "<f4" in header, header
+    values = struct.unpack(f"<{48 * 64 * 2}f", data[10 + length:])
+    moving = sum(1 for i in range(0, len(values), 2) if abs(values[i]) + abs(values[i + 1]) > 0.05)
+    assert moving > 10, f"{name}: {moving} moving pixels"
+exr = open(f"{d}/flow.exr", "rb").read()
+assert exr[:4] == b"\x76\x2f\x31\x01" and b"R\0" in exr and b"G\0" in exr and b"B\0" not in exr[:400], "not a 2-channel EXR"
+print(f"{moving} moving pixels, and a 2-channel EXR")
+PY
+  ); then
+  ok "motion: $msg"
+else
+  bad motion "$(head -n 2 "$scratch/flow.log") ${msg:-}"
+fi
 # A batch job takes the same keys.
 printf '{"model": "%s", "time": 1.25, "resolution": "160,120", "output": "%s"}\n' "$skin" "$scratch/batch_t.png" \
   >"$scratch/jobs.jsonl"
@@ -129,6 +154,8 @@ refused nothing_to_play 1 "has no animation to play" render "$still" --time 1 --
 refused bad_fps 2 "--fps" render "$skin" --animate --fps 0 --output "$scratch/refused_{frame}.png"
 refused bad_time 2 "--time" render "$skin" --time nan --output "$scratch/refused.png"
 refused unnumbered 2 "{frame}" render "$skin" --animate --output "$scratch/refused.png"
+refused turntable_motion 2 "colour output alone" \
+  render "$skin" --turntable 3 --output "$scratch/refused.gif" --output-motion "$scratch/refused.npy"
 refused video_of_depth 2 "colour output alone" \
   render "$skin" --animate --output "$scratch/refused.gif" --output-depth "$scratch/refused.npy"
 

@@ -50,15 +50,16 @@ TEST(Names, BufferNamesAreBufferRequestsFields) {
   for (const Named<bool BufferRequest::*>& n : buffer_names()) {
     BufferRequest request{.color = false};
     request.*n.value = true;
-    EXPECT_EQ(request.color + request.depth + request.normal + request.ids + request.mask, 1) << n.name;
+    EXPECT_EQ(request.color + request.depth + request.normal + request.ids + request.mask + request.motion, 1)
+        << n.name;
     all.*n.value = true;
   }
-  EXPECT_TRUE(all.color && all.depth && all.normal && all.ids && all.mask);
+  EXPECT_TRUE(all.color && all.depth && all.normal && all.ids && all.mask && all.motion);
 }
 
 TEST(Names, ListedJoinsTheNamesForMessages) {
   EXPECT_EQ(listed(cull_mode_names()), "back, front, none");
-  EXPECT_EQ(listed(buffer_names()), "color, depth, normal, ids, mask");
+  EXPECT_EQ(listed(buffer_names()), "color, depth, normal, ids, mask, motion");
 }
 
 }  // namespace

@@ -297,12 +297,12 @@ TEST(Render, EveryBufferAgreesOnWhereTheModelIs) {
   EXPECT_TRUE(fs::is_empty(wire));
 }
 
-// OpenEXR files hold the float values exactly, as Y or R G B channels, ZIP-compressed; 41 rows make three chunks of
-// up to 16, the last one short.
+// OpenEXR files hold the float values exactly, as Y, R G or R G B channels, ZIP-compressed; 41 rows make three
+// chunks of up to 16, the last one short.
 TEST(FloatImage, ExrHoldsTheValuesExactly) {
   const fs::path dir = test::scratch_dir("surface_buffers");
   const int width = 37, height = 41;
-  for (const int channels : {1, 3}) {
+  for (const int channels : {1, 2, 3}) {
     std::vector<float> values(static_cast<std::size_t>(width) * height * channels);
     for (std::size_t i = 0; i < values.size(); ++i) values[i] = std::ldexp(static_cast<float>(i) + 0.1f, -3);
     const fs::path path = dir / ("values" + std::to_string(channels) + ".EXR");
@@ -324,8 +324,8 @@ TEST(FloatImage, ExrHoldsTheValuesExactly) {
     file.readPixels(window.min.y, window.max.y);
     EXPECT_EQ(read, values);
   }
-  EXPECT_THROW(write_float_image(dir / "two.exr", 1, 1, 2, std::vector<float>(2)), std::invalid_argument);
-  EXPECT_FALSE(fs::exists(dir / "two.exr"));
+  EXPECT_THROW(write_float_image(dir / "four.exr", 1, 1, 4, std::vector<float>(4)), std::invalid_argument);
+  EXPECT_FALSE(fs::exists(dir / "four.exr"));
 }
 
 }  // namespace

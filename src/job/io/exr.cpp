@@ -67,8 +67,8 @@ void check(exr_result_t result, const Output& output) {
 }  // namespace
 
 std::vector<std::uint8_t> encode_exr(int width, int height, int channels, std::span<const float> values) {
-  if (channels != 1 && channels != 3)
-    throw std::invalid_argument("EXR: 1 or 3 channels, not " + std::to_string(channels));
+  if (channels < 1 || channels > 3)
+    throw std::invalid_argument("EXR: 1, 2 or 3 channels, not " + std::to_string(channels));
   std::vector<std::uint8_t> bytes;
   Output output{bytes, {}};
   current_output = &output;
@@ -88,7 +88,8 @@ std::vector<std::uint8_t> encode_exr(int width, int height, int channels, std::s
     check(exr_add_part(context, nullptr, EXR_STORAGE_SCANLINE, &part), output);
     check(exr_initialize_required_attr_simple(context, part, width, height, EXR_COMPRESSION_ZIP), output);
     // Not perceptually linear, as OpenEXR's C++ library marks a channel by default.
-    const char* const names = channels == 1 ? "Y" : "RGB";
+    // One channel is grey (Y), two a vector (R G: motion's x and y), three a colour or normal (R G B).
+    const char* const names = channels == 1 ? "Y" : channels == 2 ? "RG" : "RGB";
     for (int c = 0; c < channels; ++c) {
       const char name[2] = {names[c], '\0'};
       check(exr_add_channel(context, part, name, EXR_PIXEL_FLOAT, EXR_PERCEPTUALLY_LOGARITHMIC, 1, 1), output);

@@ -10,7 +10,7 @@
 
 namespace facet {
 
-// An OpenEXR file of width x height pixels with `channels` (1: Y; 3: R G B) 32-bit float channels, ZIP-compressed,
+// An OpenEXR file of width x height pixels with `channels` (1: Y; 2: R G; 3: R G B) 32-bit float channels, ZIP-compressed,
 // from values laid out pixel by pixel, top row first. Throws std::runtime_error when OpenEXR fails.
 std::vector<std::uint8_t> encode_exr(int width, int height, int channels, std::span<const float> values);
 
