@@ -63,6 +63,10 @@ PYTHONPATH=build/python /usr/bin/python3 bench/python_bench.py build 5
 echo "## thumbnails: one facet batch against one facet render process each"
 bash bench/batch_bench.sh build/tools/facet 3 600
 
+echo "## animation: posing 100k vertices, and a clip to MP4 as a whole process"
+build/bench/facet_animation_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
+bash bench/animation.sh build/tools/facet "$rounds"
+echo
 echo "## stock shaders against the benchmark shader, sphere:224"
 build/bench/facet_shader_rate_bench --benchmark_repetitions=7 --benchmark_enable_random_interleaving=true \
   --benchmark_report_aggregates_only=true
