@@ -113,6 +113,8 @@ EMSCRIPTEN_KEEPALIVE void facet_page_zoom(float wheel_steps) { facet::viewer::zo
 EMSCRIPTEN_KEEPALIVE const std::uint32_t* facet_page_frame(int width, int height, double seconds) {
   facet::web::Page& p = page();
   if (p.last_time && !p.toggles.paused) p.animation += std::max(0.0, seconds - *p.last_time);
+  p.animation = std::max(0.0, p.animation + p.toggles.steps / 30.0);  // the , and . keys: a frame back, forward
+  p.toggles.steps = 0;
   p.last_time = seconds;
   try {
     facet::viewer::draw_frame(p.renderer, p.target, width, height, p.showing, p.animation, p.toggles, p.orbit,

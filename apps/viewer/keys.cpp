@@ -17,6 +17,7 @@ const char* const kHelpText =
     "o  orthographic/perspective\n"
     "a  anti-aliasing (4x multisampling)\n"
     "r  reset the camera     space  pause\n"
+    ",  .  step the animation a frame back, forward\n"
     "h  this help            q, Esc  quit\n"
     "mouse: left-drag orbits, right- or shift-drag pans, wheel zooms\n"
     "drop a model file on the window to open it";
@@ -37,6 +38,11 @@ KeyAction apply_key(char key, Toggles& t, Orbit& orbit) {
     case 'o': t.orthographic = !t.orthographic; break;
     case 'a': t.antialias = !t.antialias; break;
     case ' ': t.paused = !t.paused; break;
+    case ',':
+    case '.':
+      t.paused = true;
+      t.steps += key == '.' ? 1 : -1;
+      break;
     case 'h': t.help = !t.help; break;
     case 'r': orbit = Orbit{}; return KeyAction::reset_camera;
     case 'q':

@@ -103,6 +103,7 @@ char key_of(const SDL_KeyboardEvent& key) {
   const SDL_Keycode k = key.keysym.sym;
   if (k == SDLK_ESCAPE) return '\x1b';
   if (k == SDLK_SPACE) return ' ';
+  if (k == SDLK_COMMA || k == SDLK_PERIOD) return static_cast<char>(k);
   if ((k >= SDLK_a && k <= SDLK_z) || (k >= SDLK_0 && k <= SDLK_9)) return static_cast<char>(k);
   return 0;
 }
@@ -174,6 +175,8 @@ int run_viewer(const ViewerOptions& options) {
     const Clock::time_point now = Clock::now();
     if (!toggles.paused)
       animation = options.frames ? frames / 60.0 : animation + std::chrono::duration<double>(now - last).count();
+    animation = std::max(0.0, animation + toggles.steps / 30.0);
+    toggles.steps = 0;
     last = now;
     window.size(width, height);
     draw_frame(renderer, target, width, height, showing, animation, toggles, orbit, options.look);

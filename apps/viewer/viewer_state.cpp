@@ -53,11 +53,25 @@ void zoom_by(Orbit& orbit, float wheel_steps) {
   orbit.zoom = std::clamp(orbit.zoom * std::pow(1.1f, wheel_steps), 0.05f, 50.0f);
 }
 
+struct Showing::Motion {
+  Model model;
+  Poser poser;
+  double duration = 0.0;
+};
+
 Showing Showing::model(const std::string& path, const LoadOptions& load) {
   Showing s;
-  s.mesh_ = std::make_shared<const Mesh>(load_model(path, load));
-  s.framing_ = framing_of(*s.mesh_, path);
   s.title_ = std::filesystem::path(path).filename().string();
+  Model model = read_model(path, load);
+  if (model.animations.empty()) {
+    if (!model.deformations.empty()) model = pose(model, std::nullopt, 0.0, path, load.threads);
+    s.mesh_ = std::make_shared<const Mesh>(flatten(std::move(model), path));
+  } else {
+    const double duration = model.animations.front().duration();
+    s.motion_ = std::make_shared<Motion>(Motion{std::move(model), Poser(load.threads), duration});
+    s.mesh_ = std::make_shared<const Mesh>(flatten(s.motion_->poser(s.motion_->model, 0, 0.0, path), path));
+  }
+  s.framing_ = framing_of(*s.mesh_, path);
   return s;
 }
 
@@ -80,6 +94,13 @@ void Showing::rebuild_scene(int shuffles) {
 
 Showing::Frame Showing::frame(double seconds, float aspect, const Toggles& toggles, const Orbit& orbit,
                               const LookSpec& base) {
+  // A model's animation loops; a new moment is a new mesh, and a new scene for it.
+  if (motion_ && seconds != posed_at_) {
+    const double t = motion_->duration > 0.0 ? std::fmod(std::max(seconds, 0.0), motion_->duration) : 0.0;
+    mesh_ = std::make_shared<const Mesh>(flatten(motion_->poser(motion_->model, 0, t, title_), title_));
+    posed_at_ = seconds;
+    scene_shuffles_ = -1;
+  }
   if (scene_shuffles_ != toggles.shuffles) rebuild_scene(toggles.shuffles);
   LookSpec look = base;
   look.shading = toggles.shading;

@@ -9,6 +9,7 @@
 
 #include "facet/demo_scenes.hpp"
 #include "facet/framebuffer.hpp"
+#include "facet/model.hpp"
 #include "facet/model_io.hpp"
 #include "facet/render_job.hpp"
 #include "facet/renderer.hpp"
@@ -29,6 +30,7 @@ struct Toggles {
   bool orthographic = false;
   bool antialias = false;  // 4x multisampling
   bool paused = false;
+  int steps = 0;  // frames (1/30 s each) to step the animation by, forward or back, before the next frame
   bool help = false;
 };
 
@@ -48,12 +50,13 @@ void zoom_by(Orbit& orbit, float wheel_steps);          // the wheel, one step a
 // What is shown: a model file or a demo, its meshes prepared in a Scene.
 class Showing {
  public:
-  // Loads a model (throws InputError as load_model does) or makes a demo.
+  // Loads a model (throws InputError as load_model does) or makes a demo. A model's first animation (a glTF
+  // file's) plays, looping.
   static Showing model(const std::string& path, const LoadOptions& load = {});
   static Showing demo(Demo demo);
 
   const std::string& title() const { return title_; }
-  bool animated() const { return demo_.has_value(); }
+  bool animated() const { return demo_.has_value() || motion_ != nullptr; }
 
   // The frame at `seconds` of the animation for an aspect (width / height) with the toggles and orbit applied:
   // the scene to draw (its instances moved, its triangles shuffled as the toggles say), the view, the options and
@@ -70,8 +73,12 @@ class Showing {
  private:
   void rebuild_scene(int shuffles);
 
+  struct Motion;  // a model's animation: the model as read, a Poser, the clip's length
+
   std::string title_;
   std::optional<DemoModel> demo_;
+  std::shared_ptr<Motion> motion_;
+  double posed_at_ = 0.0;             // the moment mesh_ shows
   std::shared_ptr<const Mesh> mesh_;  // the model, or the demo's mesh, in the file's triangle order
   Framing framing_;
   Scene scene_;

@@ -61,5 +61,9 @@ void sample(const AnimationSampler& sampler, float seconds, bool rotation, std::
 // The index of the animation a caller names: its name, or its index as a decimal number when no animation has that
 // name. nullopt when neither names one.
 std::optional<std::size_t> find_animation(std::span<const Animation> animations, std::string_view name);
+// The same, for a model that must have it: an empty name picks the first. Throws InputError(source, ...) for a
+// model without animations ("has no animation to play"), or without one of that name or index (listing those it
+// has).
+std::size_t animation_named(std::span<const Animation> animations, std::string_view name, const std::string& source);
 
 }  // namespace facet

@@ -21,6 +21,9 @@ class Scene(BoxMeasures):
         self.clear()
         self._next_id = 0
         self._core = _facet.SceneCore()
+        # Scene.from_file's: the file's motion (None without) and, per instance it placed, its node and the
+        # primitive of its own mesh when a skin or morph targets deform it.
+        self._motion, self._placed = None, []
         # What RenderFlags.SEG draws: the mapped nodes alone, prepared apart from the frames of the whole scene.
         self._seg_core = _facet.SceneCore()
         nodes = list(nodes or [])
@@ -219,6 +222,28 @@ class Scene(BoxMeasures):
             parent = self._parent[parent]
         return pose
 
+    @property
+    def animations(self):
+        """The animations of the file the scene was read from (Scene.from_file): (name, duration in seconds) each,
+        in the file's order; empty for a file without, or a scene built otherwise."""
+        return [] if self._motion is None else [tuple(a) for a in self._motion.animations()]
+
+    def set_time(self, seconds, animation=None):
+        """Poses what Scene.from_file placed `seconds` into one of the file's animations (its name or index; None:
+        the first), clamped to the clip, as `facet render --time` does: the nodes' poses, and the meshes that skins
+        and morph targets deform. Nodes removed from the scene since are skipped. Raises LoadError when the file
+        has no such animation (or none), ValueError for a time that is not finite or a scene with no file's
+        motion."""
+        if self._motion is None:
+            raise ValueError("set_time: the scene has no animation to play (Scene.from_file reads a file's)")
+        posed = self._motion.pose(None if animation is None else str(animation), float(seconds))
+        for (node, primitive), (pose, core) in zip(self._placed, posed):
+            if node not in self._parent:
+                continue
+            node.matrix = pose
+            if core is not None:
+                primitive._core, primitive._box = core, core.bounds
+
     def set_pose(self, node, pose):
         """Sets node's matrix (relative to its parent) to pose."""
         self._check(node)
@@ -268,12 +293,16 @@ class Scene(BoxMeasures):
                   max_texture_size=DEFAULT_MAX_TEXTURE_SIZE):
         """Every mesh of a model file, placed by the file's nodes (node ids as the file numbers them), and the
         file's cameras. Reads within the limits Mesh.from_file takes, and raises as it does."""
-        meshes, instances, cameras = _facet.read_model(str(path), bool(allow_external_files), max_triangles,
-                                                       max_points, max_texture_size)
+        meshes, instances, cameras, motion = _facet.read_model(str(path), bool(allow_external_files), max_triangles,
+                                                               max_points, max_texture_size)
         scene = Scene(bg_color=bg_color, ambient_light=ambient_light)
         wrapped = [Mesh([CorePrimitive(core)]) for core in meshes]
-        for mesh_index, pose, node_id in instances:
-            scene.add(wrapped[mesh_index], pose=pose, node_id=node_id)
+        placed = []
+        for mesh_index, pose, node_id, deformed in instances:
+            # A skinned or morphed instance gets a mesh of its own, which set_time replaces.
+            mesh = Mesh([CorePrimitive(meshes[mesh_index])]) if deformed else wrapped[mesh_index]
+            placed.append((scene.add(mesh, pose=pose, node_id=node_id), mesh.primitives[0] if deformed else None))
+        scene._motion, scene._placed = motion, placed
         for c in cameras:
             if c["perspective"]:
                 camera = PerspectiveCamera(c["yfov"], znear=c["znear"], zfar=c["zfar"], name=c["name"])

@@ -2,6 +2,9 @@
 #include "meshes.hpp"
 
 #include <algorithm>
+#include <cmath>
+#include <memory>
+#include <optional>
 #include <string>
 #include <utility>
 
@@ -107,10 +110,10 @@ void SceneCore::sync(py::list instances) {
   }
   std::unique_lock lock(mutex);
   const std::vector<Instance>& have = scene.instances();
-  const bool same_meshes = have.size() == wanted.size() &&
-                           std::equal(have.begin(), have.end(), wanted.begin(), [](const Instance& a, const Instance& b) {
-                             return a.mesh == b.mesh && a.wireframe == b.wireframe;
-                           });
+  const bool same_meshes =
+      have.size() == wanted.size() &&
+      std::equal(have.begin(), have.end(), wanted.begin(),
+                 [](const Instance& a, const Instance& b) { return a.mesh == b.mesh && a.wireframe == b.wireframe; });
   if (same_meshes) {
     for (std::size_t i = 0; i < wanted.size(); ++i)
       if (have[i].world_from_object != wanted[i].world_from_object) scene.set_transform(i, wanted[i].world_from_object);
@@ -145,24 +148,73 @@ LoadOptions load_options_of(bool allow_external_files, py::handle max_triangles,
       .max_texture_size = static_cast<int>(integer_in(max_texture_size, "max_texture_size", 1, kMaxTextureSize))};
 }
 
+namespace {
+
+py::array_t<double> matrix_of(const glm::mat4& m) {
+  py::array_t<double> out({4, 4});
+  for (int r = 0; r < 4; ++r)
+    for (int c = 0; c < 4; ++c) out.mutable_at(r, c) = m[c][r];
+  return out;
+}
+
+// Whether a skin or morph targets move the instance's vertices at some moment.
+bool deformed(const Model& model, const ModelInstance& instance) {
+  if (model.deformations.empty()) return false;
+  const MeshDeformation& d = model.deformations[instance.mesh];
+  return !d.morph_targets.empty() || (instance.skin >= 0 && d.influences > 0);
+}
+
+}  // namespace
+
+MotionCore::MotionCore(Model model, std::string source) : model_(std::move(model)), source_(std::move(source)) {}
+
+py::list MotionCore::animations() const {
+  py::list out;
+  for (const Animation& a : model_.animations) out.append(py::make_tuple(a.name, a.duration()));
+  return out;
+}
+
+py::list MotionCore::pose(std::optional<std::string> animation, double seconds) {
+  if (!std::isfinite(seconds)) value_error("time: must be a finite number of seconds");
+  const std::size_t clip = animation_named(model_.animations, animation.value_or(""), source_);
+  const Model* posed = nullptr;
+  {
+    py::gil_scoped_release released;
+    posed = &poser_(model_, clip, seconds, source_);
+  }
+  py::list out;
+  for (std::size_t k = 0; k < posed->instances.size(); ++k) {
+    const ModelInstance& i = posed->instances[k];
+    py::object core = py::none();
+    if (deformed(model_, model_.instances[k]))
+      core = py::cast(MeshCore{std::make_shared<const Mesh>(posed->meshes[i.mesh])});
+    out.append(py::make_tuple(matrix_of(i.world_from_object), core));
+  }
+  return out;
+}
+
 py::tuple read_model_file(const std::string& path, const LoadOptions& options) {
   Model model;
   std::string format;
+  std::vector<bool> moving;
+  std::unique_ptr<MotionCore> motion;
   {
     py::gil_scoped_release released;
     model = read_model(path, format, options);
     for (Mesh& mesh : model.meshes) make_sides_explicit(mesh, format);
+    if (!model.animations.empty() || !model.deformations.empty()) {
+      for (const ModelInstance& i : model.instances) moving.push_back(deformed(model, i));
+      motion = std::make_unique<MotionCore>(model, path);
+      model = facet::pose(model, std::nullopt, 0.0, path, options.threads);
+    }
   }
   py::list meshes, instances, cameras;
   for (Mesh& mesh : model.meshes) meshes.append(MeshCore{std::make_shared<const Mesh>(std::move(mesh))});
-  const auto matrix = [](const glm::mat4& m) {
-    py::array_t<double> out({4, 4});
-    for (int r = 0; r < 4; ++r)
-      for (int c = 0; c < 4; ++c) out.mutable_at(r, c) = m[c][r];
-    return out;
-  };
-  for (const ModelInstance& i : model.instances)
-    instances.append(py::make_tuple(i.mesh, matrix(i.world_from_object), i.id));
+  const auto matrix = [](const glm::mat4& m) { return matrix_of(m); };
+  for (std::size_t k = 0; k < model.instances.size(); ++k) {
+    const ModelInstance& i = model.instances[k];
+    instances.append(py::make_tuple(i.mesh, matrix(i.world_from_object), i.id, !moving.empty() && moving[k]));
+  }
   for (const ModelCamera& c : model.cameras) {
     py::dict camera;
     camera["name"] = c.name;
@@ -175,7 +227,7 @@ py::tuple read_model_file(const std::string& path, const LoadOptions& options) {
     camera["pose"] = matrix(c.world_from_camera);
     cameras.append(camera);
   }
-  return py::make_tuple(meshes, instances, cameras);
+  return py::make_tuple(meshes, instances, cameras, motion ? py::cast(std::move(motion)) : py::none());
 }
 
 }  // namespace facet::python

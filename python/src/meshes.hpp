@@ -10,6 +10,7 @@
 
 #include "arrays.hpp"
 #include "facet/mesh.hpp"
+#include "facet/model.hpp"
 #include "facet/model_io.hpp"
 #include "facet/scene.hpp"
 
@@ -49,8 +50,29 @@ LoadOptions load_options_of(bool allow_external_files, py::handle max_triangles,
 // load_model for Python: the whole file as one world-space mesh, its sides made explicit (materials.hpp).
 MeshCore load_mesh_file(const std::string& path, const LoadOptions& options);
 
-// read_model for Python, the meshes' sides made explicit: (meshes, [(mesh index, 4x4 pose, node id)],
-// [camera dicts]).
+// A model file's motion, kept for Scene.set_time: the model as read (its nodes, skins, morph targets and
+// animations) and a Poser that poses it frame after frame.
+class MotionCore {
+ public:
+  MotionCore(Model model, std::string source);
+  // (name, duration in seconds) of each animation, in the file's order.
+  py::list animations() const;
+  // The model `seconds` into the animation named (its name or index; None: the first): per instance, in the
+  // file's order, (4x4 world pose, MeshCore of its deformed mesh, or None for an instance whose mesh nothing
+  // deforms). Raises LoadError for an animation the file does not have (or none), ValueError for a time that is not
+  // finite.
+  py::list pose(std::optional<std::string> animation, double seconds);
+
+ private:
+  Model model_;
+  std::string source_;
+  Poser poser_;
+};
+
+// read_model for Python, the meshes' sides made explicit and skins and morph targets at rest: (meshes,
+// [(mesh index, 4x4 pose, node id, deformed)], [camera dicts], MotionCore or None). An instance that a skin or
+// morph targets deform has a mesh of its own, which MotionCore::pose replaces; the MotionCore is None for a file
+// with neither animations nor deformations.
 py::tuple read_model_file(const std::string& path, const LoadOptions& options);
 
 }  // namespace facet::python

@@ -280,6 +280,10 @@ PYBIND11_MODULE(_facet, m) {
       .def_property_readonly("point_count", [](const MeshCore& c) { return c.mesh->point_count(); })
       .def_property_readonly("bounds", &MeshCore::bounds);
 
+  py::class_<MotionCore>(m, "MotionCore")
+      .def("animations", &MotionCore::animations)
+      .def("pose", &MotionCore::pose, py::arg("animation"), py::arg("seconds"));
+
   py::class_<SceneCore>(m, "SceneCore")
       .def(py::init<>())
       .def("sync", &SceneCore::sync, py::arg("instances"));

@@ -130,3 +130,33 @@ def test_bad_animation_requests_raise_clear_errors():
         [[1, 0, 0, 0], [0, 1, 0, 0], [0, 0, 1, 3], [0, 0, 0, 1]], dtype=float))
     with pytest.raises(ValueError, match="motion"):
         facet.OffscreenRenderer(32, 24).render_buffers(scene, ["motion"])
+
+
+def test_a_scene_read_from_a_file_is_posed_by_set_time():
+    gltf = Gltf(SKIN)
+    scene = facet.Scene.from_file(SKIN)
+    assert scene.animations == [("", 5.5)]
+    (node,) = [n for n in scene.mesh_nodes]
+    primitive = node.mesh.primitives[0]
+    # Unanimated, and at the times set: the mesh's box is numpy's skinned vertices' box.
+    np.testing.assert_allclose(primitive.bounds, [gltf.skinned(0).min(0), gltf.skinned(0).max(0)], atol=1e-5)
+    eye = np.eye(4)
+    eye[:3, 3] = [0.5, 1, 4]
+    scene.add(facet.PerspectiveCamera(yfov=0.8), pose=eye)
+    renderer = facet.OffscreenRenderer(96, 72)
+    rest, _ = renderer.render(scene)
+    for t in (0.7, 2.25, 4.0):
+        scene.set_time(t)
+        np.testing.assert_allclose(primitive.bounds, [gltf.skinned(t).min(0), gltf.skinned(t).max(0)], atol=1e-5)
+    scene.set_time(0.7, animation=0)
+    bent, _ = renderer.render(scene)
+    assert (rest != bent).any()
+    scene.set_time(0.0)
+    assert (renderer.render(scene)[0] == rest).all()
+    with pytest.raises(facet.LoadError, match="has no animation 'Walk'"):
+        scene.set_time(1.0, animation="Walk")
+    with pytest.raises(ValueError, match="time"):
+        scene.set_time(float("inf"))
+    with pytest.raises(ValueError, match="no animation to play"):
+        facet.Scene.from_file(STILL).set_time(1.0)
+    assert facet.Scene().animations == []

@@ -43,17 +43,9 @@ MovingModel read_moving_model(const RenderJob& job, bool required) {
   out.model = read_model(job.model, job.load);
   const std::vector<Animation>& clips = out.model.animations;
   if (clips.empty() && !required && job.animation.name.empty()) return out;
-  if (clips.empty()) throw InputError(source, "has no animation to play");
-  const std::string& name = job.animation.name;
-  const std::optional<std::size_t> found = name.empty() ? std::optional<std::size_t>(0) : find_animation(clips, name);
-  if (!found) {
-    std::string names;
-    for (std::size_t i = 0; i < clips.size(); ++i)
-      names += (i ? ", " : "") + (clips[i].name.empty() ? std::to_string(i) : "'" + clips[i].name + "'");
-    throw InputError(source, "has no animation '" + name + "' (it has " + names + ")");
-  }
-  out.animation = *found;
-  out.duration = clips[*found].duration();
+  const std::size_t found = animation_named(clips, job.animation.name, source);
+  out.animation = found;
+  out.duration = clips[found].duration();
   const double time = job.animation.time.value_or(0.0);
   if (!std::isfinite(time)) throw std::invalid_argument("time: must be a finite number of seconds");
   out.start = std::clamp(time, 0.0, out.duration);

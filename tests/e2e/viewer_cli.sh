@@ -98,6 +98,22 @@ if shot wuson_own "$model" --frames 1 && shot wuson_lit "$model" --frames 1 --li
 else
   bad "lighting options" "$(cat "$scratch/wuson_lit.err")"
 fi
+# A model's animation plays, pauses (space) and steps a frame (. forward, , back): simple_skin paused at 0 s, stepped
+# two frames on, and stepped one on and one back.
+skin=/usr/share/assimp/models/glTF2/simple_skin/simple_skin.gltf
+if shot skin_paused "$skin" --frames 2 --keys " " && shot skin_stepped "$skin" --frames 2 --keys ".." &&
+  shot skin_back "$skin" --frames 2 --keys ".,"; then
+  # Compared as decoded pixels: PNG bytes need not repeat.
+  same() { python3 -c "exec(open('$e2e_lib/png.py').read()); import sys; sys.exit(read_png('$1') != read_png('$2'))"; }
+  if ! same "$scratch/skin_paused.png" "$scratch/skin_stepped.png" &&
+    same "$scratch/skin_paused.png" "$scratch/skin_back.png"; then
+    ok "a model's animation pauses and steps"
+  else
+    bad "animation steps" "stepped frames are not as expected"
+  fi
+else
+  bad "animation steps" "$(cat "$scratch/skin_stepped.err")"
+fi
 expect_error() {
   local name=$1 status=$2
   shift 2

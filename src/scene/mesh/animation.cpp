@@ -121,4 +121,14 @@ std::optional<std::size_t> find_animation(std::span<const Animation> animations,
   return index;
 }
 
+std::size_t animation_named(std::span<const Animation> animations, std::string_view name, const std::string& source) {
+  if (animations.empty()) throw InputError(source, "has no animation to play");
+  if (name.empty()) return 0;
+  if (const std::optional<std::size_t> found = find_animation(animations, name)) return *found;
+  std::string names;
+  for (std::size_t i = 0; i < animations.size(); ++i)
+    names += (i ? ", " : "") + (animations[i].name.empty() ? std::to_string(i) : "'" + animations[i].name + "'");
+  throw InputError(source, "has no animation '" + std::string(name) + "' (it has " + names + ")");
+}
+
 }  // namespace facet
