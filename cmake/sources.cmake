@@ -86,6 +86,7 @@ set(FACET_JOB_SOURCES
 # build leaves them out.
 set(FACET_HOST_JOB_SOURCES
   src/job/animation.cpp
+  src/job/io/assimp_animation.cpp
   src/job/io/assimp_loader.cpp
   src/job/io/exr.cpp
   src/job/io/gif.cpp

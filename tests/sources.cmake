@@ -25,6 +25,7 @@ set(FACET_LIGHT_TEST_SOURCES
   unit/test_allocations.cpp
   unit/test_animation.cpp
   unit/test_animation_job.cpp
+  unit/test_assimp_animation.cpp
   unit/test_assimp_loader.cpp
   unit/test_camera.cpp
   unit/test_clear.cpp

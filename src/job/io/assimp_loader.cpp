@@ -24,11 +24,12 @@
 #include <utility>
 #include <vector>
 
-#include "job/shared_library.hpp"
+#include "core/file_util.hpp"
 #include "facet/error.hpp"
 #include "facet/model.hpp"
-#include "core/file_util.hpp"
+#include "job/io/assimp_animation.hpp"
 #include "job/io/loaders.hpp"
+#include "job/shared_library.hpp"
 
 namespace facet {
 namespace {
@@ -306,12 +307,21 @@ Model load_with_assimp(const std::filesystem::path& path, std::string_view bytes
   std::size_t expanded = 0;
   // Depth first, parents before children, with a stack of its own: a file can nest nodes deeper than a thread's
   // stack would allow recursion to.
-  std::vector<std::pair<const aiNode*, glm::mat4>> pending{{scene->mRootNode, glm::mat4(1.0f)}};
+  struct Pending {
+    const aiNode* node;
+    glm::mat4 parent;
+    std::int32_t parent_id;
+  };
+  std::vector<Pending> pending{{scene->mRootNode, glm::mat4(1.0f), -1}};
+  std::vector<const aiNode*> walked;  // by id
+  std::vector<std::int32_t> parents;
   std::uint32_t node_number = 0;
   while (!pending.empty()) {
-    const auto [node, parent] = pending.back();
+    const auto [node, parent, parent_id] = pending.back();
     pending.pop_back();
     const std::uint32_t id = node_number++;
+    walked.push_back(node);
+    parents.push_back(parent_id);
     if (id == kNoSurface) throw InputError(source, "the scene has more nodes than 32-bit ids can number");
     const glm::mat4 world = parent * matrix_of(node->mTransformation);
     for (unsigned k = 0; k < node->mNumMeshes; ++k) {
@@ -329,12 +339,13 @@ Model load_with_assimp(const std::filesystem::path& path, std::string_view bytes
       if (count > kMaxModelVertices - expanded)
         throw InputError(source, "the model expands to more than 2^27 vertices");
       expanded += count;
-      out.instances.push_back(ModelInstance{slot, world, id});
+      out.instances.push_back(ModelInstance{slot, world, id, static_cast<std::int32_t>(id)});
     }
     for (unsigned c = node->mNumChildren; c-- > 0;)
-      if (node->mChildren[c]) pending.emplace_back(node->mChildren[c], world);
+      if (node->mChildren[c]) pending.push_back({node->mChildren[c], world, static_cast<std::int32_t>(id)});
   }
   if (out.instances.empty()) throw InputError(source, "no triangles found");
+  read_assimp_motion(*scene, walked, parents, slots, out, source);
   return out;
 }
 

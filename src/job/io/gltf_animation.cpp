@@ -166,7 +166,7 @@ std::vector<Animation> read_animations(const Reader& reader) {
 
 void DeformationReader::start(int index) {
   mesh_ = index;
-  vertices_ = influences_ = unsummed_ = bad_weights_ = 0;
+  vertices_ = influences_ = 0;
   joints_.clear();
   weights_.clear();
   targets_.clear();
@@ -243,30 +243,37 @@ MeshDeformation DeformationReader::finish() {
     out.influences = static_cast<std::uint32_t>(influences_);
     out.joints.resize(vertices_ * influences_);
     out.weights.resize(vertices_ * influences_);
-    for (std::size_t v = 0; v < vertices_; ++v) {
-      float* w = &weights_[v * kMostInfluences];
-      float total = 0.0f;
-      bool bad = false;
-      for (std::size_t c = 0; c < influences_; ++c) {
-        if (!std::isfinite(w[c]) || w[c] < 0.0f) w[c] = 0.0f, bad = true;
-        total += w[c];
-      }
-      bad_weights_ += bad;
-      if (total > 0.0f && std::abs(total - 1.0f) > 1e-3f) ++unsummed_;
+    for (std::size_t v = 0; v < vertices_; ++v)
       for (std::size_t c = 0; c < influences_; ++c) {
         out.joints[v * influences_ + c] = joints_[v * kMostInfluences + c];
-        out.weights[v * influences_ + c] = total > 0.0f ? w[c] / total : 0.0f;
+        out.weights[v * influences_ + c] = weights_[v * kMostInfluences + c];
       }
-    }
-    const std::string named = "mesh " + std::to_string(mesh_);
-    if (bad_weights_)
-      warn(reader_.source, named + ": " + std::to_string(bad_weights_) +
-                               " vertices have negative or non-finite skin weights, taken as 0");
-    if (unsummed_)
-      warn(reader_.source,
-           named + ": " + std::to_string(unsummed_) + " vertices' skin weights do not sum to 1; they are normalised");
+    normalise_skin_weights(out, "mesh " + std::to_string(mesh_), reader_.source);
   }
   return out;
+}
+
+void normalise_skin_weights(MeshDeformation& d, const std::string& what, const std::string& source) {
+  const std::size_t k = d.influences, vertices = k ? d.weights.size() / k : 0;
+  std::size_t bad_weights = 0, unsummed = 0;
+  for (std::size_t v = 0; v < vertices; ++v) {
+    float* w = &d.weights[v * k];
+    float total = 0.0f;
+    bool bad = false;
+    for (std::size_t c = 0; c < k; ++c) {
+      if (!std::isfinite(w[c]) || w[c] < 0.0f) w[c] = 0.0f, bad = true;
+      total += w[c];
+    }
+    bad_weights += bad;
+    if (total > 0.0f && std::abs(total - 1.0f) > 1e-3f) ++unsummed;
+    for (std::size_t c = 0; c < k; ++c) w[c] = total > 0.0f ? w[c] / total : 0.0f;
+  }
+  if (bad_weights)
+    warn(source,
+         what + ": " + std::to_string(bad_weights) + " vertices have negative or non-finite skin weights, taken as 0");
+  if (unsummed)
+    warn(source,
+         what + ": " + std::to_string(unsummed) + " vertices' skin weights do not sum to 1; they are normalised");
 }
 
 }  // namespace facet

@@ -48,7 +48,6 @@ class DeformationReader {
   std::vector<float> weights_;
   std::vector<MorphTarget> targets_;
   bool any_normals_ = false, any_tangents_ = false;
-  std::size_t unsummed_ = 0, bad_weights_ = 0;
 };
 
 }  // namespace facet

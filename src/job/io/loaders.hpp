@@ -52,6 +52,11 @@ Model load_with_assimp(const std::filesystem::path& path, std::string_view bytes
 // of material 'm'"). Only the image's header is read here; it is decoded when drawn.
 std::optional<std::string> usable_texture(const ReferencePolicy& policy, const LoadOptions& options,
                                           std::string_view name, const std::string& what, const std::string& source);
+// Makes each vertex's skin weights (d.influences a vertex) sum to 1: negative and non-finite ones become 0 and the
+// rest are scaled; a vertex of no weight keeps none (it follows its node). Warns once for each, naming `what` (the
+// mesh) and how many vertices were mended.
+void normalise_skin_weights(MeshDeformation& d, const std::string& what, const std::string& source);
+
 // Whether Assimp has a reader for this extension (".fbx", with the dot).
 bool assimp_reads(const std::string& extension);
 
