@@ -286,3 +286,57 @@ TEST(GltfAnimation, BrokenSkinsAreRefusedNamingTheProblem) {
 
 }  // namespace
 }  // namespace facet
+
+namespace facet {
+namespace {
+
+// A skinned square: its four corners weighted to joint 0 of skin 0 (node 1, moved up by 1) with the weights given,
+// the last corner's joint index as given.
+std::string skinned_square(const float (&weights)[16], std::uint8_t last_joint) {
+  const float positions[] = {-1, -1, 0, 1, -1, 0, 1, 1, 0, -1, 1, 0};
+  const std::uint32_t indices[] = {0, 1, 2, 0, 2, 3};
+  const std::uint8_t joints[16] = {0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, last_joint, 0, 0, 0};
+  std::string buffer;
+  for (const auto& [data, size] : {std::pair<const void*, std::size_t>{positions, sizeof positions},
+                                   {indices, sizeof indices},
+                                   {joints, sizeof joints},
+                                   {weights, sizeof weights}})
+    buffer.append(static_cast<const char*>(data), size);
+  return R"({"asset":{"version":"2.0"},"scene":0,"scenes":[{"nodes":[0,1]}],)"
+         R"("nodes":[{"mesh":0,"skin":0},{"translation":[0,1,0]}],"skins":[{"joints":[1]}],)"
+         R"("meshes":[{"primitives":[{"attributes":{"POSITION":0,"JOINTS_0":2,"WEIGHTS_0":3},"indices":1}]}],)"
+         R"("accessors":[{"bufferView":0,"componentType":5126,"count":4,"type":"VEC3","min":[-1,-1,0],"max":[1,1,0]},)"
+         R"({"bufferView":1,"componentType":5125,"count":6,"type":"SCALAR"},)"
+         R"({"bufferView":2,"componentType":5121,"count":4,"type":"VEC4"},)"
+         R"({"bufferView":3,"componentType":5126,"count":4,"type":"VEC4"}],)"
+         R"("bufferViews":[{"buffer":0,"byteOffset":0,"byteLength":48},{"buffer":0,"byteOffset":48,"byteLength":24},)"
+         R"({"buffer":0,"byteOffset":72,"byteLength":16},{"buffer":0,"byteOffset":88,"byteLength":64}],)"
+         R"("buffers":[{"byteLength":152,"uri":"data:application/octet-stream;base64,)" +
+         test::base64(buffer) + R"("}]})";
+}
+
+TEST(GltfAnimation, SkinWeightsAreMendedWithAWarningAndJointsPastTheSkinRefused) {
+  const fs::path dir = test::scratch_dir("gltf_weights");
+  // Corner 0 weighs 0.5, corner 1 -1 (taken as 0: it follows its node), corners 2 and 3 weigh 1.
+  const float weights[16] = {0.5f, 0, 0, 0, -1, 0, 0, 0, 1, 0, 0, 0, 0.25f, 0.75f, 0, 0};
+  const fs::path path = test::write_file(dir, "weights.gltf", skinned_square(weights, 0));
+  WarningCapture capture;
+  const Mesh mesh = load_model(path);
+  std::string all;
+  for (const std::string& w : capture.messages()) all += w + "\n";
+  EXPECT_NE(all.find("mesh 0: 1 vertices have negative or non-finite skin weights, taken as 0"), std::string::npos)
+      << all;
+  EXPECT_NE(all.find("mesh 0: 1 vertices' skin weights do not sum to 1; they are normalised"), std::string::npos)
+      << all;
+  // Skinned by the joint (1 up), except corner 1, which follows its node (unmoved).
+  EXPECT_EQ(mesh.positions[0], glm::vec3(-1, 0, 0));
+  EXPECT_EQ(mesh.positions[1], glm::vec3(1, -1, 0));
+  EXPECT_EQ(mesh.positions[2], glm::vec3(1, 2, 0));
+  EXPECT_EQ(mesh.positions[3], glm::vec3(-1, 2, 0));
+  // Corner 3 weighted to joint 5 of a skin of one joint: refused.
+  const std::string problem = test::load_problem(test::write_file(dir, "joints.gltf", skinned_square(weights, 5)));
+  EXPECT_NE(problem.find("vertex 3 is weighted to joint 5, but skin 0 has 1 joints"), std::string::npos) << problem;
+}
+
+}  // namespace
+}  // namespace facet
