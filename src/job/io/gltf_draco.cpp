@@ -56,6 +56,15 @@ std::optional<std::string> with_gltf_json_rewritten(std::string_view bytes, bool
   if (bytes.size() < 20 || load_u32(bytes.data() + 16) != 0x4E4F534Au) return std::nullopt;
   const std::uint32_t length = load_u32(bytes.data() + 12);
   if (length > bytes.size() - 20) return std::nullopt;
+  // Only a file whose header and chunks agree with its size is rewritten: the rewrite states the new size, which
+  // would hide from tinygltf a file that lies about it (and a chunk that reaches past its end).
+  if (load_u32(bytes.data() + 8) != bytes.size()) return std::nullopt;  // (load_gltf refuses a longer one)
+  for (std::size_t at = 20 + std::size_t{length}; at < bytes.size();) {
+    if (bytes.size() - at < 8) return std::nullopt;
+    const std::uint32_t chunk = load_u32(bytes.data() + at);
+    if (chunk > bytes.size() - at - 8) return std::nullopt;
+    at += 8 + std::size_t{chunk};
+  }
   std::optional<std::string> json = rewrite(bytes.substr(20, length), true);
   if (!json) return std::nullopt;
   json->append((4 - json->size() % 4) % 4, ' ');  // chunks stay 4-byte aligned

@@ -491,6 +491,14 @@ Model load_gltf(const std::filesystem::path& path, std::string_view bytes, const
   gltf.SetFsCallbacks({&file_exists, &expand_path, &read_whole_file, &refuse_write, &access});
   access.model = &model;
   gltf.SetImageLoader(&load_image, &access);
+  if (is_gltf_binary(bytes) && bytes.size() >= 12) {
+    std::uint32_t stated = 0;
+    std::memcpy(&stated, bytes.data() + 8, 4);
+    if (stated > bytes.size())
+      throw InputError(source, "the GLB header gives its length as " + std::to_string(stated) +
+                                   " bytes, but the file has only " + std::to_string(bytes.size()) +
+                                   ": it is cut short");
+  }
   // Rewritten for tinygltf, which cannot read some files that use Draco or meshoptimizer as they are
   // (gltf_primitive.hpp, gltf_meshopt.hpp).
   const std::optional<std::string> patched = without_draco_indices(bytes, is_gltf_binary(bytes));

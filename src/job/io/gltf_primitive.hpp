@@ -36,7 +36,8 @@ PrimitiveArrays decode_draco(const tinygltf::Model& model, const tinygltf::Primi
 
 // The file with its JSON text rewritten, for tinygltf: `rewrite` gets the JSON and whether it came from a GLB, and
 // returns the new JSON or nullopt to leave it. The result is the new .gltf text or the GLB with its JSON chunk
-// replaced, or nullopt when nothing changes (or the GLB's header cannot be read: tinygltf then reports it).
+// replaced, or nullopt when nothing changes (or the GLB's header cannot be read, or its sizes do not agree with the
+// file's: tinygltf then reports it).
 using JsonRewrite = std::optional<std::string> (*)(std::string_view json, bool binary);
 std::optional<std::string> with_gltf_json_rewritten(std::string_view bytes, bool binary, JsonRewrite rewrite);
 
