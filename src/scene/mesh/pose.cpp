@@ -10,12 +10,12 @@
 #include <glm/gtc/matrix_transform.hpp>
 
 #include "core/thread_pool.hpp"
-
-using facet::detail::ThreadPool;
 #include "facet/error.hpp"
 #include "facet/model.hpp"
 
 namespace facet {
+
+using detail::ThreadPool;
 
 namespace {
 
@@ -38,24 +38,26 @@ std::size_t property_width(AnimatedProperty property) {
 // Sets every node a channel of the clip drives to its value at `seconds`. Channels on a node given by a matrix are
 // skipped (glTF forbids them; the reader warns).
 void apply_clip(const Animation& clip, float seconds, std::vector<ModelNode>& nodes, const std::string& source) {
-  const std::string named = "animation '" + clip.name + "'";
-  for (std::size_t i = 0; i < clip.samplers.size(); ++i)
-    validate(clip.samplers[i], named + ", sampler " + std::to_string(i), source);
+  // The channels' messages are made only when something is wrong: this runs every frame of a clip.
+  const auto named = [&](const char* part, std::size_t i) {
+    return "animation '" + clip.name + "', " + part + " " + std::to_string(i);
+  };
+  for (std::size_t i = 0; i < clip.samplers.size(); ++i) validate(clip.samplers[i], named("sampler", i), source);
   float values[4];
   std::vector<float> weights;
   for (std::size_t c = 0; c < clip.channels.size(); ++c) {
     const AnimationChannel& channel = clip.channels[c];
-    const std::string what = named + ", channel " + std::to_string(c);
+    const auto what = [&] { return named("channel", c); };
     if (channel.sampler >= clip.samplers.size())
-      throw InputError(source, what + " uses sampler " + std::to_string(channel.sampler) + ", which does not exist");
+      throw InputError(source, what() + " uses sampler " + std::to_string(channel.sampler) + ", which does not exist");
     if (channel.node >= nodes.size())
-      throw InputError(source, what + " drives node " + std::to_string(channel.node) + ", which does not exist");
+      throw InputError(source, what() + " drives node " + std::to_string(channel.node) + ", which does not exist");
     const AnimationSampler& sampler = clip.samplers[channel.sampler];
     ModelNode& node = nodes[channel.node];
     const std::size_t width = property_width(channel.property);
     if (width != 0 && sampler.width != width)
       throw InputError(
-          source, what + " has keys of " + std::to_string(sampler.width) + " values, not " + std::to_string(width));
+          source, what() + " has keys of " + std::to_string(sampler.width) + " values, not " + std::to_string(width));
     if (node.matrix) continue;
     switch (channel.property) {
       case AnimatedProperty::translation:
