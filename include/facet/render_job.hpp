@@ -57,11 +57,11 @@ struct LookSpec {
   // Set: the model is lit by `lights` alone plus this uniform ambient colour, without an environment or a
   // headlight, as pyrender lights a scene.
   std::optional<glm::vec3> ambient{};
-  bool shadows = false;          // the physically based look: directional and spot lights cast shadows
+  bool shadows = false;            // the physically based look: directional and spot lights cast shadows
   bool ambient_occlusion = false;  // the physically based look: screen-space ambient occlusion
   float point_size = 2.0f;         // points (a point cloud's): pixels, above 0 and at most kMaxPointSize
   PointShape point_shape = PointShape::square;
-  bool world_point_size = false;   // point_size in the model's units instead (SceneOptions::world_point_size)
+  bool world_point_size = false;  // point_size in the model's units instead (SceneOptions::world_point_size)
   // Eye-dome lighting's strength, 0 to kMaxEyeDomeLighting (SceneOptions::eye_dome_lighting). Unset: on
   // (kDefaultEyeDomeLighting) for a cloud with neither normals nor colours, off otherwise.
   std::optional<float> eye_dome_lighting{};
@@ -120,6 +120,15 @@ struct AnimationSpec {
   bool any() const { return !name.empty() || time.has_value() || play; }
 };
 
+// The later frame the motion buffer of one moment runs to (OutputSpec::motion): by default the model 1/fps later
+// through the same view. A clip's frames run to the next frame, and ignore it.
+struct MotionSpec {
+  std::optional<double> time{};    // seconds into the animation, instead of 1/fps after the job's moment
+  float azimuth_degrees = 0.0f;    // the later view turned from the job's (CameraSpec::azimuth_degrees)
+  float elevation_degrees = 0.0f;  // and lifted (CameraSpec::elevation_degrees); not with a file's camera
+  bool moves_camera() const { return azimuth_degrees != 0.0f || elevation_degrees != 0.0f; }
+};
+
 struct RenderJob {
   std::filesystem::path model;
   // A built-in demo scene (demo_scenes.hpp) instead of a model file: its own meshes, motion, camera, shading and
@@ -147,6 +156,7 @@ struct RenderJob {
   // What the model file may make facet read and allocate (model_io.hpp).
   LoadOptions load;
   AnimationSpec animation;
+  MotionSpec motion;
 };
 
 // The most frames a turntable or a demo's animation may have.
@@ -177,8 +187,7 @@ inline constexpr glm::vec3 kHeadlightFromCamera{-0.3f, 0.5f, 0.8f};
 // once per process and file (environment_for). Throws std::invalid_argument for a zero light direction, a bad
 // exposure or rotation or a negative ambient colour, InputError for an unreadable environment file.
 SceneOptions scene_options(const LookSpec& look, const glm::mat4& view_from_world, Shading default_shading,
-                           glm::vec3 background, std::span<const Light> model_lights = {},
-                           UpAxis up = UpAxis::pos_y);
+                           glm::vec3 background, std::span<const Light> model_lights = {}, UpAxis up = UpAxis::pos_y);
 
 // The prefiltered environment of a look: the built-in studio, or its .hdr/.exr file read and prefiltered on first
 // use and kept for the process (a batch, a turntable or a sheet prefilters each file once).

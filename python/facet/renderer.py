@@ -178,7 +178,8 @@ def render(model, width=640, height=480, buffers=("color", "depth"), shading="au
            elevation=0.0, projection="perspective", up="+Y", camera_index=None, background=None, rgba=False,
            threads=0, samples=4, *, allow_external_files=False, max_triangles=DEFAULT_MAX_TRIANGLES,
            max_points=DEFAULT_MAX_POINTS, max_texture_size=DEFAULT_MAX_TEXTURE_SIZE, eye_dome_lighting=None,
-           color_map="none", animation=None, time=None, fps=30.0):
+           color_map="none", animation=None, time=None, fps=30.0, motion_time=None, motion_azimuth=0.0,
+           motion_elevation=0.0):
     """Renders a model file as `facet render` does (framed from the front right, above, lit by a headlight,
     anti-aliased with `samples` samples per pixel: 1, 2, 4 or 8) and returns a dict of the buffers named (see
     OffscreenRenderer.render_buffers, ids holding the file's node and face ids) plus "camera", the camera as
@@ -188,7 +189,8 @@ def render(model, width=640, height=480, buffers=("color", "depth"), shading="au
     animation, time: the model's animation (a glTF file's, by name or index; None: the first) posed `time` seconds
     in, as `--animation` and `--time`; skins and morph targets are drawn at rest without either. The "motion"
     buffer (H x W x 2 float32) is each pixel's motion on the image, in pixels (+x right, +y down), from `time` to
-    1/fps later, as `--output-motion` writes it."""
+    1/fps later, as `--output-motion` writes it; or to `motion_time`, and through the camera turned by
+    `motion_azimuth` and lifted by `motion_elevation` degrees: motion between two times, two camera poses or both."""
     for name in buffers:
         if name not in BUFFERS + ("motion",):
             raise ValueError(f"buffers: unknown buffer {name!r} (one of {', '.join(BUFFERS)}, motion)")
@@ -197,7 +199,9 @@ def render(model, width=640, height=480, buffers=("color", "depth"), shading="au
                               list(buffers), bool(rgba), bool(allow_external_files), max_triangles, max_points,
                               max_texture_size, None if eye_dome_lighting is None else float(eye_dome_lighting),
                               str(color_map), None if animation is None else str(animation),
-                              None if time is None else float(time), float(fps))
+                              None if time is None else float(time), float(fps),
+                              None if motion_time is None else float(motion_time), float(motion_azimuth),
+                              float(motion_elevation))
 
 
 __all__ = ["BUFFERS", "RenderFlags", "OffscreenRenderer", "render"]

@@ -35,14 +35,14 @@ BufferRequest request_of(const std::vector<std::string>& names) {
   for (const std::string& n : names) {
     const std::optional<bool BufferRequest::*> field = parse_name(buffer_names(), n);
     if (!field) value_error("buffers: unknown buffer '" + n + "' (" + listed(buffer_names()) + ")");
-    r.**field = true;
+    r.** field = true;
   }
   return r;
 }
 
 // A light as renderer.py describes it: (kind, vector, colour, intensity, spot direction, range or None, inner cone,
-// outer cone, casts shadows), the vector being the direction towards a directional light or a point or spot light's position.
-// The Python classes check the values; this guards the module against hand-made tuples.
+// outer cone, casts shadows), the vector being the direction towards a directional light or a point or spot light's
+// position. The Python classes check the values; this guards the module against hand-made tuples.
 Light light_of(py::handle description) {
   const auto t = description.cast<py::tuple>();
   if (t.size() != 9)
@@ -189,7 +189,8 @@ py::dict render_file(const std::string& model, int width, int height, int thread
                      const std::vector<std::string>& buffers, bool rgba, bool allow_external_files,
                      py::handle max_triangles, py::handle max_points, py::handle max_texture_size,
                      std::optional<float> eye_dome_lighting, const std::string& color_map,
-                     std::optional<std::string> animation, std::optional<double> time, double fps) {
+                     std::optional<std::string> animation, std::optional<double> time, double fps,
+                     std::optional<double> motion_time, float motion_azimuth, float motion_elevation) {
   if (width < 1 || height < 1 || width > kMaxDimension || height > kMaxDimension)
     value_error("width and height must lie in 1.." + std::to_string(kMaxDimension));
   if (samples != 1 && samples != 2 && samples != 4 && samples != 8)
@@ -225,6 +226,10 @@ py::dict render_file(const std::string& model, int width, int height, int thread
   if (!(fps >= 1.0 && fps <= kMaxAnimationFps))
     value_error("fps: must lie in 1.." + std::to_string(static_cast<int>(kMaxAnimationFps)));
   job.animation.fps = fps;
+  if (motion_time && !std::isfinite(*motion_time)) value_error("motion_time: must be a finite number of seconds");
+  if (!std::isfinite(motion_azimuth) || !std::isfinite(motion_elevation))
+    value_error("motion_azimuth, motion_elevation: must be finite numbers of degrees");
+  job.motion = {motion_time, motion_azimuth, motion_elevation};
   const BufferRequest request = request_of(buffers);
   FrameBuffers frame;
   std::string camera;
@@ -284,9 +289,7 @@ PYBIND11_MODULE(_facet, m) {
       .def("animations", &MotionCore::animations)
       .def("pose", &MotionCore::pose, py::arg("animation"), py::arg("seconds"));
 
-  py::class_<SceneCore>(m, "SceneCore")
-      .def(py::init<>())
-      .def("sync", &SceneCore::sync, py::arg("instances"));
+  py::class_<SceneCore>(m, "SceneCore").def(py::init<>()).def("sync", &SceneCore::sync, py::arg("instances"));
 
   py::class_<RendererCore>(m, "RendererCore")
       .def(py::init<int, int, int, int>(), py::arg("width"), py::arg("height"), py::arg("threads"), py::arg("samples"))
@@ -310,6 +313,6 @@ PYBIND11_MODULE(_facet, m) {
   m.attr("DEFAULT_MAX_TRIANGLES") = facet::kDefaultMaxTriangles;
   m.attr("DEFAULT_MAX_POINTS") = facet::kDefaultMaxPoints;
   m.attr("MAX_TEXTURE_SIZE") = facet::kMaxTextureSize;
-  m.attr("HEADLIGHT_FROM_CAMERA") = py::make_tuple(facet::kHeadlightFromCamera.x, facet::kHeadlightFromCamera.y,
-                                                   facet::kHeadlightFromCamera.z);
+  m.attr("HEADLIGHT_FROM_CAMERA") =
+      py::make_tuple(facet::kHeadlightFromCamera.x, facet::kHeadlightFromCamera.y, facet::kHeadlightFromCamera.z);
 }

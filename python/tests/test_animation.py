@@ -160,3 +160,24 @@ def test_a_scene_read_from_a_file_is_posed_by_set_time():
     with pytest.raises(ValueError, match="no animation to play"):
         facet.Scene.from_file(STILL).set_time(1.0)
     assert facet.Scene().animations == []
+
+
+def test_motion_between_two_camera_poses_is_where_each_surface_point_goes():
+    """A still model seen from two azimuths: each pixel's point, found from the depth buffer through the first
+    camera, projected through the second (numpy's own unprojection and projection)."""
+    first = facet.render(STILL, 96, 72, buffers=["depth", "motion"], motion_azimuth=6.0, motion_elevation=-3.0)
+    second = facet.render(STILL, 96, 72, buffers=["depth"], azimuth=6.0, elevation=-3.0)
+    depth, motion = first["depth"], first["motion"]
+    k = np.array(first["camera"]["K"])
+    world_from_camera = np.linalg.inv(np.array(first["camera"]["camera_from_world"]))
+    ys, xs = np.nonzero(depth > 0)
+    seen = np.stack([(xs - k[0, 2]) / k[0, 0] * depth[ys, xs], (ys - k[1, 2]) / k[1, 1] * depth[ys, xs],
+                     depth[ys, xs]], axis=1)
+    points = (world_from_camera @ np.c_[seen, np.ones(len(seen))].T).T[:, :3]
+    want = project(second["camera"], points) - np.stack([xs, ys], axis=1)
+    assert np.abs(motion[ys, xs] - want).max() < 0.05
+    assert np.abs(want).max() > 1.0
+    # Between two times too: the skin from 0.7 s to 1.0 s moves three times as far as a frame at 10 a second.
+    a = facet.render(SKIN, 96, 72, buffers=["motion"], time=0.7, motion_time=1.0)["motion"]
+    b = facet.render(SKIN, 96, 72, buffers=["motion"], time=0.7, fps=10)["motion"]
+    assert np.abs(a).max() > 2 * np.abs(b).max() > 0

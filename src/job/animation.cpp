@@ -141,7 +141,7 @@ void render_model_animation(const RenderJob& job, Renderer& renderer, RenderTimi
     const double t = motion.start + k / spec.fps;
     return motion.duration > 0.0 && t > motion.duration ? std::fmod(t, motion.duration) : t;
   };
-  // Framed once, by the model at rest and at moments through the clip, so that the camera holds still.
+  // Framed once, by the model at moments from the start to the end of the clip, so that the camera holds still.
   std::vector<glm::vec3> corners;
   for (int s = 0; s <= kFramingMoments; ++s) {
     const Bounds b = bounds(posed_mesh(job, motion, motion.start + remaining * s / kFramingMoments));
@@ -151,10 +151,16 @@ void render_model_animation(const RenderJob& job, Renderer& renderer, RenderTimi
   hull.positions = std::move(corners);
   const Framing framing = framing_of(hull, job.model.string());
   if (timings) timings->load = clock.lap();
-  auto first = std::make_shared<Mesh>(posed_mesh(job, motion, moment(0)));
-  const float eye_dome = eye_dome_lighting_for(job.look, *first);
+  // Each frame's mesh takes the look's colours as a still's does.
+  const auto coloured = [&](double seconds) {
+    auto mesh = std::make_shared<Mesh>(posed_mesh(job, motion, seconds));
+    apply_look_color(*mesh, job.look);
+    apply_color_map(*mesh, job.look, job.camera.up);
+    return mesh;
+  };
+  const float eye_dome = eye_dome_lighting_for(job.look, posed_mesh(job, motion, moment(0)));
   std::optional<JobFrame> frame;
-  frame.emplace(frame_job(job, first, framing, eye_dome));
+  frame.emplace(frame_job(job, coloured(moment(0)), framing, eye_dome));
   const float aspect = static_cast<float>(job.width) / static_cast<float>(job.height);
   if (timings) timings->prepare = clock.lap();
   const auto view_of = [&](int k) {
@@ -166,12 +172,7 @@ void render_model_animation(const RenderJob& job, Renderer& renderer, RenderTimi
   std::optional<Scene> later;  // the next frame's model, for the motion buffer
   const auto posed = [&](int k) {
     const View view = view_of(k);
-    if (k > 0) {
-      auto mesh = std::make_shared<Mesh>(posed_mesh(job, motion, moment(k)));
-      apply_look_color(*mesh, job.look);
-      apply_color_map(*mesh, job.look, job.camera.up);
-      frame.emplace(frame_job(job, std::move(mesh), framing, eye_dome));
-    }
+    if (k > 0) frame.emplace(frame_job(job, coloured(moment(k)), framing, eye_dome));
     if (!job.outputs.motion.empty()) later.emplace(later_scene(job, motion, moment(k)));
     return AnimationFrame{&frame->scene, view, options_for_view(job, *frame, view),
                           LaterFrame{later ? &*later : nullptr, view_of(k + 1)}};

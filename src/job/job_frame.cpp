@@ -84,8 +84,21 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings, bool next_fra
   apply_color_map(*mesh, job.look, job.camera.up);
   if (!drawable(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
   if (timings) timings->load = clock.lap();
-  JobFrame frame = frame_job(job, mesh, framing_of(*mesh, job.model.string()), eye_dome);
-  if (next_frame) frame.later_scene.emplace(later_scene(job, *motion, motion->start));
+  const Framing framing = framing_of(*mesh, job.model.string());
+  JobFrame frame = frame_job(job, mesh, framing, eye_dome);
+  if (next_frame) {
+    const double fps = job.animation.fps;
+    frame.later_scene.emplace(
+        later_scene(job, *motion, job.motion.time ? *job.motion.time - 1.0 / fps : motion->start));
+    frame.later_view = frame.view;
+    if (job.motion.moves_camera()) {
+      if (job.camera.file_camera) throw std::invalid_argument("motion: a file's camera cannot be turned");
+      CameraSpec turned = job.camera;
+      turned.azimuth_degrees += job.motion.azimuth_degrees;
+      turned.elevation_degrees += job.motion.elevation_degrees;
+      frame.later_view = make_view(turned, framing, static_cast<float>(job.width) / static_cast<float>(job.height));
+    }
+  }
   if (timings) timings->prepare = clock.lap();
   return frame;
 }

@@ -32,9 +32,11 @@ struct JobFrame {
   SceneOptions options;
   glm::vec4 clear{};
   Scene scene;
-  // The next frame, when the job asks for motion: the model 1/fps later, seen through the same view.
+  // The next frame, when the job asks for motion: the model 1/fps later (or at job.motion's time), seen through the
+  // same view (or job.motion's).
   std::optional<Scene> later_scene{};
-  LaterFrame later() const { return {later_scene ? &*later_scene : nullptr, view}; }
+  View later_view{};
+  LaterFrame later() const { return {later_scene ? &*later_scene : nullptr, later_view}; }
 };
 
 // Loads job.model (posed at the moment job.animation asks for, if it asks) and frames it as job.camera says; times
@@ -59,6 +61,7 @@ struct MovingModel {
 // one: a model that does not move has none); warns when the time lies outside the clip.
 MovingModel read_moving_model(const RenderJob& job, bool required = true);
 // The scene of the model 1/fps after `seconds` (the clip's last pose past its end), for the motion buffer.
+// job.motion's time is for one moment's later frame: prepare_job passes it as `seconds - 1/fps`.
 Scene later_scene(const RenderJob& job, const MovingModel& motion, double seconds);
 // The model `seconds` into its clip as one world-space mesh.
 Mesh posed_mesh(const RenderJob& job, const MovingModel& motion, double seconds);

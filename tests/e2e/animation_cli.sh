@@ -96,13 +96,15 @@ else
 fi
 # ... or as numbered PNGs, --frames of them from --time, each the still at its moment (through one fixed camera: a
 # clip is framed by all its moments, a still by its own).
-camera=(--camera-position 0.5,1,6 --camera-focal-point 0.5,1,0 --near 1 --far 20)
+camera=(--camera-position 0.5,1,6 --camera-focal-point 0.5,1,0 --near 1 --far 20 --color 0.9,0.3,0.2)
 if "$facet" render "$skin" --animate --fps 10 --frames 3 --time 2 --resolution 160,120 "${camera[@]}" \
   --output "$scratch/skin_{frame}.png" 2>"$scratch/frames.log"; then
   files=$(cd "$scratch" && ls skin_[0-9].png | tr '\n' ' ')
   if [ "$files" = "skin_0.png skin_1.png skin_2.png " ]; then ok "frames: $files"; else bad frames "wrote: $files"; fi
   render skin_2_1 "$skin" --time 2.1 "${camera[@]}" &&
     verify frame_is_the_still same "$scratch/skin_1.png" "$scratch/skin_2_1.png"
+  render skin_2 "$skin" --time 2 "${camera[@]}" &&
+    verify first_frame_is_the_still same "$scratch/skin_0.png" "$scratch/skin_2.png"
 else
   bad frames "$(head -n 2 "$scratch/frames.log")"
 fi

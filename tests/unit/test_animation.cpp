@@ -11,6 +11,7 @@
 #include "facet/animation.hpp"
 #include "facet/error.hpp"
 #include "facet/model.hpp"
+#include "facet/primitives.hpp"
 
 namespace facet {
 namespace {
@@ -215,41 +216,43 @@ TEST(Pose, APoserGivesWhatPoseGivesFrameAfterFrame) {
   }
 }
 
-TEST(Pose, MorphTargetsBlendByTheNodesAnimatedWeights) {
+TEST(Pose, AMorphingCubeBlendsItsTargetsByTheNodesAnimatedWeights) {
   Model model;
-  Mesh quad;
-  quad.positions = {{0, 0, 0}, {1, 0, 0}, {1, 1, 0}, {0, 1, 0}};
-  quad.normals.assign(4, glm::vec3(0, 0, 1));
-  quad.indices = {0, 1, 2, 0, 2, 3};
+  const Mesh cube = make_cube();
   MeshDeformation d;
   d.morph_targets.resize(2);
-  d.morph_targets[0].positions = {{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {0, 0, 0}};  // stretches along x
-  d.morph_targets[1].positions = {{0, 0, 1}, {0, 0, 1}, {0, 0, 1}, {0, 0, 1}};  // lifts along z
+  for (const glm::vec3& p : cube.positions) {
+    d.morph_targets[0].positions.emplace_back(p.x > 0.0f ? 1.0f : 0.0f, 0.0f, 0.0f);  // stretches along +x
+    d.morph_targets[1].positions.emplace_back(0.0f, p.y > 0.0f ? 0.5f : 0.0f, 0.0f);  // raises its top
+    d.morph_targets[1].normals.emplace_back(p.y > 0.0f ? 0.3f : 0.0f, 0.0f, 0.0f);    // and tilts the top's normals
+  }
   d.default_weights = {0.5f, 0.0f};
-  model.meshes.push_back(quad);
+  model.meshes.push_back(cube);
   model.deformations.push_back(d);
   model.nodes.resize(1);
   model.instances.push_back(ModelInstance{0, glm::mat4(1.0f), 0, 0, -1});
   Animation grow{"grow", {{{0.0f, 2.0f}, {0, 0, 1, 0.5f}, 2, Interpolation::linear}}, {{0, 0}}};
   grow.channels[0].property = AnimatedProperty::weights;
   model.animations.push_back(grow);
-
-  // Unanimated: the mesh's default weights.
-  const Model rest = pose(model, std::nullopt, 0.0, "quad");
-  EXPECT_EQ(rest.meshes[0].positions[1], glm::vec3(1.5f, 0, 0));
-  // At 1 s the weights are (0.5, 0.25).
-  const Model posed = pose(model, 0, 1.0, "quad");
-  for (std::size_t v = 0; v < 4; ++v) {
-    const glm::vec3 want =
-        quad.positions[v] + 0.5f * d.morph_targets[0].positions[v] + 0.25f * d.morph_targets[1].positions[v];
-    EXPECT_NEAR(glm::length(posed.meshes[0].positions[v] - want), 0.0f, 1e-6f) << v;
-  }
-  EXPECT_EQ(posed.meshes[0].normals[0], glm::vec3(0, 0, 1));
+  const auto expect_blend = [&](const Mesh& got, float w0, float w1) {
+    ASSERT_EQ(got.vertex_count(), cube.vertex_count());
+    for (std::size_t v = 0; v < cube.vertex_count(); ++v) {
+      const glm::vec3 want =
+          cube.positions[v] + w0 * d.morph_targets[0].positions[v] + w1 * d.morph_targets[1].positions[v];
+      EXPECT_NEAR(glm::length(got.positions[v] - want), 0.0f, 1e-6f) << v;
+      const glm::vec3 normal = glm::normalize(cube.normals[v] + w1 * d.morph_targets[1].normals[v]);
+      EXPECT_NEAR(glm::length(got.normals[v] - normal), 0.0f, 1e-6f) << v;
+    }
+  };
+  // Unanimated: the mesh's default weights; at 1 s the animated (0.5, 0.25); past the end (1, 0.5).
+  expect_blend(pose(model, std::nullopt, 0.0, "cube").meshes[0], 0.5f, 0.0f);
+  expect_blend(pose(model, 0, 1.0, "cube").meshes[0], 0.5f, 0.25f);
+  expect_blend(pose(model, 0, 7.0, "cube").meshes[0], 1.0f, 0.5f);
   // A node's own weights replace the mesh's defaults.
   model.nodes[0].weights = {0.0f, 1.0f};
-  EXPECT_EQ(pose(model, std::nullopt, 0.0, "quad").meshes[0].positions[2], glm::vec3(1, 1, 1));
+  expect_blend(pose(model, std::nullopt, 0.0, "cube").meshes[0], 0.0f, 1.0f);
   model.nodes[0].weights = {1.0f};
-  EXPECT_THROW(pose(model, std::nullopt, 0.0, "quad"), InputError);
+  EXPECT_THROW(pose(model, std::nullopt, 0.0, "cube"), InputError);
 }
 
 TEST(Pose, ANodeOnACubicSplineCarriesItsChildren) {
