@@ -86,7 +86,17 @@ struct Model {
   std::vector<Skin> skins;
   std::vector<Animation> animations;
   std::vector<MeshDeformation> deformations;
+  // The node that places each camera and each light (indices into nodes, parallel to cameras and lights; -1, or
+  // empty, where it stays as placed): pose() moves them with their nodes.
+  std::vector<std::int32_t> camera_nodes, light_nodes;
 };
+
+// A camera's world_from_camera from its node's world transform: the scale taken out of each axis, the rotation and
+// position kept, so that the view stays rigid (glTF allows no scale on camera nodes).
+glm::mat4 rigid_camera_pose(const glm::mat4& world_from_node);
+// Places a light as a node does: a point or spot light at the node's origin, a directional or spot light shining
+// down its -Z. False (the light unchanged) when the transform is not finite or flattens that direction.
+bool place_light(Light& light, const glm::mat4& world_from_node);
 
 // The whole model as one mesh in world space: every instance's mesh, in instance order, positions transformed,
 // normals by the inverse transpose (renormalised), and the corners of a mirroring instance swapped so its

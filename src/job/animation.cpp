@@ -171,11 +171,18 @@ void render_model_animation(const RenderJob& job, Renderer& renderer, RenderTimi
   };
   std::optional<Scene> later;  // the next frame's model, for the motion buffer
   const auto posed = [&](int k) {
-    const View view = view_of(k);
+    // A file's camera is the frame's own: its node may move it.
     if (k > 0) frame.emplace(frame_job(job, coloured(moment(k)), framing, eye_dome));
-    if (!job.outputs.motion.empty()) later.emplace(later_scene(job, motion, moment(k)));
+    const View view = view_of(k);
+    View next = view_of(k + 1);
+    if (!job.outputs.motion.empty()) {
+      later.emplace(later_scene(job, motion, moment(k)));
+      if (job.camera.file_camera)
+        next =
+            file_camera_view(*later->instances()[0].mesh, *job.camera.file_camera, framing, aspect, job.model.string());
+    }
     return AnimationFrame{&frame->scene, view, options_for_view(job, *frame, view),
-                          LaterFrame{later ? &*later : nullptr, view_of(k + 1)}};
+                          LaterFrame{later ? &*later : nullptr, next}};
   };
   draw_frames(job, count, 1.0 / spec.fps, frame->clear, posed, renderer, timings);
 }

@@ -91,6 +91,10 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings, bool next_fra
     frame.later_scene.emplace(
         later_scene(job, *motion, job.motion.time ? *job.motion.time - 1.0 / fps : motion->start));
     frame.later_view = frame.view;
+    if (job.camera.file_camera)  // the file's camera a frame later: its node may move it
+      frame.later_view =
+          file_camera_view(*frame.later_scene->instances()[0].mesh, *job.camera.file_camera, framing,
+                           static_cast<float>(job.width) / static_cast<float>(job.height), job.model.string());
     if (job.motion.moves_camera()) {
       if (job.camera.file_camera) throw std::invalid_argument("motion: a file's camera cannot be turned");
       CameraSpec turned = job.camera;

@@ -15,6 +15,7 @@
 #include "facet/error.hpp"
 #include "facet/model.hpp"
 #include "facet/model_io.hpp"
+#include "facet/render_job.hpp"
 #include "facet/warnings.hpp"
 #include "support/base64.hpp"
 #include "support/gltf_square.hpp"
@@ -205,11 +206,12 @@ TEST(GltfAnimation, AnimatedMorphCubeBlendsItsTargetsAsTheOracleDoes) {
 // from a second buffer holding `times` and `values`.
 std::string animated_square(const std::vector<float>& times, const std::vector<float>& values, const std::string& path,
                             const std::string& type, int time_count, int value_count,
-                            const std::string& interpolation = "LINEAR", int node = 0) {
+                            const std::string& interpolation = "LINEAR", int node = 0, const std::string& nodes = "",
+                            int node_count = 0, const std::string& top_level = "") {
   std::string buffer(4 * (times.size() + values.size()), '\0');
   std::memcpy(buffer.data(), times.data(), 4 * times.size());
   std::memcpy(buffer.data() + 4 * times.size(), values.data(), 4 * values.size());
-  std::string file = test::square_gltf("", 0, "");
+  std::string file = test::square_gltf(nodes, node_count, top_level);
   // Accessors 2 and 3, buffer view 2 and 3 in buffer 1.
   const auto insert_before = [&](const std::string& marker, const std::string& text) {
     const auto at = file.find(marker);
@@ -270,6 +272,37 @@ TEST(GltfAnimation, AnimationsOfMalformedDataAreLeftOutWithAWarning) {
     const WarningCapture quiet;
     EXPECT_EQ(load_model(test::write_file(dir, "bad.gltf", c.file)).vertex_count(), 4u);
   }
+}
+
+TEST(GltfAnimation, CamerasAndLightsFollowTheirAnimatedNodes) {
+  const fs::path dir = test::scratch_dir("gltf_camera_motion");
+  // Node 1 holds a camera and a spot light; its translation slides from (0, 0, 5) to (2, 0, 5) over 1 s.
+  const std::string file =
+      animated_square({0, 1}, {0, 0, 5, 2, 0, 5}, "translation", "VEC3", 2, 2, "LINEAR", 1,
+                      R"({"camera":0,"translation":[0,0,5],"extensions":{"KHR_lights_punctual":{"light":0}}})", 1,
+                      R"(,"cameras":[{"type":"perspective","perspective":{"yfov":0.8,"znear":0.1}}],)"
+                      R"("extensions":{"KHR_lights_punctual":{"lights":[{"type":"spot","intensity":2,"spot":{}}]}})");
+  const fs::path path = test::write_file(dir, "camera.gltf", file);
+  const Model model = read_model(path);
+  ASSERT_EQ(model.camera_nodes, std::vector<std::int32_t>{1});
+  ASSERT_EQ(model.light_nodes, std::vector<std::int32_t>{1});
+  const Mesh posed = flatten(pose(model, 0, 0.5, path.string()), path.string());
+  EXPECT_EQ(glm::vec3(posed.cameras[0].world_from_camera[3]), glm::vec3(1, 0, 5));
+  EXPECT_EQ(posed.lights[0].vector, glm::vec3(1, 0, 5));
+  EXPECT_EQ(posed.lights[0].spot_direction, glm::vec3(0, 0, -1));
+  // Through the render job: the file's camera, seen at 0.75 s, is where its node is then.
+  RenderJob job;
+  job.model = path;
+  job.width = 32;
+  job.height = 24;
+  job.camera.file_camera = 0;
+  job.animation.time = 0.75;
+  Renderer renderer(1);
+  std::string camera;
+  render_buffers(job, renderer, BufferRequest{}, &camera);
+  const auto pose_of = nlohmann::json::parse(camera)["world_from_camera"];
+  EXPECT_NEAR(pose_of[0][3].get<float>(), 1.5f, 1e-6f) << camera;
+  EXPECT_NEAR(pose_of[2][3].get<float>(), 5.0f, 1e-6f) << camera;
 }
 
 TEST(GltfAnimation, BrokenSkinsAreRefusedNamingTheProblem) {

@@ -58,8 +58,8 @@ std::optional<Light> light_of(const tinygltf::Model& model, const tinygltf::Node
       problem("has a colour that is not RGB; it is left out");
       return std::nullopt;
     }
-    out.color = glm::vec3(static_cast<float>(l.color[0]), static_cast<float>(l.color[1]),
-                          static_cast<float>(l.color[2]));
+    out.color =
+        glm::vec3(static_cast<float>(l.color[0]), static_cast<float>(l.color[1]), static_cast<float>(l.color[2]));
   }
   out.intensity = static_cast<float>(l.intensity);
   if (!finite(out.color) || glm::min(out.color, glm::vec3(0.0f)) != glm::vec3(0.0f) || !std::isfinite(out.intensity) ||
@@ -82,17 +82,9 @@ std::optional<Light> light_of(const tinygltf::Model& model, const tinygltf::Node
     out.inner_cone = inner;
     out.outer_cone = outer;
   }
-  const glm::vec3 position(world[3]);
-  const glm::vec3 forward = -glm::vec3(world[2]);  // the node's -Z
-  if (!finite(position) || !finite(forward) || glm::dot(forward, forward) == 0.0f) {
+  if (!place_light(out, world)) {
     problem("is placed by a transform that is not finite or flattens its direction; it is left out");
     return std::nullopt;
-  }
-  if (out.kind == Light::Kind::directional) {
-    out.vector = -glm::normalize(forward);
-  } else {
-    out.vector = position;
-    out.spot_direction = glm::normalize(forward);
   }
   return out;
 }

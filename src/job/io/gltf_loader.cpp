@@ -94,9 +94,14 @@ class SceneReader {
     const tinygltf::Node& n = model_.nodes[static_cast<std::size_t>(index)];
     const glm::mat4 world = parent * local_transform(n);
     if (n.mesh >= 0) place(n.mesh, world, index, n.skin);
-    if (n.camera >= 0) camera(n.camera, world);
-    if (std::optional<Light> light = light_of(model_, n, world, reader_.source, warned_lights_))
+    if (n.camera >= 0) {
+      camera(n.camera, world);
+      out_.camera_nodes.push_back(index);
+    }
+    if (std::optional<Light> light = light_of(model_, n, world, reader_.source, warned_lights_)) {
       out_.lights.push_back(std::move(*light));
+      out_.light_nodes.push_back(index);
+    }
     on_path_.insert(index);
     for (int child : n.children) node(child, world, depth + 1);
     on_path_.erase(index);
@@ -173,12 +178,7 @@ class SceneReader {
       out.znear = static_cast<float>(c.orthographic.znear);
       out.zfar = static_cast<float>(c.orthographic.zfar);
     }
-    glm::mat4 pose = world;
-    for (int axis = 0; axis < 3; ++axis) {
-      const float length = glm::length(glm::vec3(pose[axis]));
-      pose[axis] = length > 0.0f ? pose[axis] / length : glm::vec4(0.0f);
-    }
-    out.world_from_camera = pose;
+    out.world_from_camera = rigid_camera_pose(world);
     out_.cameras.push_back(std::move(out));
   }
 

@@ -165,6 +165,29 @@ void check_deformation(const Mesh& mesh, const MeshDeformation& d, std::uint32_t
 
 }  // namespace
 
+glm::mat4 rigid_camera_pose(const glm::mat4& world_from_node) {
+  glm::mat4 pose = world_from_node;
+  for (int axis = 0; axis < 3; ++axis) {
+    const float length = glm::length(glm::vec3(pose[axis]));
+    pose[axis] = length > 0.0f ? pose[axis] / length : glm::vec4(0.0f);
+  }
+  return pose;
+}
+
+bool place_light(Light& light, const glm::mat4& world_from_node) {
+  const glm::vec3 position(world_from_node[3]);
+  const glm::vec3 forward = -glm::vec3(world_from_node[2]);  // the node's -Z
+  const auto finite = [](glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); };
+  if (!finite(position) || !finite(forward) || glm::dot(forward, forward) == 0.0f) return false;
+  if (light.kind == Light::Kind::directional) {
+    light.vector = -glm::normalize(forward);
+  } else {
+    light.vector = position;
+    light.spot_direction = glm::normalize(forward);
+  }
+  return true;
+}
+
 std::vector<glm::mat4> world_from_nodes(const std::vector<ModelNode>& nodes, const std::string& source) {
   std::vector<glm::mat4> world(nodes.size());
   std::vector<char> state(nodes.size(), 0);  // 0 not yet, 1 on the path being resolved, 2 done
@@ -229,6 +252,20 @@ Model& Poser::operator()(const Model& model, std::optional<std::size_t> animatio
   Model& out = kept_->out;
   out.cameras = model.cameras;
   out.lights = model.lights;
+  out.camera_nodes = model.camera_nodes;
+  out.light_nodes = model.light_nodes;
+  // Cameras and lights follow their nodes.
+  const auto node_of = [&](const std::vector<std::int32_t>& list, std::size_t i) -> const glm::mat4* {
+    if (i >= list.size() || list[i] < 0) return nullptr;
+    if (static_cast<std::size_t>(list[i]) >= nodes.size())
+      throw InputError(source,
+                       "a camera or light is placed by node " + std::to_string(list[i]) + ", which does not exist");
+    return &world[static_cast<std::size_t>(list[i])];
+  };
+  for (std::size_t c = 0; c < out.cameras.size(); ++c)
+    if (const glm::mat4* w = node_of(model.camera_nodes, c)) out.cameras[c].world_from_camera = rigid_camera_pose(*w);
+  for (std::size_t l = 0; l < out.lights.size(); ++l)
+    if (const glm::mat4* w = node_of(model.light_nodes, l)) place_light(out.lights[l], *w);
   out.skins = model.skins;
   out.animations.clear();
   out.deformations.clear();
