@@ -31,8 +31,8 @@ void print_animation(std::size_t index, const Animation& clip) {
   for (int p = 0; p < 4; ++p)
     if (counts[p]) kinds += (kinds.empty() ? "" : ", ") + std::string(kProperties[p]) + " " + std::to_string(counts[p]);
   std::string name = clip.name;  // a file's text: control characters and quotes are not printed as they are
-  std::replace_if(name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == '"'; },
-                  '?');
+  std::replace_if(
+      name.begin(), name.end(), [](char c) { return static_cast<unsigned char>(c) < 0x20 || c == '"'; }, '?');
   std::printf("animation %zu: \"%s\", %g s, %zu channel%s%s\n", index, name.c_str(), clip.duration(),
               clip.channels.size(), clip.channels.size() == 1 ? "" : "s",
               kinds.empty() ? "" : (" (" + kinds + ")").c_str());
@@ -84,8 +84,7 @@ int run_info(const InfoArgs& args) {
   std::size_t morph_targets = 0;
   for (const MeshDeformation& d : model.deformations) morph_targets += d.morph_targets.size();
   // Drawn as `facet render` draws it: skins and morph targets at rest.
-  if (!model.deformations.empty()) model = pose(model, std::nullopt, 0.0, args.model);
-  const Mesh mesh = flatten(std::move(model), args.model);
+  const Mesh mesh = flatten(at_rest(std::move(model), args.model), args.model);
   const Bounds box = bounds(mesh);
   std::printf("file: %s\n", args.model.c_str());
   std::printf("format: %s\n", format.c_str());

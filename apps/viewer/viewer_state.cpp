@@ -64,8 +64,7 @@ Showing Showing::model(const std::string& path, const LoadOptions& load) {
   s.title_ = std::filesystem::path(path).filename().string();
   Model model = read_model(path, load);
   if (model.animations.empty()) {
-    if (!model.deformations.empty()) model = pose(model, std::nullopt, 0.0, path, load.threads);
-    s.mesh_ = std::make_shared<const Mesh>(flatten(std::move(model), path));
+    s.mesh_ = std::make_shared<const Mesh>(flatten(at_rest(std::move(model), path, load.threads), path));
   } else {
     const double duration = model.animations.front().duration();
     s.motion_ = std::make_shared<Motion>(Motion{std::move(model), Poser(load.threads), duration});

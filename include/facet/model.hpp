@@ -118,6 +118,10 @@ Mesh flatten(Model model, const std::string& source);
 Model pose(const Model& model, std::optional<std::size_t> animation, double seconds, const std::string& source,
            int threads = 1);
 
+// The model as a viewer draws it unanimated: pose(model, nullopt, 0) when skins or morph targets deform it, else
+// the model itself, moved through untouched. What load_model, `facet info`, the viewer and Python draw at rest.
+Model at_rest(Model model, const std::string& source, int threads = 1);
+
 // pose() frame after frame: the posed model's memory and the threads that skin large meshes are kept from one call
 // to the next, so that a clip's frames do not each take a model's worth of fresh memory.
 //

@@ -205,7 +205,7 @@ py::tuple read_model_file(const std::string& path, const LoadOptions& options) {
     if (!model.animations.empty() || !model.deformations.empty()) {
       for (const ModelInstance& i : model.instances) moving.push_back(deformed(model, i));
       motion = std::make_unique<MotionCore>(model, path);
-      model = facet::pose(model, std::nullopt, 0.0, path, options.threads);
+      model = at_rest(std::move(model), path, options.threads);
     }
   }
   py::list meshes, instances, cameras;

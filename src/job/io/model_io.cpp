@@ -8,9 +8,9 @@
 #include <string_view>
 #include <utility>
 
+#include "core/file_util.hpp"
 #include "facet/error.hpp"
 #include "facet/splats.hpp"
-#include "core/file_util.hpp"
 #include "job/io/loaders.hpp"
 #include "job/io/splat_loader.hpp"
 #include "job/io/text_scan.hpp"
@@ -172,8 +172,7 @@ Mesh load_model(const fs::path& path, std::string& format_name, const LoadOption
   Model model = read_model(path, format_name, options);
   try {
     // Skins and morph weights deform the meshes even at rest, as every glTF viewer draws them.
-    if (!model.deformations.empty()) model = pose(model, std::nullopt, 0.0, path.string(), options.threads);
-    return flatten(std::move(model), path.string());
+    return flatten(at_rest(std::move(model), path.string(), options.threads), path.string());
   } catch (const std::bad_alloc&) {
     throw InputError(path.string(), "out of memory while loading");
   }

@@ -236,6 +236,11 @@ Model pose(const Model& model, std::optional<std::size_t> animation, double seco
   return std::move(poser(model, animation, seconds, source));
 }
 
+Model at_rest(Model model, const std::string& source, int threads) {
+  if (model.deformations.empty()) return model;
+  return pose(model, std::nullopt, 0.0, source, threads);
+}
+
 Model& Poser::operator()(const Model& model, std::optional<std::size_t> animation, double seconds,
                          const std::string& source) {
   if (!std::isfinite(seconds)) throw std::invalid_argument("time: must be a finite number of seconds");
