@@ -9,6 +9,11 @@ install(DIRECTORY include/facet DESTINATION ${CMAKE_INSTALL_INCLUDEDIR} COMPONEN
 install(FILES ${CMAKE_CURRENT_BINARY_DIR}/include/facet/version.hpp DESTINATION ${CMAKE_INSTALL_INCLUDEDIR}/facet
         COMPONENT dev)
 install(TARGETS facet_cli RUNTIME DESTINATION ${CMAKE_INSTALL_BINDIR} COMPONENT runtime)
+# The desktop's thumbnailer entry, and the model types Debian's MIME database lacks (its dpkg trigger, or
+# update-mime-database, takes them in).
+install(FILES data/facet.thumbnailer DESTINATION ${CMAKE_INSTALL_DATADIR}/thumbnailers COMPONENT runtime)
+install(FILES data/facet-mime.xml DESTINATION ${CMAKE_INSTALL_DATADIR}/mime/packages RENAME facet.xml
+        COMPONENT runtime)
 
 set(FACET_CMAKE_DIR ${CMAKE_INSTALL_LIBDIR}/cmake/facet)
 install(EXPORT facetTargets NAMESPACE facet:: DESTINATION ${FACET_CMAKE_DIR} COMPONENT dev)

@@ -97,7 +97,8 @@ set(FACET_HOST_JOB_SOURCES
   src/job/io/video.cpp
   src/job/render_job.cpp
   src/job/shared_library.cpp
-  src/job/sheet_views.cpp)
+  src/job/sheet_views.cpp
+  src/job/thumbnail.cpp)
 
 foreach(layer FACET_CORE_SOURCES FACET_SCENE_SOURCES FACET_JOB_SOURCES FACET_HOST_JOB_SOURCES)
   list(TRANSFORM ${layer} PREPEND ${FACET_SOURCE_ROOT}/)

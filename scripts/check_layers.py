@@ -17,7 +17,7 @@ HEADERS = {
                simd simd_shuffles simd_vectors text transform vertex_lanes warnings detail/*""",
     "scene": """animation demo_scenes environment light mesh model primitives sampler scene splats texture texture_slots shaders/*
                 detail/brdf_table detail/octahedral_map detail/texel_math""",
-    "job": "image_io model_io names output_template render_job sheet_views view_spec",
+    "job": "image_io model_io names output_template render_job sheet_views thumbnail view_spec",
 }
 
 

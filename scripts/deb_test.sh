@@ -51,6 +51,9 @@ for deb in "$runtime" "$dev"; do dpkg -c "$deb" | awk '{print $6}' >"$deb.files"
 has() { grep -qx -- "$2" "$1.files"; }
 missing=""
 has "$runtime" ./usr/bin/facet || missing+=" /usr/bin/facet"
+for f in ./usr/share/thumbnailers/facet.thumbnailer ./usr/share/mime/packages/facet.xml; do
+  has "$runtime" "$f" || missing+=" $f"
+done
 # The Python module, where the build made one (FACET_BUILD_PYTHON).
 python=0
 [ -d "$build/python/facet" ] && python=1
@@ -105,6 +108,9 @@ facet --version >out/version.txt 2>&1 && ok "facet --version: $(head -1 out/vers
 facet render model/BoxTextured.glb --output out/box.png --resolution 64,48 >out/render.log 2>&1
 [ "$(png_size out/box.png)" = 64x48 ] && ok "facet renders a glTF file to a PNG" ||
   bad "facet renders a glTF file" "$(tail -3 out/render.log)"
+facet thumbnail -s 64 file:///tmp/facet-test/model/BoxTextured.glb out/thumb.png >out/thumb.log 2>&1
+[ "$(png_size out/thumb.png)" = 64x64 ] && ok "facet thumbnail draws a glTF file's thumbnail" ||
+  bad "facet thumbnail draws a glTF file's thumbnail" "$(tail -3 out/thumb.log)"
 if [ -d /usr/lib/python3/dist-packages/facet ]; then
   (cd / && python3 - <<'PY') >out/python.log 2>&1 && ok "python3 imports facet and renders" ||
 import facet

@@ -68,6 +68,7 @@ set(FACET_LIGHT_TEST_SOURCES
   unit/test_shaders.cpp
   unit/test_simd.cpp
   unit/test_stl_loader.cpp
+  unit/test_thumbnail.cpp
   unit/test_surface_buffers.cpp
   unit/test_texture.cpp
   unit/test_transform.cpp

@@ -26,6 +26,7 @@
 #include "facet/version.hpp"
 #include "info_command.hpp"
 #include "render_command.hpp"
+#include "thumbnail_command.hpp"
 #include "view_command.hpp"
 
 namespace {
@@ -101,18 +102,21 @@ int main(int argc, char** argv) {
   facet::cli::BenchArgs bench_args;
   facet::cli::BatchArgs batch_args;
   facet::cli::ViewArgs view_args;
+  facet::cli::ThumbnailArgs thumbnail_args;
   CLI::App* render = facet::cli::add_render_command(app, render_args);
   CLI::App* demo = facet::cli::add_demo_command(app, demo_args);
   CLI::App* info = facet::cli::add_info_command(app, info_args);
   CLI::App* bench = facet::cli::add_bench_command(app, bench_args);
   CLI::App* batch = facet::cli::add_batch_command(app, batch_args);
   CLI::App* view = facet::cli::add_view_command(app, view_args);
+  CLI::App* thumbnail = facet::cli::add_thumbnail_command(app, thumbnail_args);
 
   // CLI11 would list every argument as unexpected; name the command instead.
   if (const std::string_view command = argc >= 2 ? argv[1] : "-";
       (command.empty() || command[0] != '-') && command != "render" && command != "demo" && command != "info" &&
-      command != "bench" && command != "batch" && command != "view")
-    return fail(std::string("unknown command '") + argv[1] + "': use render, batch, view, demo, info or bench",
+      command != "bench" && command != "batch" && command != "view" && command != "thumbnail")
+    return fail(std::string("unknown command '") + argv[1] +
+                    "': use render, batch, view, thumbnail, demo, info or bench",
                 kUsageError);
   try {
     app.parse(argc, argv);
@@ -138,7 +142,9 @@ int main(int argc, char** argv) {
     if (bench->parsed()) return facet::cli::run_bench(bench_args);
     if (batch->parsed()) return facet::cli::run_batch(batch_args);
     if (view->parsed()) return facet::cli::run_view(view_args);
-    return fail("no command given: use render, batch, view, demo, info or bench (see facet --help)", kUsageError);
+    if (thumbnail->parsed()) return facet::cli::run_thumbnail(thumbnail_args);
+    return fail("no command given: use render, batch, view, thumbnail, demo, info or bench (see facet --help)",
+                kUsageError);
   } catch (const facet::InputError& e) {
     return fail(e.what(), kInputError);
   } catch (const facet::cli::UsageError& e) {

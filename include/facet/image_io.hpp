@@ -11,14 +11,22 @@ namespace facet {
 
 class Framebuffer;
 
+// A PNG text chunk (tEXt): a keyword of 1 to 79 printable Latin-1 characters and its text, without NUL bytes. The
+// freedesktop thumbnail specification's Thumb::URI and Thumb::MTime are ones.
+struct PngText {
+  std::string keyword;
+  std::string text;
+};
+
 // Writes an 8-bit PNG from rgba (R, G, B, A bytes per pixel, top row first); RGB only when keep_alpha is false.
 // A regular file (or the one a symlink points to) is written under a temporary name in the same folder and renamed
 // into place, so a failure never leaves a partial file at path. "-" is standard output; a device, a FIFO or a link
 // into /proc/self/fd (such as /dev/stdout) is opened and written in place, never replaced. Throws std::invalid_argument
-// for a bad size, std::runtime_error("<path>: <reason>") when the file cannot be written. Up to `threads` threads
-// (the caller's included) compress bands of rows at once; a frame of 1920x1080 takes two bands or more.
+// for a bad size or text chunk, std::runtime_error("<path>: <reason>") when the file cannot be written. Up to
+// `threads` threads (the caller's included) compress bands of rows at once; a frame of 1920x1080 takes two bands
+// or more. `text` chunks are written before the pixels.
 void write_png(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba,
-               bool keep_alpha = true, int threads = 1);
+               bool keep_alpha = true, int threads = 1, std::span<const PngText> text = {});
 void write_png(const std::filesystem::path& path, const Framebuffer& framebuffer, bool keep_alpha = true,
                int threads = 1);
 

@@ -54,7 +54,13 @@ struct CameraSpec {
   float oblique_scale = 0.5f;                          // 1 cavalier, 0.5 cabinet
   UpAxis up = UpAxis::pos_y;
   std::optional<int> file_camera;  // view through the model file's camera N instead (file_camera_view)
+  // Zoom and centre the framed view on what the model covers of the image (fill_image), as thumbnails are framed:
+  // a sphere's framing leaves a long or flat model small. Not with a file's camera, sheets or turntables.
+  bool fill = false;
 };
+
+// The share of the image's tighter side that a filled view's model spans (CameraSpec::fill): a 4% margin each side.
+inline constexpr float kFillExtent = 0.92f;
 
 // Framing of a mesh's positions. Throws InputError(source, ...) when its coordinates are too large to frame.
 Framing framing_of(const Mesh& mesh, const std::string& source);
@@ -63,6 +69,12 @@ Framing framing_of(const Mesh& mesh, const std::string& source);
 // std::invalid_argument naming the field for a camera that cannot be built (the eye at the focal point, near not
 // positive for a perspective, far not beyond near, a degenerate window or view up).
 View make_view(const CameraSpec& camera, const Framing& framing, float aspect);
+
+// `view` zoomed and shifted on the image so that the points' projected bounds are centred and span kFillExtent of
+// the image along the tighter axis. The points must lie in front of the eye (any view from make_view frames them
+// so); only the projection's x and y change, so depth and clipping are as before. At most a 1000-fold zoom, for
+// a model that projects to a point or a line.
+View fill_image(const View& view, std::span<const glm::vec3> world_points);
 
 // The view through camera `index` of mesh.cameras (a glTF file's cameras, in scene order), for a target of the
 // given aspect: its pose, its near and far planes (an infinite far plane ends behind the model's framing sphere),

@@ -113,6 +113,7 @@ JobFrame frame_job(const RenderJob& job, std::shared_ptr<Mesh> mesh, const Frami
   frame.view = job.camera.file_camera
                    ? file_camera_view(*mesh, *job.camera.file_camera, framing, aspect, job.model.string())
                    : make_view(job.camera, framing, aspect);
+  if (job.camera.fill && !job.camera.file_camera) frame.view = fill_image(frame.view, mesh->positions);
   frame.clear = clear_color(job.look, kDefaultBackground);
   frame.options = scene_options(job.look, frame.view.view_from_world, Shading::automatic, glm::vec3(frame.clear),
                                 mesh->lights, job.camera.up);

@@ -5,6 +5,7 @@
 #include <cctype>
 #include <cmath>
 #include <cstdio>
+#include <limits>
 #include <stdexcept>
 #include <string>
 
@@ -178,6 +179,32 @@ View make_view(const CameraSpec& spec, const Framing& framing, float aspect) {
     }
   }
   return view;
+}
+
+View fill_image(const View& view, std::span<const glm::vec3> world_points) {
+  const glm::mat4 clip_from_world = view.clip_from_view * view.view_from_world;
+  glm::vec2 low(std::numeric_limits<float>::max()), high(std::numeric_limits<float>::lowest());
+  for (const glm::vec3& p : world_points) {
+    const glm::vec4 clip = clip_from_world * glm::vec4(p, 1.0f);
+    if (!(clip.w > 0.0f)) continue;
+    const glm::vec2 ndc = glm::vec2(clip) / clip.w;
+    low = glm::min(low, ndc);
+    high = glm::max(high, ndc);
+  }
+  if (!(low.x <= high.x && low.y <= high.y)) return view;
+  const glm::vec2 extent = high - low, centre = 0.5f * (low + high);
+  // NDC spans 2 along each axis whatever the aspect: the tighter axis sets one zoom for both.
+  constexpr float kMostZoom = 1000.0f;
+  const float zoom = std::min({2.0f * kFillExtent / std::max(extent.x, 1e-30f),
+                               2.0f * kFillExtent / std::max(extent.y, 1e-30f), kMostZoom});
+  // ndc' = zoom (ndc - centre), applied in clip space: x' = zoom x - zoom centre.x w, and so for y.
+  glm::mat4 ndc_fill(1.0f);
+  ndc_fill[0][0] = ndc_fill[1][1] = zoom;
+  ndc_fill[3][0] = -zoom * centre.x;
+  ndc_fill[3][1] = -zoom * centre.y;
+  View filled = view;
+  filled.clip_from_view = ndc_fill * view.clip_from_view;
+  return filled;
 }
 
 View file_camera_view(const Mesh& mesh, int index, const Framing& framing, float aspect, const std::string& source) {

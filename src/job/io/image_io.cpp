@@ -36,9 +36,9 @@ void check_size(int width, int height, std::size_t count, std::size_t per_pixel,
 }  // namespace
 
 void write_png(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> rgba,
-               bool keep_alpha, int threads) {
+               bool keep_alpha, int threads, std::span<const PngText> text) {
   check_size(width, height, rgba.size(), 4, "PNG");
-  write_output(path, encode_png(width, height, keep_alpha ? 4 : 3, rgba, 4, threads));
+  write_output(path, encode_png(width, height, keep_alpha ? 4 : 3, rgba, 4, threads, text));
 }
 
 void write_png_gray(const std::filesystem::path& path, int width, int height, std::span<const std::uint8_t> gray) {

@@ -44,6 +44,20 @@ void put_chunk(std::vector<std::uint8_t>& out, const char* type, std::span<const
                    crc32(0, out.data() + start, static_cast<uInt>(out.size() - start))));
 }
 
+// PNG's rules for tEXt: a keyword of 1-79 printable Latin-1 characters, no leading, trailing or double spaces,
+// and text without NUL.
+void check_text(const PngText& chunk) {
+  const std::string& k = chunk.keyword;
+  bool ok = !k.empty() && k.size() <= 79 && k.front() != ' ' && k.back() != ' ' && k.find("  ") == std::string::npos;
+  for (const char c : k) {
+    const auto u = static_cast<unsigned char>(c);
+    ok = ok && ((u >= 32 && u <= 126) || u >= 161);
+  }
+  if (!ok) throw std::invalid_argument("PNG: bad text keyword '" + k + "'");
+  if (chunk.text.find('\0') != std::string::npos)
+    throw std::invalid_argument("PNG: the text of '" + k + "' holds a NUL byte");
+}
+
 // The image's rows as the encoder reads them.
 struct Rows {
   const std::uint8_t* pixels;
@@ -158,7 +172,8 @@ void deflate_rows(const Rows& rows, std::size_t first, std::size_t last, bool fi
 }  // namespace
 
 std::vector<std::uint8_t> encode_png(int width, int height, int channels, std::span<const std::uint8_t> pixels,
-                                     int source_channels, int threads) {
+                                     int source_channels, int threads, std::span<const PngText> text) {
+  for (const PngText& chunk : text) check_text(chunk);
   if (source_channels == 0) source_channels = channels;
   if (width < 1 || height < 1 || (channels != 1 && channels != 3 && channels != 4) || source_channels < channels ||
       source_channels > 4)
@@ -204,6 +219,12 @@ std::vector<std::uint8_t> encode_png(int width, int height, int channels, std::s
   store_u32(header.data() + 4, static_cast<std::uint32_t>(height));
   header[9] = channels == 1 ? 0 : channels == 3 ? 2 : 6;
   put_chunk(png, "IHDR", header);
+  for (const PngText& chunk : text) {
+    std::vector<std::uint8_t> data(chunk.keyword.begin(), chunk.keyword.end());
+    data.push_back(0);  // the keyword's terminator
+    data.insert(data.end(), chunk.text.begin(), chunk.text.end());
+    put_chunk(png, "tEXt", data);
+  }
   put_chunk(png, "IDAT", zlib);
   put_chunk(png, "IEND", {});
   return png;
