@@ -9,6 +9,7 @@
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <zlib.h>
 
 #include "facet/detail/dispatch.hpp"
 #include "facet/error.hpp"
@@ -496,6 +497,51 @@ TEST(TextureLoad, ErrorsNameTheFile) {
   expect_input_error(dir / "truncated.png", "cannot decode PNG (libspng: ");
   write_bytes(dir / "truncated.jpg", "\xff\xd8\xff\xe0");
   expect_input_error(dir / "truncated.jpg", "cannot decode JPEG (libjpeg-turbo: ");
+}
+
+// A header may declare no more texels than its file's bytes can describe, whatever the format: each refused here
+// before a texel is allocated, and each one byte larger (or one texel smaller) decoded.
+TEST(TextureLoad, DeclaredSizeMustBeBackedByTheFile) {
+  const std::filesystem::path dir = scratch_dir();
+  const auto u16 = [](unsigned v) { return std::string{static_cast<char>(v & 255), static_cast<char>(v >> 8)}; };
+  const auto u32 = [&](unsigned v) { return u16(v & 0xffff) + u16(v >> 16); };
+  // An uncompressed 24-bit BMP of W x H: rows padded to 4 bytes.
+  const auto bmp = [&](unsigned w, unsigned h, std::size_t pixel_bytes) {
+    return "BM" + u32(static_cast<unsigned>(54 + pixel_bytes)) + u32(0) + u32(54) + u32(40) + u32(w) + u32(h) +
+           u16(1) + u16(24) + u32(0) + u32(0) + u32(0) + u32(0) + u32(0) + u32(0) + std::string(pixel_bytes, '\x40');
+  };
+  // 9,985 x 8,229 texels in 485 KB: under the old rule of 256 texels a byte, decoded into 330 MB.
+  write_bytes(dir / "huge.bmp", bmp(9985, 8229, 485'000));
+  expect_input_error(dir / "huge.bmp", "BMP declares 9985x8229 texels, more than its bytes can hold (needs 246507924");
+  write_bytes(dir / "short.bmp", bmp(5, 3, 3 * 16 - 1));  // 5 texels a row: 15 bytes, padded to 16
+  expect_input_error(dir / "short.bmp", "needs 48, has 47");
+  write_bytes(dir / "exact.bmp", bmp(5, 3, 3 * 16));
+  EXPECT_EQ(load_texture(dir / "exact.bmp").width(), 5);
+
+  // An uncompressed TGA of 4 x 2 texels at 32 bits needs 32 bytes after its header.
+  const std::string tga_header{0, 0, 2, 0, 0, 0, 0, 0, 0, 0, 0, 0, 4, 0, 2, 0, 32, 8};
+  write_bytes(dir / "short.tga", tga_header + std::string(31, '\x10'));
+  expect_input_error(dir / "short.tga", "TGA declares 4x2 texels, more than its bytes can hold (needs 32, has 31)");
+  write_bytes(dir / "exact.tga", tga_header + std::string(32, '\x10'));
+  EXPECT_EQ(load_texture(dir / "exact.tga").height(), 2);
+  // Run-length: 128 texels in each two-byte packet at most.
+  std::string rle{0, 0, 11, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 0, 8, 0};
+  rle.replace(12, 4, u16(16384) + u16(16384));
+  write_bytes(dir / "huge_rle.tga", rle + std::string(1000, '\xff'));
+  expect_input_error(dir / "huge_rle.tga", "run-length TGA declares 16384x16384 texels");
+
+  // A PNG's deflate stream expands at most 1,032-fold: an 8-bit RGBA header of 16384 x 16384 in a small file.
+  std::string png = "\x89PNG\r\n\x1a\n";
+  const std::string ihdr = "IHDR" + std::string{0, 0, 0x40, 0, 0, 0, 0x40, 0, 8, 6, 0, 0, 0};
+  const auto be32 = [](std::uint32_t v) {
+    return std::string{static_cast<char>(v >> 24), static_cast<char>(v >> 16), static_cast<char>(v >> 8),
+                       static_cast<char>(v)};
+  };
+  png += be32(13) + ihdr + be32(static_cast<std::uint32_t>(crc32(0, reinterpret_cast<const Bytef*>(ihdr.data()),
+                                                                   static_cast<uInt>(ihdr.size()))));
+  png += std::string(100'000, '\0');
+  write_bytes(dir / "bomb.png", png);
+  expect_input_error(dir / "bomb.png", "PNG declares 16384x16384 texels, more than its bytes can hold");
 }
 
 }  // namespace
