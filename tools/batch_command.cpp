@@ -16,7 +16,9 @@
 #include <sstream>
 #include <stdexcept>
 #include <thread>
+#include <memory>
 #include <unordered_map>
+#include <unordered_set>
 
 #include <nlohmann/json.hpp>
 
@@ -155,7 +157,9 @@ CLI::App* add_batch_command(CLI::App& app, BatchArgs& args) {
       ->type_name("FILE.jsonl");
   batch->add_option("--shard", args.shard, "Render the jobs whose index % N is I, or 'auto' (Slurm, Kubernetes)")
       ->type_name("I/N");
-  batch->add_option("--shards", args.shards, "The shard count for --shard auto with Kubernetes indexed jobs")
+  batch->add_option("--shards", args.shards,
+                    "The shard count for --shard auto: needed with Kubernetes indexed jobs; with Slurm, makes the "
+                    "array task id the shard (so one task can be submitted again alone)")
       ->type_name("N");
   batch->add_flag("--force", args.force, "Render jobs whose outputs exist too");
   batch->add_flag("--quiet", args.quiet, "No progress on stderr");
@@ -189,69 +193,118 @@ RenderJob parse_job_text(const BatchJob& job, const std::string& text, const Bat
 
 }  // namespace
 
-RenderJob parse_batch_job(const BatchJob& job, const BatchArgs& args) {
-  std::ifstream in(args.jobs, std::ios::binary);
-  std::string text(job.length, '\0');
-  if (!in.seekg(static_cast<std::streamoff>(job.offset)) || !in.read(text.data(), job.length))
-    throw InputError(args.jobs, "line " + std::to_string(job.line) + ": cannot read it again (the file changed?)");
-  return parse_job_text(job, text, args);
+RenderJob parse_batch_job(const BatchJob& job, const BatchArgs& args) { return parse_job_text(job, job.text, args); }
+
+JobLines::JobLines(const BatchArgs& args) : args_(args) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(args.jobs, ec)) throw InputError(args.jobs, "no such file");
+  in_.open(args.jobs, std::ios::binary);
+  if (!in_) throw InputError(args.jobs, "cannot open file");
 }
 
-std::vector<BatchJob> read_batch_jobs(const BatchArgs& args) {
-  const std::string source = args.jobs;
-  std::error_code ec;
-  if (!std::filesystem::is_regular_file(args.jobs, ec)) throw InputError(source, "no such file");
-  std::ifstream in(args.jobs);
-  if (!in) throw InputError(source, "cannot open file");
-  std::vector<BatchJob> jobs;
-  std::optional<bool> json;  // decided by the first job line: a JSON object, or a model path
-  // Two jobs writing one file: found by the hashes of the outputs' normalised paths (a few bytes a job, where the
-  // paths themselves would take hundreds), each match confirmed against the earlier job's paths.
-  std::unordered_multimap<std::size_t, std::size_t> writers;
-  const auto normalised = [](const std::filesystem::path& path) { return path.lexically_normal().string(); };
-  std::string line;
-  for (std::size_t number = 1;; ++number) {
-    const std::streamoff offset = in.tellg();
-    if (!std::getline(in, line)) break;
-    const std::size_t first = line.find_first_not_of(" \t\r");
-    if (first == std::string::npos || line[first] == '#') continue;
-    if (!json) {
-      json = line[first] == '{';
-      if (!*json && args.output.empty()) throw UsageError("--output: a list of models needs an output template");
+bool JobLines::next(BatchJob& job) {
+  while (std::getline(in_, job.text)) {
+    ++line_;
+    if (!job.text.empty() && job.text.back() == '\r') job.text.pop_back();
+    const std::size_t first = job.text.find_first_not_of(" \t\r");
+    if (first == std::string::npos || job.text[first] == '#') continue;
+    if (!json_) {
+      json_ = job.text[first] == '{';
+      if (!*json_ && args_.output.empty()) throw UsageError("--output: a list of models needs an output template");
     }
-    if (line.size() > UINT32_MAX) throw InputError(source, "line " + std::to_string(number) + ": too long");
-    jobs.push_back({number, jobs.size(), *json, static_cast<std::uint64_t>(offset),
-                    static_cast<std::uint32_t>(line.size())});
-    const RenderJob job = parse_job_text(jobs.back(), line, args);
-    for (const std::filesystem::path& path : output_paths(job.outputs)) {
+    if (job.text.size() > UINT32_MAX) throw InputError(args_.jobs, "line " + std::to_string(line_) + ": too long");
+    job.line = line_;
+    job.index = index_++;
+    job.json = *json_;
+    return true;
+  }
+  return false;
+}
+
+namespace {
+
+// The output names a batch's jobs write, in a Bloom filter of fixed size (8 MiB; pages are touched only as bits
+// are set): whether a name may have been written before is known in constant memory however many jobs the file
+// holds. A name it reports is confirmed by a second pass over those names alone. Four bits a name: at a million
+// outputs about ten names are confirmed needlessly; at ten million, a few hundred thousand.
+class OutputNames {
+ public:
+  OutputNames() : words_(static_cast<std::uint64_t*>(std::calloc(kWords, sizeof(std::uint64_t))), &std::free) {
+    if (!words_) throw std::bad_alloc();
+  }
+  // Adds the name's hash; false when it certainly was not added before.
+  bool add(std::size_t hash) {
+    const std::uint64_t step = ((static_cast<std::uint64_t>(hash) >> 32 | static_cast<std::uint64_t>(hash) << 32) *
+                                0x9e3779b97f4a7c15u) | 1u;
+    bool seen = true;
+    for (std::uint64_t k = 0, bit = hash; k < 4; ++k, bit += step) {
+      std::uint64_t& word = words_[(bit / 64) % kWords];
+      const std::uint64_t mask = std::uint64_t{1} << (bit % 64);
+      seen = seen && (word & mask) != 0;
+      word |= mask;
+    }
+    return seen;
+  }
+
+ private:
+  static constexpr std::size_t kWords = (std::size_t{8} << 20) / sizeof(std::uint64_t);
+  std::unique_ptr<std::uint64_t[], void (*)(void*)> words_;
+};
+
+std::string normalised(const std::filesystem::path& path) { return path.lexically_normal().string(); }
+
+}  // namespace
+
+std::size_t check_batch_jobs(const BatchArgs& args) {
+  OutputNames names;
+  std::unordered_set<std::size_t> maybe_twice;  // hashes of names the filter may have seen before
+  JobLines lines(args);
+  BatchJob job;
+  std::size_t count = 0;
+  while (lines.next(job)) {
+    ++count;
+    std::unordered_set<std::string> own;  // one job naming a file twice is render()'s to refuse
+    for (const std::filesystem::path& path : output_paths(parse_batch_job(job, args).outputs)) {
       const std::string name = normalised(path);
-      const std::size_t key = std::hash<std::string>{}(name);
-      for (auto [it, end] = writers.equal_range(key); it != end; ++it) {
-        if (it->second == jobs.back().index) continue;  // one job naming a file twice is render()'s to refuse
-        for (const std::filesystem::path& earlier : output_paths(parse_batch_job(jobs[it->second], args).outputs))
-          if (normalised(earlier) == name)
-            throw UsageError("lines " + std::to_string(jobs[it->second].line) + " and " + std::to_string(number) +
-                             " would both write " + path.string());
-      }
-      writers.emplace(key, jobs.back().index);
+      const std::size_t hash = std::hash<std::string>{}(name);
+      if (own.insert(name).second && names.add(hash)) maybe_twice.insert(hash);
     }
   }
-  return jobs;
+  if (maybe_twice.empty()) return count;
+  // The names the filter flagged, read again with the lines that write them.
+  std::unordered_map<std::string, std::size_t> writer;
+  JobLines again(args);
+  while (again.next(job))
+    for (const std::filesystem::path& path : output_paths(parse_batch_job(job, args).outputs)) {
+      const std::string name = normalised(path);
+      if (!maybe_twice.contains(std::hash<std::string>{}(name))) continue;
+      const auto [it, first] = writer.emplace(name, job.line);
+      if (!first && it->second != job.line)
+        throw UsageError("lines " + std::to_string(it->second) + " and " + std::to_string(job.line) +
+                         " would both write " + path.string());
+    }
+  return count;
 }
 
-std::vector<std::size_t> shard_of(const BatchArgs& args, std::size_t count) {
+Shard shard_of(const BatchArgs& args) {
   std::size_t index = 0, shards = 1;
   if (args.shard == "auto") {
     const char* slurm_id = std::getenv("SLURM_ARRAY_TASK_ID");
     const char* slurm_count = std::getenv("SLURM_ARRAY_TASK_COUNT");
     const char* k8s_index = std::getenv("JOB_COMPLETION_INDEX");
     if (slurm_id && slurm_count) {
-      const char* slurm_min = std::getenv("SLURM_ARRAY_TASK_MIN");
       const std::size_t id = parse_count(slurm_id, "SLURM_ARRAY_TASK_ID");
-      const std::size_t min = slurm_min ? parse_count(slurm_min, "SLURM_ARRAY_TASK_MIN") : 0;
-      if (id < min) throw UsageError("--shard auto: SLURM_ARRAY_TASK_ID is below SLURM_ARRAY_TASK_MIN");
-      index = id - min;
-      shards = parse_count(slurm_count, "SLURM_ARRAY_TASK_COUNT");
+      if (args.shards >= 1) {
+        // The task id is the shard: one task submitted again alone (sbatch --array=2) renders its own share.
+        index = id;
+        shards = static_cast<std::size_t>(args.shards);
+      } else {
+        const char* slurm_min = std::getenv("SLURM_ARRAY_TASK_MIN");
+        const std::size_t min = slurm_min ? parse_count(slurm_min, "SLURM_ARRAY_TASK_MIN") : 0;
+        if (id < min) throw UsageError("--shard auto: SLURM_ARRAY_TASK_ID is below SLURM_ARRAY_TASK_MIN");
+        index = id - min;
+        shards = parse_count(slurm_count, "SLURM_ARRAY_TASK_COUNT");
+      }
     } else if (k8s_index) {
       if (args.shards < 1) throw UsageError("--shard auto: Kubernetes' JOB_COMPLETION_INDEX needs --shards N");
       index = parse_count(k8s_index, "JOB_COMPLETION_INDEX");
@@ -269,14 +322,12 @@ std::vector<std::size_t> shard_of(const BatchArgs& args, std::size_t count) {
   }
   if (shards < 1 || index >= shards)
     throw UsageError("--shard: shard " + std::to_string(index) + " of " + std::to_string(shards) + " does not exist");
-  std::vector<std::size_t> mine;
-  for (std::size_t k = index; k < count; k += shards) mine.push_back(k);
-  return mine;
+  return Shard{index, shards};
 }
 
 int run_batch(const BatchArgs& args) {
-  const std::vector<BatchJob> jobs = read_batch_jobs(args);
-  const std::vector<std::size_t> mine = shard_of(args, jobs.size());
+  const Shard shard = shard_of(args);
+  const std::size_t total = shard.size_of(check_batch_jobs(args));
   std::ofstream report;
   if (!args.report.empty()) {
     report.open(args.report, std::ios::trunc);
@@ -285,26 +336,42 @@ int run_batch(const BatchArgs& args) {
   // A run killed outright (SIGKILL, power loss) may have left a temporary file beside an output; this run
   // renders that output again, so the leftover goes.
   // In groups, so that the outputs of a long batch are never all in memory at once.
-  for (std::size_t first = 0; first < mine.size(); first += 256) {
+  {
+    JobLines lines(args);
+    BatchJob job;
     std::vector<OutputSpec> outputs;
-    for (std::size_t k = first; k < std::min(mine.size(), first + 256); ++k)
-      outputs.push_back(parse_batch_job(jobs[mine[k]], args).outputs);
-    remove_stale_temporaries(outputs);
+    for (bool more = true; more;) {
+      more = lines.next(job);
+      if (more && shard.has(job.index)) outputs.push_back(parse_batch_job(job, args).outputs);
+      if (outputs.size() == 256 || (!more && !outputs.empty())) {
+        remove_stale_temporaries(outputs);
+        outputs.clear();
+      }
+    }
   }
   const bool terminal = ::isatty(2) != 0;
-  Progress progress(mine.size(), args.quiet);
+  Progress progress(total, args.quiet);
   std::mutex lock;  // guards the report, the progress and the counts
   int failed = 0;
   std::size_t done = 0;
-  std::atomic<std::size_t> next{0};
+  JobLines lines(args);
+  std::mutex reading;  // guards `lines`
+  // The next job of this shard, or false at the end of the file.
+  const auto next_job = [&](BatchJob& job) {
+    const std::lock_guard<std::mutex> hold(reading);
+    while (lines.next(job))
+      if (shard.has(job.index)) return true;
+    return false;
+  };
 
   // Small models leave a renderer's threads idle between draws (loading, encoding), so with --threads 0 each core
   // takes jobs of its own with a one-thread renderer; --threads N gives one renderer N threads.
   const auto work = [&](int threads) {
     Renderer renderer(threads);
-    for (std::size_t i = next++; i < mine.size() && stop_signal == 0; i = next++) {
-      const RenderJob job = parse_batch_job(jobs[mine[i]], args);
-      Json entry = {{"line", jobs[mine[i]].line}, {"model", job.model.string()}};
+    BatchJob line;
+    while (stop_signal == 0 && next_job(line)) {
+      const RenderJob job = parse_batch_job(line, args);
+      Json entry = {{"line", line.line}, {"model", job.model.string()}};
       const auto start = std::chrono::steady_clock::now();
       std::string error;
       WarningCapture warnings;  // kept for the report, and printed below unless --quiet
@@ -337,14 +404,14 @@ int run_batch(const BatchArgs& args) {
       }
       if (report.is_open()) report << entry.dump() << '\n' << std::flush;
       ++done;
-      progress.update(done, done == mine.size());
+      progress.update(done, done == total);
     }
   };
   stop_signal = 0;
   std::signal(SIGINT, request_stop);
   std::signal(SIGTERM, request_stop);
   const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t workers = args.threads == 0 ? std::min<std::size_t>(cores, mine.size()) : 1;
+  const std::size_t workers = args.threads == 0 ? std::min<std::size_t>(cores, total) : 1;
   if (workers <= 1) {
     work(args.threads);
   } else {
@@ -356,7 +423,7 @@ int run_batch(const BatchArgs& args) {
   if (report.is_open() && !report) throw std::runtime_error(args.report + ": cannot write file");
   if (stop_signal != 0) {
     std::fprintf(stderr, "facet: batch stopped by signal %d after %zu of %zu jobs; run it again to finish\n",
-                 static_cast<int>(stop_signal), done, mine.size());
+                 static_cast<int>(stop_signal), done, total);
     return 128 + stop_signal;  // as a shell reports a process the signal ended
   }
   return failed == 0 ? 0 : 1;

@@ -20,7 +20,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   args.output = "out/{stem}_{n}.png";
   return facet::fuzz::run([&] {
     try {
-      (void)facet::cli::read_batch_jobs(args);
+      (void)facet::cli::check_batch_jobs(args);
     } catch (const facet::cli::UsageError&) {
       // Two jobs writing one file, say: a usage error, reported as such.
     }
