@@ -6,7 +6,8 @@ set -euo pipefail
 packages=(g++ cmake ninja-build pkg-config libglm-dev libstb-dev libtinyobjloader-dev libtinygltf-dev libassimp-dev libopenexr-dev libdraco-dev libmeshoptimizer-dev liblzf-dev libisal-dev zlib1g-dev libcli11-dev nlohmann-json3-dev
           libgtest-dev libgmock-dev libbenchmark-dev assimp-testmodels python3 time ccache clang parallel dpkg-dev mmdebstrap
           python3-dev pybind11-dev python3-numpy python3-pytest python3-setuptools python3-pip python3-pil
-          libsdl2-dev xvfb xauth libgif-dev libspng-dev libturbojpeg0-dev shared-mime-info bubblewrap libavcodec-dev libavformat-dev libswscale-dev ffmpeg
+          libsdl2-dev xvfb xauth libgif-dev libspng-dev libturbojpeg0-dev libavcodec-dev libavformat-dev libswscale-dev ffmpeg
+          shared-mime-info bubblewrap slurm-wlm munge python3-distributed python3-yaml
           libegl-dev libgl-dev libopengl-dev libegl-mesa0 libgl1-mesa-dri qemu-user emscripten chromium
           googletest g++-aarch64-linux-gnu "$@")
 missing=()
