@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
+#include <future>
 #include <memory>
 #include <stdexcept>
 #include <string>
@@ -73,6 +74,11 @@ Scene later_scene(const RenderJob& job, const MovingModel& motion, double second
 JobFrame prepare_job(const RenderJob& job, RenderTimings* timings, bool next_frame) {
   check_resolution(job);
   Stopwatch clock;
+  // The physically based look's environment is prefiltered once per process (a few milliseconds of the first
+  // frame): on another thread while the model loads, so that a single render or thumbnail does not wait for it.
+  std::future<std::shared_ptr<const Environment>> environment;
+  if ((!job.look.shading || *job.look.shading == Shading::automatic) && !job.look.ambient)
+    environment = std::async(std::launch::async, [&job] { return environment_for(job.look, job.camera.up); });
   // A job asking for motion reads the model as it reads it for an animation, and poses it a frame later too.
   std::optional<MovingModel> motion;
   if (job.animation.any() || next_frame) motion.emplace(read_moving_model(job, job.animation.any()));
@@ -83,6 +89,7 @@ JobFrame prepare_job(const RenderJob& job, RenderTimings* timings, bool next_fra
   apply_look_color(*mesh, job.look);
   apply_color_map(*mesh, job.look, job.camera.up);
   if (!drawable(*mesh)) throw InputError(job.model.string(), "every triangle has zero area: nothing to draw");
+  if (environment.valid()) environment.get();  // its errors (an unreadable file) after the model's
   if (timings) timings->load = clock.lap();
   const Framing framing = framing_of(*mesh, job.model.string());
   JobFrame frame = frame_job(job, mesh, framing, eye_dome);
