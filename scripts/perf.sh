@@ -62,6 +62,11 @@ PYTHONPATH=build/python /usr/bin/python3 bench/python_bench.py build 5
 
 echo "## thumbnails: one facet batch against one facet render process each"
 bash bench/batch_bench.sh build/tools/facet 3 600
+echo "## a batch's peak memory against its job count, up to 100,000 jobs"
+bash bench/batch_memory.sh build/tools/facet 100000
+
+echo "## thumbnails: facet thumbnail, in and out of bubblewrap, against f3d's thumbnailer command"
+bash bench/thumbnail.sh build/tools/facet "$rounds"
 
 echo "## animation: posing 100k vertices, and a clip to MP4 as a whole process"
 build/bench/facet_animation_bench --benchmark_repetitions=5 --benchmark_report_aggregates_only=true
