@@ -159,4 +159,9 @@ if id=$(submit_and_wait --array=2) && same_as_one; then
 else
   bad "task 2 submitted again completes the set" "$(head -3 "$scratch/diff.txt")"
 fi
+# On a failure, what the cluster said: its daemons' last lines and the tasks' logs.
+if [ "$failed" -gt 0 ]; then
+  tail -n 5 "$scratch"/log/*.log "$scratch"/cluster/slurm-*.log 2>/dev/null
+  cat "$scratch/diff.txt" 2>/dev/null | head -5
+fi
 finish

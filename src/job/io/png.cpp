@@ -8,6 +8,7 @@
 #include <array>
 #include <cstring>
 #include <memory>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -124,6 +125,25 @@ struct DeflatedPart {
   std::string error;
 };
 
+constexpr std::uint32_t kPrimeBytes = 16;  // ISA-L's MIN_INBUF_PADDING: a flushed call this short skips its loop
+
+// Deflates z's input into part.bytes from `written` on, until the input is taken and (with a state to reach, at
+// the end of a band or of the stream's first bytes) the stream is in that state; false on failure.
+bool deflate_all(isal_zstream& z, DeflatedPart& part, std::size_t& written, std::optional<int> until) {
+  for (;;) {
+    if (part.bytes.size() - written < 1024) part.bytes.resize(part.bytes.size() * 2);
+    z.next_out = part.bytes.data() + written;
+    z.avail_out = static_cast<std::uint32_t>(part.bytes.size() - written);
+    if (isal_deflate(&z) != COMP_OK) {
+      part.error = "PNG: compression failed";
+      return false;
+    }
+    written = part.bytes.size() - z.avail_out;
+    if (z.avail_in != 0 || z.avail_out == 0) continue;
+    if (!until || static_cast<int>(z.internal_state.state) == *until) return true;
+  }
+}
+
 void deflate_rows(const Rows& rows, std::size_t first, std::size_t last, bool final_part, DeflatedPart& part) {
   // The stream keeps its 32 KiB history inside itself: 80 KB, too much for a helper thread's stack.
   const auto stream = std::make_unique<isal_zstream>();
@@ -145,25 +165,28 @@ void deflate_rows(const Rows& rows, std::size_t first, std::size_t last, bool fi
     const auto in = static_cast<std::uint32_t>(count * stride);
     adler = isal_adler32(adler, filtered.data(), in);
     part.length += in;
-    z.next_in = filtered.data();
-    z.avail_in = in;
+    // ISA-L's level-1 assembly (igzip_icf_body_h1_gr_bt.asm, .write_first_byte; 2.30 to 2.32 at least) hashes a
+    // register it never loaded, which holds the isal_zstream's address, for a new stream's third byte: the hash
+    // table then depends on where the stream was allocated, and about one image in 400 deflates to other (valid)
+    // bytes from one run to another. A stream's first bytes are therefore deflated alone with a sync flush (which
+    // keeps the history): 16 bytes or fewer with a flush skip that loop for ISA-L's finishing code, which hashes
+    // them right, and the loop then never sees a stream without history.
+    std::uint32_t primed = 0;
+    if (y == first && in > kPrimeBytes) {
+      primed = kPrimeBytes;
+      z.next_in = filtered.data();
+      z.avail_in = primed;
+      z.end_of_stream = 0;
+      z.flush = SYNC_FLUSH;
+      if (!deflate_all(z, part, written, ZSTATE_NEW_HDR)) return;
+    }
+    z.next_in = filtered.data() + primed;
+    z.avail_in = in - primed;
     const bool end = y + count == last;
     z.end_of_stream = end && final_part;
     z.flush = end && !final_part ? SYNC_FLUSH : NO_FLUSH;
-    // Until the input is taken and, at the end, the stream has ended or its sync flush is written out.
-    for (;;) {
-      if (part.bytes.size() - written < 1024) part.bytes.resize(part.bytes.size() * 2);
-      z.next_out = part.bytes.data() + written;
-      z.avail_out = static_cast<std::uint32_t>(part.bytes.size() - written);
-      if (isal_deflate(&z) != COMP_OK) {
-        part.error = "PNG: compression failed";
-        return;
-      }
-      written = part.bytes.size() - z.avail_out;
-      if (z.avail_in != 0 || z.avail_out == 0) continue;
-      if (!end) break;
-      if (z.internal_state.state == (final_part ? ZSTATE_END : ZSTATE_NEW_HDR)) break;
-    }
+    if (!deflate_all(z, part, written, !end ? std::optional<int>() : final_part ? ZSTATE_END : ZSTATE_NEW_HDR))
+      return;
   }
   part.bytes.resize(written);
   part.adler = adler;
