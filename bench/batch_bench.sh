@@ -3,30 +3,17 @@
 # Usage: bench/batch_bench.sh FACET [ROUNDS] [JOBS]. Renders JOBS (600) thumbnails of 256x256 from six small real
 # models of Debian's assimp-testmodels (OBJ with textures, PLY, STL, Collada, glTF), each at its own camera angle,
 # both ways, alternating the two in every round (the host is noisy), and prints each round, the medians and the
-# thumbnails a second. Then the batch's peak memory at JOBS/2 and 5*JOBS jobs, to show it stays flat.
+# thumbnails a second. bench/batch_memory.sh measures the batch's memory against its job count.
 set -euo pipefail
 facet=$(realpath "$1")
+here=$(cd "$(dirname "$0")" && pwd)
 rounds=${2:-3}
 jobs=${3:-600}
-models=/usr/share/assimp/models
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
 
-# jobs.jsonl N: N thumbnails cycling through the models, azimuth and elevation varied per job.
-make_jobs() {
-  python3 - "$1" "$models" <<'PY'
-import json, sys
-n, root = int(sys.argv[1]), sys.argv[2]
-models = ['OBJ/WusonOBJ.obj', 'OBJ/spider.obj', 'PLY/Wuson.ply', 'STL/Spider_binary.stl', 'Collada/duck.dae',
-          'glTF2/BoxTextured-glTF-Binary/BoxTextured.glb']
-for k in range(n):
-    print(json.dumps({'model': f'{root}/{models[k % len(models)]}', 'output': f'out/{k:05}.png',
-                      'resolution': [256, 256], 'camera-azimuth-angle': (k * 37) % 360,
-                      'camera-elevation-angle': (k * 13) % 60 - 20}))
-PY
-}
-make_jobs "$jobs" >jobs.jsonl
+python3 "$here/thumbnail_jobs.py" "$jobs" 256 >jobs.jsonl
 # The same jobs as command lines, run two at a time (one per core), as a shell loop with xargs -P would.
 python3 - jobs.jsonl "$facet" >commands.txt <<'PY'
 import json, shlex, sys
@@ -55,14 +42,3 @@ mb=$(printf '%s\n' "${batch_times[@]}" | median)
 mp=$(printf '%s\n' "${process_times[@]}" | median)
 printf 'median: facet batch %.2f s (%.0f thumbnails/s); one process each %.2f s (%.0f/s); batch %.1fx faster\n' \
   "$mb" "$(echo "$jobs / $mb" | bc -l)" "$mp" "$(echo "$jobs / $mp" | bc -l)" "$(echo "$mp / $mb" | bc -l)"
-
-# Peak memory (max RSS) of a short and a long batch of the same mix.
-peak() {
-  make_jobs "$1" >peak.jsonl
-  rm -rf out
-  /usr/bin/time -f %M "$facet" batch peak.jsonl --quiet 2>&1 >/dev/null | tail -n 1
-}
-short=$((jobs / 2)) long=$((jobs * 5))
-ps=$(peak "$short") pl=$(peak "$long")
-printf 'peak memory: %d jobs %d KiB, %d jobs %d KiB (%+.1f%%)\n' "$short" "$ps" "$long" "$pl" \
-  "$(echo "($pl - $ps) * 100 / $ps" | bc -l)"

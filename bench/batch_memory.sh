@@ -6,27 +6,15 @@
 set -euo pipefail
 facet=$(realpath "$1")
 largest=${2:-100000}
-models=/usr/share/assimp/models
+here=$(cd "$(dirname "$0")" && pwd)
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 cd "$work"
 
-make_jobs() {
-  python3 - "$1" "$models" <<'PY'
-import json, sys
-n, root = int(sys.argv[1]), sys.argv[2]
-models = ['OBJ/WusonOBJ.obj', 'OBJ/spider.obj', 'PLY/Wuson.ply', 'STL/Spider_binary.stl', 'Collada/duck.dae',
-          'glTF2/BoxTextured-glTF-Binary/BoxTextured.glb']
-for k in range(n):
-    print(json.dumps({'model': f'{root}/{models[k % len(models)]}', 'output': f'out/{k // 1000:03}/{k:06}.png',
-                      'resolution': [32, 32], 'camera-azimuth-angle': (k * 37) % 360,
-                      'camera-elevation-angle': (k * 13) % 60 - 20}))
-PY
-}
 printf '%8s %12s %10s %14s\n' jobs "peak (KiB)" "time (s)" "KiB per job"
 base=
 for n in 1000 10000 "$largest"; do
-  make_jobs "$n" >jobs.jsonl
+  python3 "$here/thumbnail_jobs.py" "$n" 32 >jobs.jsonl
   rm -rf out
   start=$(date +%s.%N)
   kib=$(/usr/bin/time -f %M "$facet" batch jobs.jsonl --quiet 2>&1 >/dev/null | tail -n 1)
