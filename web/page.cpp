@@ -137,12 +137,14 @@ EMSCRIPTEN_KEEPALIVE const char* facet_page_status() {
 }
 
 // The toggles as bits for the page's buttons: 1 wireframe, 2 edges, 4 culling (back or front), 8 depth test,
-// 16 painter's, 32 shuffled, 64 orthographic, 128 anti-aliased, 256 paused, 512 help; the shading key (0-7) << 12.
+// 16 painter's, 32 shuffled, 64 orthographic, 128 anti-aliased, 256 paused, 512 help, 1024 a colour map; the
+// shading key (0-7) << 12.
 EMSCRIPTEN_KEEPALIVE int facet_page_toggles() {
   const facet::viewer::Toggles& t = page().toggles;
   const bool culling = t.cull && *t.cull != facet::CullMode::none;
   return t.wireframe | t.edges << 1 | culling << 2 | t.depth_test << 3 | t.painter << 4 | (t.shuffles != 0) << 5 |
          t.orthographic << 6 | t.antialias << 7 | t.paused << 8 | t.help << 9 |
+         (t.color_map != facet::ColorMap::none) << 10 |
          (t.shading ? static_cast<int>(*t.shading) : 0) << 12;
 }
 

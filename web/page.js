@@ -13,7 +13,7 @@ const errorText = document.getElementById('error');
 const params = new URLSearchParams(location.search);
 
 const kModelExtensions = ['.obj', '.gltf', '.glb', '.ply', '.stl', '.xyz', '.pts', '.pcd', '.splat'];
-const kToggleBits = { w: 1, e: 2, c: 4, z: 8, p: 16, s: 32, o: 64, a: 128, ' ': 256 };
+const kToggleBits = { w: 1, e: 2, c: 4, z: 8, p: 16, s: 32, o: 64, a: 128, ' ': 256, m: 1024 };
 
 // facet.js (loaded after this file) fills in this object and calls onRuntimeInitialized when the module is ready.
 // facet's warnings (a model's dropped faces, say) go to the console as warnings, not errors.

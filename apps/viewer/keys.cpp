@@ -12,6 +12,7 @@ const char* const kHelpText =
     "c  culling: back, front, none\n"
     "z  depth test on/off    p  painter's algorithm\n"
     "s  shuffle the triangle order\n"
+    "m  colour map: by height, or the model's own colours\n"
     "1-7  unlit, flat, gouraud, phong, blinn-phong, normals, depth\n"
     "0  automatic: the model's own shading\n"
     "o  orthographic/perspective\n"
@@ -34,6 +35,13 @@ KeyAction apply_key(char key, Toggles& t, Orbit& orbit) {
     case 'z': t.depth_test = !t.depth_test; break;
     case 'p': t.painter = !t.painter; break;
     case 's': ++t.shuffles; break;
+    case 'm': {  // the next of the library's colour maps, back to none after the last
+      const auto maps = color_map_names();
+      std::size_t k = 0;
+      while (k < maps.size() && maps[k].value != t.color_map) ++k;
+      t.color_map = maps[(k + 1) % maps.size()].value;
+      break;
+    }
     case '0': t.shading.reset(); break;
     case 'o': t.orthographic = !t.orthographic; break;
     case 'a': t.antialias = !t.antialias; break;
@@ -66,6 +74,7 @@ std::string describe(const Toggles& t) {
   if (!t.depth_test) s += ", no depth test";
   if (t.painter) s += ", painter";
   if (t.shuffles) s += ", shuffled";
+  if (t.color_map != ColorMap::none) s += std::string(", colour map ") + name_of(color_map_names(), t.color_map);
   if (t.orthographic) s += ", orthographic";
   if (t.antialias) s += ", anti-aliased";
   if (t.paused) s += ", paused";

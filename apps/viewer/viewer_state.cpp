@@ -82,13 +82,21 @@ Showing Showing::demo(Demo demo) {
   return s;
 }
 
-void Showing::rebuild_scene(int shuffles) {
-  const std::shared_ptr<const Mesh> mesh =
-      shuffles == 0 ? mesh_ : std::make_shared<const Mesh>(shuffled(*mesh_, shuffles));
+void Showing::rebuild_scene(int shuffles, ColorMap color_map) {
+  std::shared_ptr<const Mesh> mesh = mesh_;
+  if (color_map != ColorMap::none) {
+    Mesh coloured = *mesh_;
+    LookSpec look;
+    look.color_map = color_map;
+    apply_color_map(coloured, look, UpAxis::pos_y);  // models are framed, and demos stand, with +Y up
+    mesh = std::make_shared<const Mesh>(std::move(coloured));
+  }
+  if (shuffles != 0) mesh = std::make_shared<const Mesh>(shuffled(*mesh, shuffles));
   scene_ = Scene();
   const std::size_t instances = demo_ ? demo_frame(*demo_, 0.0, 1.0f).instances.size() : 1;
   for (std::size_t i = 0; i < instances; ++i) scene_.add(Instance{mesh, glm::mat4(1.0f)});
   scene_shuffles_ = shuffles;
+  scene_color_map_ = color_map;
 }
 
 Showing::Frame Showing::frame(double seconds, float aspect, const Toggles& toggles, const Orbit& orbit,
@@ -100,7 +108,8 @@ Showing::Frame Showing::frame(double seconds, float aspect, const Toggles& toggl
     posed_at_ = seconds;
     scene_shuffles_ = -1;
   }
-  if (scene_shuffles_ != toggles.shuffles) rebuild_scene(toggles.shuffles);
+  if (scene_shuffles_ != toggles.shuffles || scene_color_map_ != toggles.color_map)
+    rebuild_scene(toggles.shuffles, toggles.color_map);
   LookSpec look = base;
   look.shading = toggles.shading;
   look.wireframe = toggles.wireframe;

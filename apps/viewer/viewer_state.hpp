@@ -27,6 +27,7 @@ struct Toggles {
   bool painter = false;
   int shuffles = 0;                // times the triangle order was shuffled (0: the file's order)
   std::optional<Shading> shading;  // unset: the model's own look
+  ColorMap color_map = ColorMap::none;  // colours from where each vertex lies (LookSpec::color_map)
   bool orthographic = false;
   bool antialias = false;  // 4x multisampling
   bool paused = false;
@@ -71,7 +72,7 @@ class Showing {
   Frame frame(double seconds, float aspect, const Toggles& toggles, const Orbit& orbit, const LookSpec& base = {});
 
  private:
-  void rebuild_scene(int shuffles);
+  void rebuild_scene(int shuffles, ColorMap color_map);
 
   struct Motion;  // a model's animation: the model as read, a Poser, the clip's length
 
@@ -83,6 +84,7 @@ class Showing {
   Framing framing_;
   Scene scene_;
   int scene_shuffles_ = -1;  // the shuffle the scene was built with
+  ColorMap scene_color_map_ = ColorMap::none;  // and its colour map
 };
 
 // Draws what is shown at `seconds` of its animation into `target`, first (re)made at width x height with the

@@ -28,7 +28,8 @@ shot() {
 # The torus a third of a second in (30 frames at 1/60 s), turned enough that it hides parts of itself.
 torus=(--demo torus --frames 20)
 for case in "default:" "wire:w" "edges:e" "nodepth:z" "cullback:c" "painter:p" "painter_shuffled:ps" \
-  "nodepth_shuffled:zs" "flat:2" "normals:6" "ortho:o" "antialias:a" "paused: " "help:h"; do
+  "nodepth_shuffled:zs" "flat:2" "normals:6" "ortho:o" "antialias:a" "paused: " "help:h" "colourmap:m" \
+  "colourmap_off:mm"; do
   name=${case%%:*}
   keys=${case#*:}
   if shot "$name" "${torus[@]}" --keys "$keys"; then
@@ -74,6 +75,11 @@ n = changed('painter', 'painter_shuffled')
 check('p + s: the painter\'s algorithm sorts a shuffled order back into the same picture', n == 0, f'{n} pixels differ')
 n = changed('nodepth', 'nodepth_shuffled')
 check('z + s: without a depth test the order shows', n > 100, f'{n} pixels differ')
+n = changed('default', 'colourmap')
+hues = len({(r // 32, g // 32, b // 32) for r, g, b in image('colourmap')}) - len({(r // 32, g // 32, b // 32) for r, g, b in image('default')})
+check('m: the height colour map colours the torus', n > 1000 and hues > 5, f'{n} pixels differ, {hues} more hues')
+n = changed('default', 'colourmap_off')
+check('m twice: back to its own colours', n == 0, f'{n} pixels differ')
 n = changed('default', 'paused')
 check('space: paused at the start shows another moment', n > 100, f'{n} pixels differ')
 print(f'{sum(results)} passed, {len(results) - sum(results)} failed')

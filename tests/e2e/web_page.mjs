@@ -89,6 +89,17 @@ try {
   // The page's picture of the sample model, for web_page.sh to compare with the CLI's.
   const png = await page.evaluate(() => document.getElementById('view').toDataURL('image/png'));
   fs.writeFileSync(path.join(outDir, 'page_wuson.png'), Buffer.from(png.split(',')[1], 'base64'));
+  // m: the height colour map, and m again back to the model's own colours.
+  await page.keyboard.press('m');
+  await settle(page);
+  const mapped = await snapshot(page);
+  check(mapped.hash !== sample.hash && Math.abs(mapped.drawn - sample.drawn) < 0.01 &&
+        (await page.getAttribute('button[data-key="m"]', 'aria-pressed')) === 'true' &&
+        (await text(page, 'status')).includes('colour map height'), 'm colours the model by height, in its outline',
+        `${(100 * sample.drawn).toFixed(1)}% -> ${(100 * mapped.drawn).toFixed(1)}% drawn`);
+  await page.keyboard.press('m');
+  await settle(page);
+  check((await snapshot(page)).hash === sample.hash, 'm again shows the model\'s own colours');
 
   const spider = fs.readFileSync('/usr/share/assimp/models/STL/Spider_binary.stl');
   // Gaussian splats in the .splat format: a 20x20 grid of red to blue Gaussians, opacity 0.8.
