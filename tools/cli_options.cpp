@@ -230,7 +230,8 @@ void add_look_options(CLI::App& app, LookArgs& args) {
       "Points: a square or a disc of --point-size pixels (default: square)");
   add_enum_option<ColorMap>(
       app, "--color-map", color_map_names(), [&args](ColorMap m) { args.color_map = m; },
-      "Colour every vertex by its height along the up axis, blue (lowest) to red (highest), or not (default: none)");
+      "Colour every vertex by its height along the up axis, blue (lowest) to red (highest), or by a scan's "
+      "intensity, black (weakest) to white (strongest), or not (default: none)");
   app.add_option("--eye-dome-lighting", args.eye_dome_lighting,
                  "Eye-dome lighting's strength, 0 (off) to " + std::to_string(static_cast<int>(kMaxEyeDomeLighting)) +
                      " (default: " + std::to_string(static_cast<int>(kDefaultEyeDomeLighting)) +

@@ -96,7 +96,7 @@ EMSCRIPTEN_KEEPALIVE const char* facet_page_open_environment(const char* path) {
 // A key as typed ('w', '1', ' '): 1 if it is one of the viewer's keys, else 0.
 EMSCRIPTEN_KEEPALIVE int facet_page_key(int key) {
   if (key <= 0 || key > 127) return 0;
-  return facet::viewer::apply_key(static_cast<char>(key), page().toggles, page().orbit) !=
+  return facet::viewer::apply_key(static_cast<char>(key), page().toggles, page().orbit, &page().showing) !=
          facet::viewer::KeyAction::unknown;
 }
 

@@ -12,7 +12,7 @@ const char* const kHelpText =
     "c  culling: back, front, none\n"
     "z  depth test on/off    p  painter's algorithm\n"
     "s  shuffle the triangle order\n"
-    "m  colour map: by height, or the model's own colours\n"
+    "m  colour map: by height, by intensity (scans), or the model's own colours\n"
     "1-7  unlit, flat, gouraud, phong, blinn-phong, normals, depth\n"
     "0  automatic: the model's own shading\n"
     "o  orthographic/perspective\n"
@@ -23,7 +23,7 @@ const char* const kHelpText =
     "mouse: left-drag orbits, right- or shift-drag pans, wheel zooms\n"
     "drop a model file on the window to open it";
 
-KeyAction apply_key(char key, Toggles& t, Orbit& orbit) {
+KeyAction apply_key(char key, Toggles& t, Orbit& orbit, const Showing* showing) {
   switch (key) {
     case 'w': t.wireframe = !t.wireframe; break;
     case 'e': t.edges = !t.edges; break;
@@ -35,11 +35,14 @@ KeyAction apply_key(char key, Toggles& t, Orbit& orbit) {
     case 'z': t.depth_test = !t.depth_test; break;
     case 'p': t.painter = !t.painter; break;
     case 's': ++t.shuffles; break;
-    case 'm': {  // the next of the library's colour maps, back to none after the last
+    case 'm': {  // the next of the library's colour maps that can be drawn, back to none after the last
       const auto maps = color_map_names();
       std::size_t k = 0;
       while (k < maps.size() && maps[k].value != t.color_map) ++k;
-      t.color_map = maps[(k + 1) % maps.size()].value;
+      do {
+        k = (k + 1) % maps.size();
+      } while (showing && !showing->supports(maps[k].value));
+      t.color_map = maps[k].value;
       break;
     }
     case '0': t.shading.reset(); break;

@@ -115,7 +115,7 @@ int run_viewer(const ViewerOptions& options) {
   Toggles toggles;
   Orbit orbit;
   for (const char key : options.keys)
-    if (apply_key(key, toggles, orbit) == KeyAction::unknown)
+    if (apply_key(key, toggles, orbit, &showing) == KeyAction::unknown)
       throw std::invalid_argument(std::string("--keys: '") + key + "' is not a viewer key (facet view --help)");
 
   Window window("facet view - " + showing.title(), options.width, options.height);
@@ -142,7 +142,7 @@ int run_viewer(const ViewerOptions& options) {
       switch (event.type) {
         case SDL_QUIT: running = false; break;
         case SDL_KEYDOWN:
-          if (const char key = key_of(event.key); key && apply_key(key, toggles, orbit) == KeyAction::quit)
+          if (const char key = key_of(event.key); key && apply_key(key, toggles, orbit, &showing) == KeyAction::quit)
             running = false;
           break;
         case SDL_MOUSEMOTION: {

@@ -108,8 +108,9 @@ Showing::Frame Showing::frame(double seconds, float aspect, const Toggles& toggl
     posed_at_ = seconds;
     scene_shuffles_ = -1;
   }
-  if (scene_shuffles_ != toggles.shuffles || scene_color_map_ != toggles.color_map)
-    rebuild_scene(toggles.shuffles, toggles.color_map);
+  // A model opened under a colour map it cannot take (no intensities) shows its own colours.
+  const ColorMap map = supports(toggles.color_map) ? toggles.color_map : ColorMap::none;
+  if (scene_shuffles_ != toggles.shuffles || scene_color_map_ != map) rebuild_scene(toggles.shuffles, map);
   LookSpec look = base;
   look.shading = toggles.shading;
   look.wireframe = toggles.wireframe;

@@ -57,6 +57,11 @@ class Showing {
   static Showing demo(Demo demo);
 
   const std::string& title() const { return title_; }
+  // Whether the colour map can be drawn: intensity needs a model that has intensities.
+  bool supports(ColorMap map) const {
+    return map != ColorMap::intensity || (mesh_ && !mesh_->positions.empty() &&
+                                          mesh_->intensities.size() == mesh_->positions.size());
+  }
   bool animated() const { return demo_.has_value() || motion_ != nullptr; }
 
   // The frame at `seconds` of the animation for an aspect (width / height) with the toggles and orbit applied:

@@ -124,6 +124,9 @@ struct Mesh {
   // the pixel's cotangent frame, as for meshes without tangents).
   std::vector<glm::vec4> tangents;
   std::vector<glm::vec4> colors;
+  // A scanner's return strength per vertex, as the file gives it (PLY `intensity`, PCD `intensity`, Leica .pts),
+  // for the intensity colour map; empty or one per position.
+  std::vector<float> intensities;
   std::vector<std::uint32_t> indices;        // 3 per triangle, counter-clockwise seen from the front
   // Vertices drawn as points (Renderer::draw_points), one index each: a point cloud's vertices, glTF POINTS
   // primitives. A mesh may have triangles, points or both.

@@ -24,9 +24,10 @@ namespace facet {
 inline constexpr double kDefaultAnimationFps = 30.0;
 inline constexpr double kMaxAnimationFps = 240.0;
 
-// Colours given to every vertex from where it lies (LookSpec::color_map): none (the model's own), or by height along
-// the model's up axis, through blue, cyan, green and yellow to red from the lowest vertex to the highest.
-enum class ColorMap { none, height };
+// Colours given to every vertex (LookSpec::color_map): none (the model's own); by height along the model's up axis,
+// through blue, cyan, green and yellow to red from the lowest vertex to the highest; or by intensity (a scan's
+// return strength, Mesh::intensities), grey from black at the weakest to white at the strongest.
+enum class ColorMap { none, height, intensity };
 
 // The look of a render. Unset fields take the defaults of `facet render`.
 struct LookSpec {
@@ -199,7 +200,7 @@ std::shared_ptr<const Environment> environment_for(const LookSpec& look, UpAxis 
 void apply_look_color(Mesh& mesh, const LookSpec& look);
 // The look's colour map (ColorMap) as the mesh's vertex colours, replacing its vertex and face colours; heights along
 // `up` (CameraSpec::up). Does nothing for ColorMap::none. Throws std::invalid_argument when the look also sets a
-// colour.
+// colour, or asks for intensity of a mesh without intensities.
 void apply_color_map(Mesh& mesh, const LookSpec& look, UpAxis up);
 // The eye-dome lighting a look gives a model, as loaded: the look's strength, else kDefaultEyeDomeLighting for a
 // bare cloud (points, no triangles or splats, neither normals nor colours of its own), which would otherwise draw as

@@ -185,7 +185,7 @@ def render(model, width=640, height=480, buffers=("color", "depth"), shading="au
     OffscreenRenderer.render_buffers, ids holding the file's node and face ids) plus "camera", the camera as
     render_buffers' camera_json gives it. The model is read within the limits Mesh.from_file takes.
     eye_dome_lighting: its strength, 0 (off) to 100, as `--eye-dome-lighting`; None: on for a point cloud with
-    neither normals nor colours, off otherwise. color_map: "none" or "height", as `--color-map`.
+    neither normals nor colours, off otherwise. color_map: "none", "height" or "intensity", as `--color-map`.
     animation, time: the model's animation (a glTF file's, by name or index; None: the first) posed `time` seconds
     in, as `--animation` and `--time`; skins and morph targets are drawn at rest without either. The "motion"
     buffer (H x W x 2 float32) is each pixel's motion on the image, in pixels (+x right, +y down), from `time` to

@@ -337,6 +337,25 @@ def test_a_cloud_coloured_by_height_runs_from_blue_below_to_red_above(tmp_path):
         facet.render(path, 48, 64, color_map="rainbow")
 
 
+def test_a_scan_coloured_by_intensity_runs_from_black_to_white(tmp_path):
+    heights = np.linspace(-1, 1, 400)
+    path = tmp_path / "scan.xyz"
+    np.savetxt(path, np.column_stack([np.zeros_like(heights), heights, np.zeros_like(heights), 500 + 100 * heights]))
+    color = facet.render(path, 48, 64, buffers=("color",), threads=1, samples=1, background=(1, 0, 0, 1),
+                         color_map="intensity")["color"].astype(int)
+    drawn = color[(color != (255, 0, 0)).any(axis=2)]
+    assert len(drawn) > 50 and (drawn[:, 0] == drawn[:, 1]).all() and (drawn[:, 1] == drawn[:, 2]).all()
+    assert drawn[:, 0].min() < 40 and drawn[:, 0].max() > 215  # the weakest black, the strongest white
+    with pytest.raises(Exception, match="no intensities"):
+        facet.render(_write_cloud(tmp_path), 48, 64, color_map="intensity")
+
+
+def _write_cloud(tmp_path):
+    path = tmp_path / "plain.xyz"
+    np.savetxt(path, np.eye(3))
+    return path
+
+
 def test_a_gaussian_shows_in_the_depth_and_mask_where_it_covers_half_a_pixel(tmp_path):
     names = ["x", "y", "z", "f_dc_0", "f_dc_1", "f_dc_2", "opacity", "scale_0", "scale_1", "scale_2",
              "rot_0", "rot_1", "rot_2", "rot_3"]

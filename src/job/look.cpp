@@ -112,6 +112,23 @@ void apply_look_color(Mesh& mesh, const LookSpec& look) {
 void apply_color_map(Mesh& mesh, const LookSpec& look, UpAxis up) {
   if (look.color_map == ColorMap::none) return;
   if (look.color) throw std::invalid_argument("colour map: cannot be combined with a colour for the whole model");
+  if (look.color_map == ColorMap::intensity) {
+    if (mesh.intensities.size() != mesh.positions.size() || mesh.positions.empty())
+      throw std::invalid_argument(
+          "colour map intensity: the model has no intensities (a PLY or PCD intensity property, a .pts file, or "
+          "x y z intensity text)");
+    float weakest = std::numeric_limits<float>::infinity(), strongest = -weakest;
+    for (const float i : mesh.intensities)
+      if (std::isfinite(i)) weakest = std::min(weakest, i), strongest = std::max(strongest, i);
+    mesh.face_colors.clear();
+    mesh.colors.resize(mesh.positions.size());
+    for (std::size_t v = 0; v < mesh.positions.size(); ++v) {
+      const float i = mesh.intensities[v];
+      const float t = strongest > weakest && std::isfinite(i) ? (i - weakest) / (strongest - weakest) : 0.0f;
+      mesh.colors[v] = glm::vec4(glm::vec3(t), 1.0f);
+    }
+    return;
+  }
   // Display values (Mesh::colors), evenly spaced from the lowest height to the highest.
   constexpr glm::vec3 kStops[] = {
       {0.0f, 0.0f, 1.0f}, {0.0f, 1.0f, 1.0f}, {0.0f, 1.0f, 0.0f}, {1.0f, 1.0f, 0.0f}, {1.0f, 0.0f, 0.0f}};

@@ -31,7 +31,8 @@ std::span<const Named<PointShape>> point_shape_names() {
 }
 
 std::span<const Named<ColorMap>> color_map_names() {
-  static constexpr Named<ColorMap> kNames[] = {{"none", ColorMap::none}, {"height", ColorMap::height}};
+  static constexpr Named<ColorMap> kNames[] = {
+      {"none", ColorMap::none}, {"height", ColorMap::height}, {"intensity", ColorMap::intensity}};
   return kNames;
 }
 

@@ -169,8 +169,33 @@ if "$facet" render "$scratch/splats.ply" --turntable 4 --resolution 96,72 --outp
 else
   bad "splat turntable GIF" "${msg:-$(cat "$scratch/splats.err")}"
 fi
+# A scan's intensity as a grey ramp: points along x whose intensity rises with x, on a red background.
+python3 -c '
+for k in range(200):
+    print(k / 100 - 1, (k % 10) / 50, 0, 20 + 3 * k)' >"$scratch/ramp.xyz"
+if "$facet" render "$scratch/ramp.xyz" --color-map intensity --point-size 4 --background-color 1,0,0 --samples 1 \
+  --resolution 240,120 --output "$scratch/ramp.png" 2>"$scratch/ramp.log" &&
+  msg=$(cat "$e2e_lib/png.py" - <<'PY' | python3 - "$scratch/ramp.png" 2>&1
+import sys
+w, h, ch, rows = read_png(sys.argv[1])
+pixels = [tuple(row[i:i + 3]) for row in rows for i in range(0, w * ch, ch)]
+drawn = [p for p in pixels if p != (255, 0, 0)]
+greys = [p[0] for p in drawn if p[0] == p[1] == p[2]]
+assert len(greys) > 0.9 * len(drawn) > 200, f"{len(greys)} grey of {len(drawn)} drawn pixels"
+assert min(greys) < 40 and max(greys) > 215, f"greys from {min(greys)} to {max(greys)}"
+drawn_at = sorted((i % w, p[0]) for i, p in enumerate(pixels) if p != (255, 0, 0))
+half = len(drawn_at) // 2
+left, right = [g for _, g in drawn_at[:half]], [g for _, g in drawn_at[half:]]
+assert sum(left) / len(left) + 60 < sum(right) / len(right), "darker on the left, where the intensity is low"
+print(f"{len(drawn)} points' pixels, grey {min(greys)} to {max(greys)}, darker to the left")
+PY
+); then
+  ok "--color-map intensity: $msg"
+else
+  bad "--color-map intensity" "${msg:-$(cat "$scratch/ramp.log")}"
+fi
 for bad_points in "--point-size 0" "--point-size 300" "--point-shape star" "--eye-dome-lighting -1" \
-  "--eye-dome-lighting 101" "--color-map rainbow" "--color-map height --color 1,0,0"; do
+  "--eye-dome-lighting 101" "--color-map rainbow" "--color-map height --color 1,0,0" "--color-map intensity"; do
   # shellcheck disable=SC2086  # the flags are meant to split
   if "$facet" render "$scratch/helix.xyz" $bad_points --output "$scratch/bad_points.png" 2>"$scratch/bad_points.log"; then
     bad "$bad_points" "accepted"

@@ -120,6 +120,27 @@ if shot skin_paused "$skin" --frames 2 --keys " " && shot skin_stepped "$skin" -
 else
   bad "animation steps" "$(cat "$scratch/skin_stepped.err")"
 fi
+# m steps through the colour maps a model can take: a scan with intensities takes height, then intensity (grey).
+python3 -c '
+for k in range(200):
+    print(k / 100 - 1, (k % 10) / 50, 0, 20 + 3 * k)' >"$scratch/ramp.xyz"
+if shot ramp_intensity "$scratch/ramp.xyz" --frames 1 --keys mm && shot ramp_own "$scratch/ramp.xyz" --frames 1 --keys mmm &&
+  msg=$(cat "$e2e_lib/png.py" - <<'PY' | python3 - "$scratch/ramp_intensity.png" "$scratch/ramp_own.png" 2>&1
+import sys
+def pixels(path):
+    w, h, ch, rows = read_png(path)
+    return [tuple(row[i:i + 3]) for row in rows for i in range(0, w * ch, ch)]
+mapped, own = pixels(sys.argv[1]), pixels(sys.argv[2])
+changed = [p for p, q in zip(mapped, own) if p != q]
+greys = sorted({p[0] for p in changed if p[0] == p[1] == p[2]})
+assert len(changed) > 100 and len(greys) > 20, f"{len(changed)} pixels changed, {len(greys)} greys"
+print(f"{len(changed)} pixels grey against m m m (no map), {greys[0]} to {greys[-1]}")
+PY
+); then
+  ok "m m: a scan by intensity: $msg"
+else
+  bad "m m: a scan by intensity" "${msg:-$(cat "$scratch/ramp_intensity.err")}"
+fi
 expect_error() {
   local name=$1 status=$2
   shift 2

@@ -191,6 +191,29 @@ TEST(ColorMap, HeightRunsFromBlueAtTheBottomToRedAtTheTop) {
   EXPECT_THROW(apply_color_map(by_z, look, UpAxis::pos_z), std::invalid_argument);
 }
 
+// The intensity colour map: grey from black at the weakest return to white at the strongest, a non-finite
+// intensity black; a mesh without intensities is refused, naming what would give them.
+TEST(ColorMap, IntensityRunsFromBlackToWhite) {
+  Mesh mesh;
+  for (int k = 0; k < 4; ++k) mesh.positions.emplace_back(static_cast<float>(k), 0.0f, 0.0f);
+  mesh.points = {0, 1, 2, 3};
+  LookSpec look;
+  look.color_map = ColorMap::intensity;
+  try {
+    apply_color_map(mesh, look, UpAxis::pos_y);
+    ADD_FAILURE() << "a mesh without intensities was coloured";
+  } catch (const std::invalid_argument& e) {
+    EXPECT_NE(std::string(e.what()).find("the model has no intensities"), std::string::npos) << e.what();
+  }
+  mesh.intensities = {200.0f, 100.0f, 150.0f, std::nanf("")};
+  apply_color_map(mesh, look, UpAxis::pos_y);
+  ASSERT_EQ(mesh.colors.size(), 4u);
+  EXPECT_EQ(mesh.colors[0], glm::vec4(1, 1, 1, 1));
+  EXPECT_EQ(mesh.colors[1], glm::vec4(0, 0, 0, 1));
+  EXPECT_EQ(mesh.colors[2], glm::vec4(0.5f, 0.5f, 0.5f, 1));
+  EXPECT_EQ(mesh.colors[3], glm::vec4(0, 0, 0, 1));
+}
+
 }  // namespace
 }  // namespace facet
 

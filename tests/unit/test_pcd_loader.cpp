@@ -115,6 +115,14 @@ TEST(PcdLoader, BinaryAndCompressedReadTheSameCloud) {
 #endif
 }
 
+TEST(PcdLoader, IntensityIsKeptPerPoint) {
+  const std::string text = header("x y z intensity", "4 4 4 4", "F F F F", 3, "ascii") +
+                           "1 2 3 40\nnan 0 0 50\n4 5 6 nan\n";
+  const Mesh m = load_pcd(text, "i.pcd");
+  ASSERT_EQ(m.positions.size(), 2u);  // the NaN position is skipped with its intensity
+  EXPECT_EQ(m.intensities, (std::vector<float>{40, 0}));  // a NaN intensity reads as 0
+}
+
 TEST(PcdLoader, NormalsAreReadWithTheirThreeFields) {
   std::string body = header("x y z normal_x normal_y normal_z curvature", "4 4 4 4 4 4 4", "F F F F F F F", 1,
                             "binary");

@@ -260,6 +260,14 @@ TEST_F(PlyLoader, PointCloudsLoadAsPointsAndEmptyMeshesAreRefused) {
     EXPECT_EQ(cloud.colors[1], glm::vec4(1, 0, 1, 1)) << name;
     w.header("element face 0").header("property list uchar int vertex_indices");
   }
+  // A scan's intensity, under the names scanners and CloudCompare write, as the file gives it.
+  for (const char* name : {"intensity", "scalar_Intensity"}) {
+    const Mesh scan = load_model(write("scan.ply", std::string("ply\nformat ascii 1.0\nelement vertex 2\n"
+                                                               "property float x\nproperty float y\n"
+                                                               "property float z\nproperty ushort ") +
+                                                       name + "\nend_header\n0 0 0 1000\n1 1 1 65535\n"));
+    EXPECT_EQ(scan.intensities, (std::vector<float>{1000, 65535})) << name;
+  }
   EXPECT_EQ(problem(write("nothing.ply",
                           "ply\nformat ascii 1.0\nelement vertex 0\nproperty float x\n"
                           "property float y\nproperty float z\nend_header\n")),

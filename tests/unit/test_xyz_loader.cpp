@@ -54,6 +54,15 @@ TEST(XyzLoader, PtsRowsAreIntensityThenColourAfterAPointCount) {
   ASSERT_EQ(m.colors.size(), 2u);
   EXPECT_EQ(m.colors[1], glm::vec4(0, 1, 0, 1));
   EXPECT_EQ(m.positions[1], glm::vec3(1, 1, 1));
+  EXPECT_EQ(m.intensities, (std::vector<float>{-1200, 300}));
+}
+
+// x y z and one more column: a scan's intensity, as LiDAR tools export text.
+TEST(XyzLoader, OneMoreColumnIsIntensity) {
+  const Mesh m = load_xyz("0 0 0 17\n1 0 0 3.5\n", "scan.xyz");
+  EXPECT_EQ(m.intensities, (std::vector<float>{17, 3.5f}));
+  EXPECT_TRUE(m.colors.empty());
+  EXPECT_TRUE(m.normals.empty());
 }
 
 TEST(XyzLoader, NineColumnsHoldColoursAndNormalsInEitherOrder) {

@@ -155,7 +155,7 @@ glm::vec4 packed_color(std::uint32_t bits) {
 
 // What the cloud's fields give: the first element of each field read, by name.
 struct Roles {
-  int x = -1, y = -1, z = -1, nx = -1, ny = -1, nz = -1, rgb = -1;
+  int x = -1, y = -1, z = -1, nx = -1, ny = -1, nz = -1, rgb = -1, intensity = -1;
 };
 
 Roles roles_of(const Header& h, const std::string& source) {
@@ -170,6 +170,7 @@ Roles roles_of(const Header& h, const std::string& source) {
     else if (name == "normal_y") r.ny = index;
     else if (name == "normal_z") r.nz = index;
     else if ((name == "rgb" || name == "rgba") && h.fields[i].size == 4) r.rgb = index;
+    else if (name == "intensity") r.intensity = index;
   }
   if (r.x < 0 || r.y < 0 || r.z < 0) throw InputError(source, "the fields have no x, y and z");
   if (r.nx < 0 || r.ny < 0 || r.nz < 0) r.nx = r.ny = r.nz = -1;
@@ -188,6 +189,10 @@ void add_point(const Roles& r, Value value, std::uint32_t color_bits, Mesh& mesh
   mesh.positions.push_back(p);
   if (r.nx >= 0) mesh.normals.push_back(glm::vec3(narrow(value(r.nx)), narrow(value(r.ny)), narrow(value(r.nz))));
   if (r.rgb >= 0) mesh.colors.push_back(packed_color(color_bits));
+  if (r.intensity >= 0) {
+    const float intensity = narrow(value(r.intensity));
+    mesh.intensities.push_back(std::isfinite(intensity) ? intensity : 0.0f);
+  }
 }
 
 // Binary points, one after another (binary), or each field's values for every point in turn (binary_compressed,
@@ -252,6 +257,7 @@ Mesh load_pcd(std::string_view bytes, const std::string& source) {
     mesh.positions.reserve(h.points);
     if (roles.nx >= 0) mesh.normals.reserve(h.points);
     if (roles.rgb >= 0) mesh.colors.reserve(h.points);
+    if (roles.intensity >= 0) mesh.intensities.reserve(h.points);
   };
   const auto* data = reinterpret_cast<const unsigned char*>(body.data());
   // Each check bounds what a header may make the reader allocate by the bytes that follow it.

@@ -175,7 +175,7 @@ class AsciiReader {
 };
 
 // What each vertex property feeds; the first property of each role wins and later ones are skipped.
-enum Role : std::uint8_t { kX, kY, kZ, kNx, kNy, kNz, kRed, kGreen, kBlue, kAlpha, kU, kV, kRoleCount, kSkip };
+enum Role : std::uint8_t { kX, kY, kZ, kNx, kNy, kNz, kRed, kGreen, kBlue, kAlpha, kU, kV, kIntensity, kRoleCount, kSkip };
 
 Role role_of(std::string_view name) {
   struct Name {
@@ -203,7 +203,11 @@ Role role_of(std::string_view name) {
                              {"diffuse_red", kRed},
                              {"diffuse_green", kGreen},
                              {"diffuse_blue", kBlue},
-                             {"diffuse_alpha", kAlpha}};
+                             {"diffuse_alpha", kAlpha},
+                             {"intensity", kIntensity},
+                             {"Intensity", kIntensity},
+                             {"scalar_intensity", kIntensity},
+                             {"scalar_Intensity", kIntensity}};
   for (const Name& n : kNames)
     if (n.name == name) return n.role;
   return kSkip;
@@ -212,7 +216,7 @@ Role role_of(std::string_view name) {
 struct VertexPlan {
   std::vector<Role> roles;       // one per property
   std::vector<double> divisors;  // integer colours are scaled to [0, 1] by their type's maximum; the rest by 1
-  bool normals = false, colors = false, uvs = false;
+  bool normals = false, colors = false, uvs = false, intensities = false;
 };
 
 VertexPlan plan_vertices(const Element& e, const std::string& source) {
@@ -236,6 +240,7 @@ VertexPlan plan_vertices(const Element& e, const std::string& source) {
   plan.normals = seen[kNx] && seen[kNy] && seen[kNz];
   plan.colors = seen[kRed] && seen[kGreen] && seen[kBlue];
   plan.uvs = seen[kU] && seen[kV];
+  plan.intensities = seen[kIntensity];
   return plan;
 }
 
@@ -283,6 +288,7 @@ class BodyReader {
     if (vertex_plan_.normals) mesh_.normals.reserve(vertex_.count);
     if (vertex_plan_.colors) mesh_.colors.reserve(vertex_.count);
     if (vertex_plan_.uvs) mesh_.uvs.reserve(vertex_.count);
+    if (vertex_plan_.intensities) mesh_.intensities.reserve(vertex_.count);
     reserve_triangles(body_bytes);
     // Faces need the vertices' positions to triangulate; PLY allows them first, so they may be read after.
     std::optional<Reader> faces_at;
@@ -318,6 +324,7 @@ class BodyReader {
       if (vertex_plan_.normals) mesh_.normals.resize(vertices);
       if (vertex_plan_.colors) mesh_.colors.resize(vertices);
       if (vertex_plan_.uvs) mesh_.uvs.resize(vertices);
+      if (vertex_plan_.intensities) mesh_.intensities.resize(vertices);
       if (!in_two(
               [&] {
                 const char* p = body;
@@ -447,7 +454,7 @@ class BodyReader {
   using Values = std::array<float, kRoleCount>;
 
   Values vertex_values(Reader& in) {
-    Values v = {0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0};
+    Values v = {0, 0, 0, 0, 0, 0, 0, 0, 0, 1, 0, 0, 0};
     for (std::size_t j = 0; j < vertex_.properties.size(); ++j) {
       const Property& p = vertex_.properties[j];
       const Role role = vertex_plan_.roles[j];
@@ -467,6 +474,7 @@ class BodyReader {
     if (vertex_plan_.normals) mesh_.normals.push_back({v[kNx], v[kNy], v[kNz]});
     if (vertex_plan_.colors) mesh_.colors.push_back({v[kRed], v[kGreen], v[kBlue], v[kAlpha]});
     if (vertex_plan_.uvs) mesh_.uvs.push_back({v[kU], v[kV]});
+    if (vertex_plan_.intensities) mesh_.intensities.push_back(v[kIntensity]);
   }
 
   void store_vertex(std::uint64_t i, const Values& v) {
@@ -474,6 +482,7 @@ class BodyReader {
     if (vertex_plan_.normals) mesh_.normals[i] = {v[kNx], v[kNy], v[kNz]};
     if (vertex_plan_.colors) mesh_.colors[i] = {v[kRed], v[kGreen], v[kBlue], v[kAlpha]};
     if (vertex_plan_.uvs) mesh_.uvs[i] = {v[kU], v[kV]};
+    if (vertex_plan_.intensities) mesh_.intensities[i] = v[kIntensity];
   }
 
   // Appends a face's triangles to out.indices (and its number to numbering); polygon is scratch. Positions come

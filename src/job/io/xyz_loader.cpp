@@ -110,13 +110,20 @@ Mesh load_xyz(std::string_view text, const std::string& source) {
   mesh.positions.reserve(rows);
   for (std::size_t r = 0; r < values.size(); r += columns)
     mesh.positions.push_back(glm::vec3(values[r], values[r + 1], values[r + 2]));
-  // What the columns after x y z hold, by their count: 3 (normals when every row's are unit vectors, else colours);
-  // 4 (.pts: intensity, then r g b); 6 (colours and normals, in whichever order the unit vectors say).
+  // What the columns after x y z hold, by their count: 1 (intensity); 3 (normals when every row's are unit vectors,
+  // else colours); 4 (.pts: intensity, then r g b); 6 (colours and normals, in whichever order the unit vectors say).
   const std::size_t extra = columns - 3;
-  if (extra == 3) {
+  const auto read_intensities = [&] {
+    mesh.intensities.reserve(rows);
+    for (std::size_t r = 0; r < values.size(); r += columns) mesh.intensities.push_back(values[r + 3]);
+  };
+  if (extra == 1) {
+    read_intensities();
+  } else if (extra == 3) {
     if (unit_vectors(values, columns, 3)) read_normals(values, columns, 3, mesh);
     else read_colors(values, columns, 3, mesh);
   } else if (extra == 4) {
+    read_intensities();
     read_colors(values, columns, 4, mesh);
   } else if (extra == 6) {
     const bool normals_first = unit_vectors(values, columns, 3);
@@ -124,7 +131,7 @@ Mesh load_xyz(std::string_view text, const std::string& source) {
     read_colors(values, columns, normals_first ? 6 : 3, mesh);
   } else if (extra > 0) {
     warn(source, "ignored " + std::to_string(extra) + " column(s) after x y z (" + std::to_string(columns) +
-                     " numbers per point: 3, 6, 7 or 9 are understood)");
+                     " numbers per point: 3, 4, 6, 7 or 9 are understood)");
   }
   mesh.points_at_every_vertex();
   validate(mesh, source);

@@ -345,12 +345,14 @@ void detail::compute_crease_normals_in_parts(Mesh& mesh, float crease_angle_radi
   // Attributes with one entry per vertex are copied along; a wrongly sized one is left alone (the mesh was already
   // invalid, and users check sizes against positions).
   const bool copy_uvs = mesh.uvs.size() == n, copy_uvs1 = mesh.uvs1.size() == n, copy_colors = mesh.colors.size() == n;
+  const bool copy_intensities = mesh.intensities.size() == n;
   mesh.positions.resize(total);
   mesh.normals.assign(total, glm::vec3(0, 0, 1));
   mesh.tangents.clear();  // made for the normals replaced here
   if (copy_uvs) mesh.uvs.resize(total);
   if (copy_uvs1) mesh.uvs1.resize(total);
   if (copy_colors) mesh.colors.resize(total);
+  if (copy_intensities) mesh.intensities.resize(total);
   in_parts(parts, [&](int p) {
     std::size_t next = n + copies[static_cast<std::size_t>(p)];
     for (std::size_t v = part_begin(n, p, parts); v < part_begin(n, p + 1, parts); ++v) {
@@ -369,6 +371,7 @@ void detail::compute_crease_normals_in_parts(Mesh& mesh, float crease_angle_radi
           if (copy_uvs) mesh.uvs[target] = mesh.uvs[v];
           if (copy_uvs1) mesh.uvs1[target] = mesh.uvs1[v];
           if (copy_colors) mesh.colors[target] = mesh.colors[v];
+          if (copy_intensities) mesh.intensities[target] = mesh.intensities[v];
         } else {
           target = mesh.indices[bucketed[i - 1]];  // same run as the previous corner, already re-pointed
         }

@@ -39,6 +39,7 @@ void validate(const Mesh& mesh, const std::string& source) {
   check_per_vertex(mesh.uvs1, "uvs1", n, source);
   check_per_vertex(mesh.tangents, "tangents", n, source);
   check_per_vertex(mesh.colors, "colors", n, source);
+  check_per_vertex(mesh.intensities, "intensities", n, source);
   if (mesh.indices.size() % 3 != 0)
     throw InputError(source, "index count " + std::to_string(mesh.indices.size()) + " is not a multiple of 3");
   const std::size_t triangles = mesh.triangle_count();

@@ -43,7 +43,7 @@ bool is_identity(const glm::mat4& m) { return m == glm::mat4(1.0f); }
 Mesh flatten(Model model, const std::string& source) {
   std::size_t vertices = 0, triangles = 0, points = 0, splats = 0;
   bool all_normals = true, any_uvs = false, any_uvs1 = false, any_tangents = false, any_colors = false;
-  bool any_face_colors = false;
+  bool any_face_colors = false, all_intensities = true;
   bool any_ids = false;
   for (const ModelInstance& instance : model.instances) {
     if (instance.mesh >= model.meshes.size())
@@ -61,6 +61,7 @@ Mesh flatten(Model model, const std::string& source) {
     any_uvs1 = any_uvs1 || !mesh.uvs1.empty();
     any_tangents = any_tangents || !mesh.tangents.empty();
     any_colors = any_colors || !mesh.colors.empty();
+    all_intensities = all_intensities && !mesh.intensities.empty();
     any_face_colors = any_face_colors || !mesh.face_colors.empty();
     any_ids = any_ids || instance.id != 0;
   }
@@ -137,6 +138,8 @@ Mesh flatten(Model model, const std::string& source) {
       if (mesh.colors.empty()) out.colors.resize(out.positions.size(), glm::vec4(1.0f));
       else out.colors.insert(out.colors.end(), mesh.colors.begin(), mesh.colors.end());
     }
+    // Intensities are the file's own scale: kept only when every mesh has them.
+    if (all_intensities) out.intensities.insert(out.intensities.end(), mesh.intensities.begin(), mesh.intensities.end());
     if (any_face_colors) {
       if (mesh.face_colors.empty())
         out.face_colors.resize(out.face_colors.size() + mesh.triangle_count(), glm::vec4(1.0f));
