@@ -4,6 +4,7 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
 #include <atomic>
 #include <chrono>
 #include <csignal>
@@ -223,14 +224,16 @@ bool JobLines::next(BatchJob& job) {
 
 namespace {
 
-// The output names a batch's jobs write, in a Bloom filter of fixed size (8 MiB; pages are touched only as bits
-// are set): whether a name may have been written before is known in constant memory however many jobs the file
-// holds. A name it reports is confirmed by a second pass over those names alone. Four bits a name: at a million
-// outputs about ten names are confirmed needlessly; at ten million, a few hundred thousand.
+// The output names a batch's jobs write, in a Bloom filter of a bit per byte of the jobs file (a job line takes
+// tens of bytes), between 8 KiB and 8 MiB: whether a name may have been written before is known in memory that no
+// longer grows past a few million jobs. A name it reports is confirmed by a second pass over those names alone. Four
+// bits a name: at a million outputs about ten names are confirmed needlessly; at ten million, a few hundred thousand.
 class OutputNames {
  public:
-  OutputNames() : words_(static_cast<std::uint64_t*>(std::calloc(kWords, sizeof(std::uint64_t))), &std::free) {
-    if (!words_) throw std::bad_alloc();
+  explicit OutputNames(std::uintmax_t file_bytes)
+      : words_(std::bit_ceil(std::clamp<std::uintmax_t>(file_bytes, kLeastBits, kMostBits)) / 64),
+        bits_(static_cast<std::uint64_t*>(std::calloc(words_, sizeof(std::uint64_t))), &std::free) {
+    if (!bits_) throw std::bad_alloc();
   }
   // Adds the name's hash; false when it certainly was not added before.
   bool add(std::size_t hash) {
@@ -238,7 +241,7 @@ class OutputNames {
                                 0x9e3779b97f4a7c15u) | 1u;
     bool seen = true;
     for (std::uint64_t k = 0, bit = hash; k < 4; ++k, bit += step) {
-      std::uint64_t& word = words_[(bit / 64) % kWords];
+      std::uint64_t& word = bits_[(bit / 64) % words_];
       const std::uint64_t mask = std::uint64_t{1} << (bit % 64);
       seen = seen && (word & mask) != 0;
       word |= mask;
@@ -247,8 +250,9 @@ class OutputNames {
   }
 
  private:
-  static constexpr std::size_t kWords = (std::size_t{8} << 20) / sizeof(std::uint64_t);
-  std::unique_ptr<std::uint64_t[], void (*)(void*)> words_;
+  static constexpr std::uintmax_t kLeastBits = std::uintmax_t{1} << 16, kMostBits = std::uintmax_t{1} << 26;
+  std::size_t words_;
+  std::unique_ptr<std::uint64_t[], void (*)(void*)> bits_;
 };
 
 std::string normalised(const std::filesystem::path& path) { return path.lexically_normal().string(); }
@@ -256,7 +260,9 @@ std::string normalised(const std::filesystem::path& path) { return path.lexicall
 }  // namespace
 
 std::size_t check_batch_jobs(const BatchArgs& args) {
-  OutputNames names;
+  std::error_code ignored;
+  const std::uintmax_t bytes = std::filesystem::file_size(args.jobs, ignored);
+  OutputNames names(ignored ? 0 : bytes);
   std::unordered_set<std::size_t> maybe_twice;  // hashes of names the filter may have seen before
   JobLines lines(args);
   BatchJob job;
