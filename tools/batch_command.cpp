@@ -213,7 +213,6 @@ bool JobLines::next(BatchJob& job) {
       json_ = job.text[first] == '{';
       if (!*json_ && args_.output.empty()) throw UsageError("--output: a list of models needs an output template");
     }
-    if (job.text.size() > UINT32_MAX) throw InputError(args_.jobs, "line " + std::to_string(line_) + ": too long");
     job.line = line_;
     job.index = index_++;
     job.json = *json_;

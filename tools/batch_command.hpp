@@ -43,8 +43,7 @@ class JobLines {
  public:
   // Throws InputError for a missing or unreadable file.
   explicit JobLines(const BatchArgs& args);
-  // The next job, or false at the end. Throws UsageError for a list of models without --output, InputError for a
-  // line over 4 GiB.
+  // The next job, or false at the end. Throws UsageError for a list of models without --output.
   bool next(BatchJob& job);
 
  private:

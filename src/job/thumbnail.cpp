@@ -6,12 +6,13 @@
 
 #include <array>
 #include <cctype>
+#include <cerrno>
 #include <cstdio>
 #include <stdexcept>
 #include <string>
-#include <system_error>
 #include <vector>
 
+#include "core/file_util.hpp"
 #include "facet/error.hpp"
 #include "facet/image_io.hpp"
 #include "facet/version.hpp"
@@ -140,10 +141,7 @@ Thumbnail draw_thumbnail(const ThumbnailJob& job, Renderer& renderer) {
   const std::string source = model.string();
   // stat() once: the size and time written are those of the file read, and a FIFO is refused before it is opened.
   struct stat status {};
-  if (::stat(source.c_str(), &status) != 0) {
-    const std::error_code error(errno, std::generic_category());
-    throw InputError(source, error.message());
-  }
+  if (::stat(source.c_str(), &status) != 0) throw InputError(source, errno_text(errno));
   if (!S_ISREG(status.st_mode)) throw InputError(source, "not a regular file");
   const auto bytes = static_cast<std::uintmax_t>(status.st_size);
   if (bytes > job.max_input_bytes)
