@@ -71,7 +71,13 @@ using ProbeShader = std::conditional_t<kLanes, LaneProbeShader<kDerivatives>, Sc
 
 // The shading pass interpolates the triangles of a strip at the lanes strip_triangle_starts picks: each triangle in
 // the strip must have one, and no lane may be picked without a triangle. Strips of 1 to 5 triangles in random
-// places (disjoint runs, triangles in one row only, empty lanes) and in the layouts of a mesh's strips.
+// places (disjoint runs, triangles in one row only, empty lanes) and in the layouts of a mesh's strips, in every
+// lane layout, which must all pick the same lanes.
+template <class L>
+unsigned strip_starts_in(const std::uint32_t* refs) {
+  return detail::strip_triangle_starts<L>(simd::load<simd::UIntT<L>>(refs));
+}
+
 TEST(StripTriangleStarts, EveryTriangleOfTheStripHasALane) {
   std::mt19937 rng(11);
   int repeated = 0;
@@ -84,7 +90,9 @@ TEST(StripTriangleStarts, EveryTriangleOfTheStripHasALane) {
       const int cut0 = static_cast<int>(rng() % 9), cut1 = static_cast<int>(rng() % 9);
       for (int k = 0; k < simd::kLanes; ++k) refs[k] = (k & 7) < (k < 8 ? cut0 : cut1) ? 7u : 8u;
     }
-    const unsigned starts = detail::strip_triangle_starts(simd::load<simd::UInt>(refs));
+    const unsigned starts = strip_starts_in<simd::Whole>(refs);
+    ASSERT_EQ(strip_starts_in<simd::Halves>(refs), starts) << "trial " << trial;
+    ASSERT_EQ(strip_starts_in<simd::Quarters>(refs), starts) << "trial " << trial;
     for (int k = 0; k < simd::kLanes; ++k) {
       if (refs[k] == detail::kNoTriangle) {
         ASSERT_FALSE(starts >> k & 1u) << "trial " << trial << ": lane " << k << " has no triangle";
@@ -103,10 +111,12 @@ TEST(StripTriangleStarts, EveryTriangleOfTheStripHasALane) {
     for (int cut1 = 0; cut1 <= 8; ++cut1) {
       alignas(64) std::uint32_t refs[simd::kLanes];
       for (int k = 0; k < simd::kLanes; ++k) refs[k] = (k & 7) < (k < 8 ? cut0 : cut1) ? 7u : 8u;
-      const unsigned starts = detail::strip_triangle_starts(simd::load<simd::UInt>(refs));
+      const unsigned starts = strip_starts_in<simd::Whole>(refs);
       const int kinds = (cut0 > 0 || cut1 > 0) + (cut0 < 8 || cut1 < 8);
       const int repeats = cut1 < cut0 && cut0 < 8;
       EXPECT_EQ(std::popcount(starts), kinds + repeats) << cut0 << " " << cut1;
+      EXPECT_EQ(strip_starts_in<simd::Halves>(refs), starts) << cut0 << " " << cut1;
+      EXPECT_EQ(strip_starts_in<simd::Quarters>(refs), starts) << cut0 << " " << cut1;
     }
 }
 

@@ -69,17 +69,34 @@ template <class L = simd::Whole>
 // or whose run in a row is split (by a nearer triangle) keeps more, which costs a repeated interpolation but no
 // error; looking further than the lane above makes GCC 12 turn this into scalar code. Unlike picking lanes one
 // triangle at a time, the loop over these bits carries no chain of vector compares from one triangle to the next.
-[[gnu::always_inline]] inline unsigned strip_triangle_starts(simd::UInt refs) {
+// L: the lane layout; each CPU level's copy passes its own, since the whole layout is one 512-bit vector, which
+// copies without AVX-512 keep in memory and shuffle lane by lane. With halves or quarters the lane above is the
+// part half a strip on, and the lane to the left comes from the part itself and the last lane of the one before.
+template <class L>
+[[gnu::always_inline]] inline unsigned strip_triangle_starts(const simd::UIntT<L>& refs) {
   using namespace simd;
+  using UInt = UIntT<L>;
+  UInt left, above;
+  if constexpr (L::parts == 1) {
 #if defined(__clang__)
-  // Clang folds shuffle()'s loop into a shuffle only when it sees literal lane numbers.
-  const native::UInt r = refs.part[0];
-  const UInt left = __builtin_shufflevector(r, r, 15, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14);
-  const UInt above = __builtin_shufflevector(r, r, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 4, 5, 6, 7);
+    // Clang folds shuffle()'s loop into a shuffle only when it sees literal lane numbers.
+    const native::UInt r = refs.part[0];
+    left = __builtin_shufflevector(r, r, 15, 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11, 12, 13, 14);
+    above = __builtin_shufflevector(r, r, 8, 9, 10, 11, 12, 13, 14, 15, 0, 1, 2, 3, 4, 5, 6, 7);
 #else
-  const UInt left = shuffle(refs, (kLaneIndex - 1) & 15), above = shuffle(refs, kLaneIndex ^ 8);
+    left = shuffle(refs, (kLaneIndex - 1) & 15), above = shuffle(refs, kLaneIndex ^ 8);
 #endif
-  const Mask row_start = (kLaneIndex & 7) == 0, row_1 = kLaneIndex >= 8;
+  } else {
+    // Lane j of part i takes lane j - 1 of the part, or for j = 0 the last lane of part i - 1 (of the part itself
+    // for the first part: a row's first lane ignores its left).
+    const auto index = [](int j) consteval { return j == 0 ? L::width - 1 : L::width + j - 1; };
+    constexpr auto lanes = std::make_integer_sequence<int, L::width>{};
+    left = UInt::by_part([&](int i) __attribute__((always_inline)) {
+      return shuffle_part<decltype(index)>(refs.part[i > 0 ? i - 1 : i], refs.part[i], lanes);
+    });
+    above = UInt::by_part([&](int i) __attribute__((always_inline)) { return refs.part[(i + L::parts / 2) % L::parts]; });
+  }
+  const MaskT<L> row_start = (kLaneIndexT<L> & 7) == 0, row_1 = kLaneIndexT<L> >= 8;
   return lane_bits((refs != kNoTriangle) & ((refs != left) | row_start) & ~((refs == above) & row_1));
 }
 
@@ -278,7 +295,7 @@ template <LaneShader S, class L>
   // runs in the strip do not touch starts more than one; on the 200k-triangle OBJ, one start in seven repeats a
   // triangle). The AVX-512 copy visits every start instead: there, the chain of compares from one triangle to the
   // next cost more than the repeats (a frame of the 200k OBJ 7% slower).
-  unsigned pending = strip_triangle_starts(load<simd::UInt>(refs));
+  unsigned pending = strip_triangle_starts<L>(load<simd::UIntT<L>>(refs));
   const auto next = [&]<bool kFirst>() __attribute__((always_inline)) {
     const std::uint32_t ref = refs[std::countr_zero(pending)];
     if constexpr (L::parts > 1) {
