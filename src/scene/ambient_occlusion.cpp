@@ -12,7 +12,8 @@ namespace {
 
 // Rows go in strips of 16 pixels; the last strip's lanes past the row compute what the padding gives, and are not
 // stored where the output has no padding. (Plain loops: a lambda's body would be compiled for the baseline only.)
-FACET_LANES_INLINE void store_within(float* out, int x, int width, const simd::Float& v) {
+template <class L>
+FACET_LANES_INLINE void store_within(float* out, int x, int width, const simd::FloatT<L>& v) {
   if (x + simd::kLanes <= width) {
     simd::store(out + x, v);
   } else {
@@ -24,40 +25,45 @@ FACET_LANES_INLINE void store_within(float* out, int x, int width, const simd::F
 
 }  // namespace
 
+// Each CPU level's copy works in its own lane layout L: the whole layout is one 512-bit vector, which copies without
+// AVX-512 keep in memory and work on lane by lane.
 void depth_row(const Unprojection& unproject, const float* depth, int width, float* z) {
-  at_cpu_level([&]() __attribute__((always_inline)) {
+  at_cpu_level([&]<class L>(L) __attribute__((always_inline)) {
+    using Float = simd::FloatT<L>;
     int x = 0;
     for (; x + simd::kLanes <= width; x += simd::kLanes) {
-      const simd::Float d = simd::load<simd::Float>(depth + x);
+      const Float d = simd::load<Float>(depth + x);
       // Background strips (window depth 1 throughout) are 0, as Unprojection::z gives them, without its division.
-      simd::store(z + x, simd::lane_bits(d < 1.0f) == 0 ? simd::splat(0.0f) : unproject.z(d));
+      simd::store(z + x, simd::lane_bits(d < 1.0f) == 0 ? simd::splat<L>(0.0f) : unproject.z(d));
     }
     for (; x < width; ++x) z[x] = unproject.z(depth[x]);
   });
 }
 
 void openness_row(const Sampling& sampling, int y, Grid& raw) {
-  at_cpu_level([&]() __attribute__((always_inline)) {
+  at_cpu_level([&]<class L>(L) __attribute__((always_inline)) {
+    using Float = simd::FloatT<L>;
     const float* z = sampling.grid.row(y);
     float* out = raw.row(y);
     for (int x = 0; x < raw.width; x += simd::kLanes) {
       // Most strips of a frame show only the background, or only surface.
-      if (simd::lane_bits(simd::load<simd::Float>(z + x) != 0.0f) == 0)
-        store_within(out, x, raw.width, simd::splat(1.0f));
+      if (simd::lane_bits(simd::load<Float>(z + x) != 0.0f) == 0)
+        store_within<L>(out, x, raw.width, simd::splat<L>(1.0f));
       else
-        store_within(out, x, raw.width, sampling.openness<simd::Float>(x, y));
+        store_within<L>(out, x, raw.width, sampling.openness<Float>(x, y));
     }
   });
 }
 
 void blurred_row(const Sampling& sampling, const Grid& raw, int y, float* open) {
-  at_cpu_level([&]() __attribute__((always_inline)) {
+  at_cpu_level([&]<class L>(L) __attribute__((always_inline)) {
+    using Float = simd::FloatT<L>;
     const float* z = sampling.grid.row(y);
     for (int x = 0; x < raw.width; x += simd::kLanes) {
-      if (simd::lane_bits(simd::load<simd::Float>(z + x) != 0.0f) == 0)
-        store_within(open, x, raw.width, simd::splat(1.0f));
+      if (simd::lane_bits(simd::load<Float>(z + x) != 0.0f) == 0)
+        store_within<L>(open, x, raw.width, simd::splat<L>(1.0f));
       else
-        store_within(open, x, raw.width, sampling.blurred<simd::Float>(raw, x, y));
+        store_within<L>(open, x, raw.width, sampling.blurred<Float>(raw, x, y));
     }
   });
 }

@@ -18,8 +18,8 @@ namespace facet::detail {
 
 // Scalable Ambient Obscurance (McGuire, Mara and Luebke, 2012): each pixel's samples within a world radius of its
 // surface, seen from its normal (from the depth's differences), weigh in by how far above its tangent plane they
-// lie, falling off towards the radius. One template serves the scalar reference (float, int) and the lanes
-// (simd::Float, simd::Int), with the same operations in the same order, so both give identical results.
+// lie, falling off towards the radius. One template serves the scalar reference (float, int) and the lanes of any
+// layout (simd::FloatT<L>, simd::IntT<L>), with the same operations in the same order, so all give identical results.
 namespace occlusion {
 
 inline constexpr int kSamples = 8;  // per pixel, on a spiral; the 4 x 4 pattern of rotations and the blur make it 128
@@ -33,7 +33,8 @@ inline constexpr float kBias = 0.002f;  // of the depth: a flat surface's own sa
 // values for 16 pixels of a row starting at a multiple of 4, per row of the pattern.
 struct Spiral {
   glm::vec2 offset[16][kSamples];
-  simd::Float lanes_x[4][kSamples], lanes_y[4][kSamples];
+  alignas(simd::kLaneAlign) float lanes_x[4][kSamples][simd::kLanes];
+  alignas(simd::kLaneAlign) float lanes_y[4][kSamples][simd::kLanes];
   Spiral() {
     // A 4 x 4 ordered-dither order, so neighbouring pixels take well-separated rotations and the blur averages them.
     constexpr int kOrder[16] = {0, 8, 2, 10, 12, 4, 14, 6, 3, 11, 1, 9, 15, 7, 13, 5};
@@ -53,8 +54,9 @@ struct Spiral {
   }
   // Sample i's offset for the pixel at (x, y); for lanes, x is 16 pixels starting at a multiple of 4.
   glm::vec2 at(int x, int y, int i) const { return offset[(x & 3) + 4 * (y & 3)][i]; }
-  FACET_LANES_INLINE simd::Vec2 at(const simd::Int&, int y, int i) const {
-    return {lanes_x[y & 3][i], lanes_y[y & 3][i]};
+  template <class L>
+  FACET_LANES_INLINE simd::Vec2T<L> at(const simd::IntT<L>&, int y, int i) const {
+    return {simd::load<simd::FloatT<L>>(lanes_x[y & 3][i]), simd::load<simd::FloatT<L>>(lanes_y[y & 3][i])};
   }
 };
 
@@ -73,11 +75,21 @@ struct Grid {
   const float* row(int y) const { return values.data() + (static_cast<std::size_t>(y) + kPad) * stride + kPad; }
 };
 
-// A lane's or a pixel's scalar types.
+// A pixel's scalar types, or the lanes' of F's layout.
 template <class F>
-using IntOf = std::conditional_t<std::is_same_v<F, float>, int, simd::Int>;
+struct TypesOf {
+  using Int = simd::IntT<typename F::layout>;
+  using Vec3 = simd::Vec3T<typename F::layout>;
+};
+template <>
+struct TypesOf<float> {
+  using Int = int;
+  using Vec3 = glm::vec3;
+};
 template <class F>
-using Vec3Of = std::conditional_t<std::is_same_v<F, float>, glm::vec3, simd::Vec3>;
+using IntOf = typename TypesOf<F>::Int;
+template <class F>
+using Vec3Of = typename TypesOf<F>::Vec3;
 
 inline float to_float(int v) { return static_cast<float>(v); }
 using simd::to_float;
@@ -105,7 +117,7 @@ FACET_LANES_INLINE IntOf<F> pixels(int x0) {
   if constexpr (std::is_same_v<F, float>) {
     return x0;
   } else {
-    return x0 + simd::kLaneIndex;
+    return x0 + simd::kLaneIndexT<typename F::layout>;
   }
 }
 // The value at x0 of a row, or the 16 from x0 on.
@@ -114,12 +126,15 @@ FACET_LANES_INLINE F load_at(const float* row, int x0) {
   if constexpr (std::is_same_v<F, float>) {
     return row[x0];
   } else {
-    return simd::load<simd::Float>(row + x0);
+    return simd::load<F>(row + x0);
   }
 }
 // The values at row-relative offsets, per pixel or gathered per lane.
 inline float at(const float* row, int x) { return row[x]; }
-FACET_LANES_INLINE simd::Float at(const float* row, const simd::Int& x) { return simd::gather(row, x); }
+template <class L>
+FACET_LANES_INLINE simd::FloatT<L> at(const float* row, const simd::IntT<L>& x) {
+  return simd::gather(row, x);
+}
 
 // View-space positions rebuilt from a projection's depth: z from the window depth, x and y from the pixel's
 // normalized device coordinates (any projection without shear: perspective, orthographic, off-centre).
