@@ -208,6 +208,22 @@ TEST(DeferredShading, MultisampledDenseMeshesMatchImmediate) {
   }
 }
 
+// A sphere of 30,720 triangles in about 10,000 pixels: most visible triangles' bounds hold at most 2 x 2 pixels,
+// which the visibility pass tests pixel by pixel instead of in strips (raster_tiny_triangle). Under LESS, LEQUAL and
+// without depth writes, at every sample count, as the immediate path draws it.
+TEST(DeferredShading, TinyTrianglesMatchImmediate) {
+  RenderState less, lequal, no_write;
+  lequal.depth_func = DepthFunc::lequal;
+  no_write.depth_write = false;
+  for (const RenderState& state : {less, lequal, no_write}) {
+    RenderState no_cull = state;
+    no_cull.cull = CullMode::none;  // back faces too, drawn first or hidden
+    const std::vector<Draw> draws{{closed_sphere(120, 128, camera({0.1f, -0.05f, -3.0f})), no_cull}};
+    expect_deferred_matches<true>(draws, 203, 150);
+    for (const int samples : {2, 4, 8}) expect_multisampled_deferred_matches<true>(draws, 203, 150, samples);
+  }
+}
+
 TEST(DeferredShading, SeveralDrawsAndDepthFunctionsMatchImmediate) {
   RenderState no_cull;
   no_cull.cull = CullMode::none;  // back faces show: front_facing varies
