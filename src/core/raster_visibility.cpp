@@ -2,7 +2,6 @@
 // step, compiled once per CPU level for every shader.
 #include "facet/detail/raster_visibility.hpp"
 
-#include <algorithm>
 #include <cstddef>
 #include <cstdint>
 
@@ -233,69 +232,6 @@ template <DepthFunc kFunc, bool kDepthTest, class L>
       });
 }
 
-// A triangle whose bounds hold at most 2 x 2 pixels (most of a dense mesh's): each of those pixels tested on its
-// own, sample by sample, with the exact edge functions and the depth that the strips compute, rather than a block
-// walk, a depth range and a 16-lane strip per sample for one or two covered samples. The samples' edge constants
-// and plane origins are at_sample's; pixels of the bounds outside a sample's own fail its edges, as they do in the
-// strips. Such a triangle never covers a whole block, so under LESS or LEQUAL no block's depth bound changes
-// (raster_blocks tightens bounds only then); other functions that write depth take the block walk, which raises
-// them. An edge-on sliver's 2 x 2 bounds cost four tests per sample at most.
-inline bool is_tiny(const TriangleSetup& tri) { return tri.max_x - tri.min_x <= 1 && tri.max_y - tri.min_y <= 1; }
-
-template <DepthFunc kFunc, bool kDepthTest>
-[[gnu::always_inline]] inline void raster_tiny_triangle(const TriangleSetup& tri, const SamplePattern& pattern,
-                                                        const RenderState& state, const TileWork* planes,
-                                                        std::uint32_t ref) {
-  const TileWork& work = planes[0];
-  const int x0 = std::max<int>(tri.min_x, work.x0), x1 = std::min<int>(tri.max_x, work.x1 - 1);
-  const int y0 = std::max<int>(tri.min_y, work.y0), y1 = std::min<int>(tri.max_y, work.y1 - 1);
-  if (x0 > x1 || y0 > y1) return;
-  const bool depth_write = kDepthTest && state.depth_write;
-  const Plane plane = tri.depth;
-  for (int s = 0; s < pattern.count; ++s) {
-    // at_sample's edge constants and origin (one sample: the centre's, as they are).
-    const SampleOffset o = pattern.offset[s];
-    std::int64_t q[3];
-    for (int e = 0; e < 3; ++e) {
-      const Edge& edge = tri.edge[e];
-      q[e] = pattern.count == 1 ? edge.q
-                                : (edge.q * kSubpixelScale + tri.edge_fraction[e] + std::int64_t{edge.a} * o.x +
-                                   std::int64_t{edge.b} * o.y) >>
-                                      kSubpixelBits;
-    }
-    const float origin_x = pattern.count == 1 ? tri.origin_x : tri.origin_x - static_cast<float>(o.x) / kSubpixelScale;
-    const float origin_y = pattern.count == 1 ? tri.origin_y : tri.origin_y - static_cast<float>(o.y) / kSubpixelScale;
-    TileScratch& scratch = *planes[s].scratch;
-    for (int py = y0; py <= y1; ++py)
-      for (int px = x0; px <= x1; ++px) {
-        bool inside = true;
-        for (int e = 0; e < 3; ++e)
-          inside &= std::int64_t{tri.edge[e].a} * px + std::int64_t{tri.edge[e].b} * py + q[e] >= 0;
-        if (!inside) continue;
-        const int i = px - work.x0, j = py - work.y0;
-        const std::size_t at =
-            scratch_index(i / kScratchBlock, j / kScratchBlock) + static_cast<std::size_t>(j % kScratchBlock) *
-                                                                     kScratchBlock + static_cast<std::size_t>(i % kScratchBlock);
-        float z = 0.0f;
-        if constexpr (kDepthTest) {
-          const float dx = static_cast<float>(px) + 0.5f - origin_x, dy = static_cast<float>(py) + 0.5f - origin_y;
-          z = evaluate(plane, dx, dy) + state.depth_offset;
-          z = z < 0.0f ? 0.0f : (1.0f < z ? 1.0f : z);  // as the strips clamp
-          if (!depth_test_passes<kFunc>(z, scratch.depth[at])) continue;
-        }
-        if (depth_write) scratch.depth[at] = z;
-        scratch.triangle[at] = ref;
-      }
-  }
-}
-
-// Whether a tiny triangle may take raster_tiny_triangle: unless it writes depth under a function whose writes can
-// raise a block's depth bound.
-inline bool tiny_path_keeps_bounds(const RenderState& state) {
-  const bool writes_depth = state.depth_test && state.depth_write;
-  return !writes_depth || state.depth_func == DepthFunc::less || state.depth_func == DepthFunc::lequal;
-}
-
 }  // namespace
 
 // Both passes take the depth function as a constant (with_depth_func), so the per-pixel test has no switch inside
@@ -305,16 +241,8 @@ void raster_tile_visibility(const RenderState& state, const TileWork& work) {
   at_cpu_level([&]<class L>(L) __attribute__((always_inline)) {
     with_depth_func(state.depth_test ? state.depth_func : DepthFunc::always,
                     [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
-                      const bool tiny_path = tiny_path_keeps_bounds(state);
                       for_each_tile_triangle(
                           work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
-                            if (tiny_path && is_tiny(tri)) {
-                              if (state.depth_test)
-                                raster_tiny_triangle<kFunc, true>(tri, sample_pattern(1), state, &work, ref);
-                              else if constexpr (kFunc == DepthFunc::always)
-                                raster_tiny_triangle<kFunc, false>(tri, sample_pattern(1), state, &work, ref);
-                              return;
-                            }
                             if (state.depth_test) raster_triangle_visibility<kFunc, true, L>(tri, state, work, ref);
                             else if constexpr (kFunc == DepthFunc::always)  // the one function without a test
                               raster_triangle_visibility<kFunc, false, L>(tri, state, work, ref);
@@ -329,14 +257,7 @@ void raster_tile_visibility_multisample(const RenderState& state, const TileWork
     const SamplePattern& pattern = sample_pattern(n);
     with_depth_func(
         state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
-          const bool tiny_path = tiny_path_keeps_bounds(state);
           for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
-            if (tiny_path && is_tiny(tri)) {
-              if (state.depth_test) raster_tiny_triangle<kFunc, true>(tri, pattern, state, planes, ref);
-              else if constexpr (kFunc == DepthFunc::always)
-                raster_tiny_triangle<kFunc, false>(tri, pattern, state, planes, ref);
-              return;
-            }
             for (int s = 0; s < n; ++s) {
               const TriangleSetup view = at_sample(tri, pattern, s);
               if (state.depth_test) raster_triangle_visibility<kFunc, true, L>(view, state, planes[s], ref);

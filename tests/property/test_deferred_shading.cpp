@@ -209,8 +209,8 @@ TEST(DeferredShading, MultisampledDenseMeshesMatchImmediate) {
 }
 
 // A sphere of 30,720 triangles in about 10,000 pixels: most visible triangles' bounds hold at most 2 x 2 pixels,
-// which the visibility pass tests pixel by pixel instead of in strips (raster_tiny_triangle). Under LESS, LEQUAL and
-// without depth writes, at every sample count, as the immediate path draws it.
+// and many triangles cover no sample at all. Under LESS, LEQUAL and without depth writes, at every sample count,
+// the visibility pass keeps what the immediate path draws.
 TEST(DeferredShading, TinyTrianglesMatchImmediate) {
   RenderState less, lequal, no_write;
   lequal.depth_func = DepthFunc::lequal;

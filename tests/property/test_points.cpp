@@ -201,5 +201,56 @@ TEST(Points, MultisamplingCoversWholePixelsInsideAndBlendsTheEdges) {
   EXPECT_GT(partial, 0);
 }
 
+// Small squares at 4 samples, sample by sample: a sample is covered when its position lies within the square
+// ([left, right) x [top, bottom), the fill rule's sides). A square's edges pass everywhere: each sample's own bounds
+// (at_sample) shape it, which are often a pixel narrower than the square's bounds over all samples. Squares whose
+// sides lie within 1/32 pixel of a sample, where snapping decides, are left out.
+TEST(Points, SmallSquaresCoverTheSamplesWithinThem) {
+  constexpr int kSamples = 4;
+  // Vulkan's standard 4-sample positions, in 1/16 pixel from the pixel's top-left corner.
+  constexpr int kAt[kSamples][2] = {{6, 2}, {14, 6}, {2, 10}, {10, 14}};
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> x(4.0f, kWidth - 4.0f), y(4.0f, kHeight - 4.0f);
+  int checked = 0, covered = 0;
+  for (const float size : {1.0f, 1.5f}) {
+    for (int trial = 0; trial < 100; ++trial) {
+      const float cx = x(rng), cy = y(rng);
+      const float left = cx - size / 2, right = cx + size / 2, top = cy - size / 2, bottom = cy + size / 2;
+      const auto near_a_sample = [&](float side, int axis) {
+        for (int p = -8; p <= kWidth + 8; ++p)
+          for (const auto& at : kAt)
+            if (std::abs(side - (static_cast<float>(p) + static_cast<float>(at[axis]) / 16.0f)) < 1.0f / 32.0f) return true;
+        return false;
+      };
+      if (near_a_sample(left, 0) || near_a_sample(right, 0) || near_a_sample(top, 1) || near_a_sample(bottom, 1))
+        continue;
+      Framebuffer target(kWidth, kHeight, kSamples);
+      target.keep_samples(true);
+      Renderer renderer(1);
+      renderer.clear(target, glm::vec4(0, 0, 0, 1), 1.0f);
+      const std::vector<ColorShader::Vertex> point{{clip_at(cx, cy), glm::vec3(1.0f)}};
+      const std::vector<std::uint32_t> index{0};
+      renderer.draw_points(target, ColorShader{}, std::span<const ColorShader::Vertex>(point), index,
+                           point_state(size));
+      renderer.finish(target);
+      for (int s = 0; s < kSamples; ++s) {
+        const std::span<const std::uint32_t> plane = target.sample_color(s);
+        for (int j = 0; j < kHeight; ++j)
+          for (int i = 0; i < kWidth; ++i) {
+            const float sx = static_cast<float>(i) + static_cast<float>(kAt[s][0]) / 16.0f;
+            const float sy = static_cast<float>(j) + static_cast<float>(kAt[s][1]) / 16.0f;
+            const bool inside = sx >= left && sx < right && sy >= top && sy < bottom;
+            ASSERT_EQ(plane[static_cast<std::size_t>(j) * kWidth + i], inside ? kWhite : kBlack)
+                << "size " << size << " at " << cx << ", " << cy << ": sample " << s << " of pixel " << i << ", " << j;
+            covered += inside;
+          }
+      }
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 80);
+  EXPECT_GT(covered, 4 * checked);  // a 1-pixel square covers 4 samples, a 1.5-pixel one 4 to 9
+}
+
 }  // namespace
 }  // namespace facet::test
