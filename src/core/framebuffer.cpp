@@ -206,15 +206,28 @@ void Framebuffer::keep_samples(bool keep) {
 
 void Framebuffer::hold_sample_planes() {
   if (holds_samples()) return;
-  // Until a frame draws them, every sample holds what the pixel shows.
+  // Until a frame draws them, every sample holds what the pixel shows. A tile's pending clear is what loading it
+  // gives every sample, so its part of the planes is neither copied nor touched: planes taken at the start of a
+  // frame cost memory only where parts of the frame store tiles.
   sample_color_.resize(pixel_count() * static_cast<std::size_t>(samples_));
   sample_depth_.resize(pixel_count() * static_cast<std::size_t>(samples_));
   sample_bounds_.resize(bounds_per_sample() * static_cast<std::size_t>(samples_));
-  for (int s = 0; s < samples_; ++s) {
-    std::copy(color_.begin(), color_.end(), sample_color_.begin() + static_cast<std::ptrdiff_t>(s * pixel_count()));
-    std::copy(depth_.begin(), depth_.end(), sample_depth_.begin() + static_cast<std::ptrdiff_t>(s * pixel_count()));
-    std::copy(block_max_depth_.begin(), block_max_depth_.end(),
-              sample_bounds_.begin() + static_cast<std::ptrdiff_t>(s * bounds_per_sample()));
+  for (int tile = 0; tile < tiles_x_ * tiles_y_; ++tile) {
+    const bool cleared = tile_needs_clear_[static_cast<std::size_t>(tile)] != 0;
+    const int x0 = (tile % tiles_x_) * kTileSize, y0 = (tile / tiles_x_) * kTileSize;
+    const int columns = std::min(kTileSize, width_ - x0), rows = std::min(kTileSize, height_ - y0);
+    const std::size_t first = static_cast<std::size_t>(y0) * width_ + x0;
+    const std::size_t bounds = static_cast<std::size_t>(tile) * detail::kTileBlocks;
+    for (int s = 0; s < samples_; ++s) {
+      const std::size_t plane = static_cast<std::size_t>(s) * pixel_count();
+      if (!(cleared && pending_.color))
+        copy_rect(color_.data() + first, width_, sample_color_.data() + plane + first, width_, rows, columns);
+      if (!(cleared && pending_.depth)) {
+        copy_rect(depth_.data() + first, width_, sample_depth_.data() + plane + first, width_, rows, columns);
+        std::copy_n(block_max_depth_.data() + bounds, detail::kTileBlocks,
+                    sample_bounds_.data() + static_cast<std::size_t>(s) * bounds_per_sample() + bounds);
+      }
+    }
   }
 }
 

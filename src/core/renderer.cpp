@@ -304,12 +304,22 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     // Once the target has every plane a part continues from (always with one sample), parts cost only their tiles'
     // loads and stores, and cache-sized ones read their set-up work back from the cache: sphere:707 at 1 sample,
     // 2 threads, 17.3 ms a frame in parts of 2 MiB against 20.8 ms in one tile pass (medians of 5 alternated
-    // rounds). A multisampled target without sample planes records its whole frame up to the limit: holding the
-    // planes costs fresh memory (66 MB for 4 samples at 1920x1080), and cutting the frame into parts at the planes'
-    // weight left an 870k-triangle PLY's peak memory as it was and its draw up to 1.5x slower.
+    // rounds). A multisampled target without sample planes records its whole frame up to the limit, unless the
+    // frame would outweigh the planes (above): holding them costs fresh memory (66 MB for 4 samples at 1920x1080).
     if (samples == 1 || target.holds_samples()) return std::min(w.recorded_limit, kCachedRecordedBytes);
     return w.recorded_limit;
   };
+  // A multisampled frame whose recorded work would outweigh its sample planes takes the planes now and goes on in
+  // cache-sized parts, rather than recording its set-up work whole: a million-point cloud at 4 samples and
+  // 1920x1080 records 190 MB, where the planes weigh 66 MB and are touched only where parts store tiles
+  // (hold_sample_planes). Each primitive records at most one set-up triangle but for clipped, line and disc
+  // primitives; a draw that culls back faces is taken to record half of them.
+  if (samples > 1 && !target.holds_samples() && !sort_per_tile) {
+    const std::size_t planes = target.pixel_count() * static_cast<std::size_t>(samples) *
+                               (sizeof(std::uint32_t) + sizeof(float));
+    const std::size_t recording = count * sizeof(TriangleSetup) / (state.cull == CullMode::none ? 1 : 2);
+    if (w.recorded_bytes + recording > planes) target.hold_sample_planes();
+  }
   for (std::size_t batch_first = 0, next_batch = 0; batch_first < count; batch_first = next_batch) {
     next_batch = batch_end(batch_first);
     const std::size_t batch_count = next_batch - batch_first;
