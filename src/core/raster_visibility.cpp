@@ -154,10 +154,7 @@ template <DepthFunc kFunc, bool kDepthTest, class L>
           }
           return pass;
         };
-        // Each pixel's values are read and written at its own index only: no dependence between lanes, which GCC
-        // cannot always prove once the code around this loop grows (it then left the loop scalar).
         if (depth_write) {
-#pragma GCC ivdep
           for (int k = 0; k < simd::kLanes; ++k) {
             float z = 0.0f;
             const unsigned pass = lane_pass(k, z);
@@ -166,7 +163,6 @@ template <DepthFunc kFunc, bool kDepthTest, class L>
             triangle[k] = pass ? ref : triangle[k];
           }
         } else {
-#pragma GCC ivdep
           for (int k = 0; k < simd::kLanes; ++k) {
             float z = 0.0f;
             triangle[k] = lane_pass(k, z) ? ref : triangle[k];

@@ -305,7 +305,7 @@ void Renderer::execute(Framebuffer& target, const detail::DrawRequest& request) 
     // loads and stores, and cache-sized ones read their set-up work back from the cache: sphere:707 at 1 sample,
     // 2 threads, 17.3 ms a frame in parts of 2 MiB against 20.8 ms in one tile pass (medians of 5 alternated
     // rounds). A multisampled target without sample planes records its whole frame up to the limit, unless the
-    // frame would outweigh the planes (above): holding them costs fresh memory (66 MB for 4 samples at 1920x1080).
+    // frame would outweigh the planes (below): holding them costs fresh memory (66 MB for 4 samples at 1920x1080).
     if (samples == 1 || target.holds_samples()) return std::min(w.recorded_limit, kCachedRecordedBytes);
     return w.recorded_limit;
   };
