@@ -16,46 +16,67 @@
 namespace facet::detail {
 namespace {
 
-// Calls body.template operator()<F>() with the state's depth function as a constant, so the per-pixel depth test
-// of the visibility pass has no switch inside its loop.
-template <class Body>
-[[gnu::always_inline]] inline void with_depth_func(DepthFunc func, Body&& body) {
+// The depth tests the visibility pass compiles: LESS and LEQUAL, which depth-tested meshes use, and ALWAYS, which
+// the painter's order and drawing without a depth test use (they still write depth), as constants; every other
+// function by which of <, ==, > and "unordered" pass (DepthBits), one branch-free form for all of them. The pass is
+// compiled five times per CPU level (the four, and once without a test) instead of nine.
+enum class DepthTest { less, lequal, always, by_bits };
+
+// Which comparisons of z with the stored depth pass: all bits set (-1) or clear. A NaN on either side is unordered,
+// where only NOTEQUAL and ALWAYS pass, as IEEE's comparisons give.
+struct DepthBits {
+  std::int32_t lt, eq, gt, unordered;
+};
+
+inline DepthBits depth_bits(DepthFunc func) {
   switch (func) {
-    case DepthFunc::never: return body.template operator()<DepthFunc::never>();
-    case DepthFunc::less: return body.template operator()<DepthFunc::less>();
-    case DepthFunc::equal: return body.template operator()<DepthFunc::equal>();
-    case DepthFunc::lequal: return body.template operator()<DepthFunc::lequal>();
-    case DepthFunc::greater: return body.template operator()<DepthFunc::greater>();
-    case DepthFunc::notequal: return body.template operator()<DepthFunc::notequal>();
-    case DepthFunc::gequal: return body.template operator()<DepthFunc::gequal>();
-    case DepthFunc::always: return body.template operator()<DepthFunc::always>();
+    case DepthFunc::never: return {0, 0, 0, 0};
+    case DepthFunc::less: return {-1, 0, 0, 0};
+    case DepthFunc::equal: return {0, -1, 0, 0};
+    case DepthFunc::lequal: return {-1, -1, 0, 0};
+    case DepthFunc::greater: return {0, 0, -1, 0};
+    case DepthFunc::notequal: return {-1, 0, -1, -1};
+    case DepthFunc::gequal: return {0, -1, -1, 0};
+    case DepthFunc::always: return {-1, -1, -1, -1};
+  }
+  return {0, 0, 0, 0};
+}
+
+// Calls body.template operator()<kTest, kDepthTest>() for the state's depth test, so the per-pixel test of the
+// visibility pass has no switch inside its loop. Without a depth test nothing is compared.
+template <class Body>
+[[gnu::always_inline]] inline void with_depth_test(const RenderState& state, Body&& body) {
+  if (!state.depth_test) return body.template operator()<DepthTest::always, false>();
+  switch (state.depth_func) {
+    case DepthFunc::less: return body.template operator()<DepthTest::less, true>();
+    case DepthFunc::lequal: return body.template operator()<DepthTest::lequal, true>();
+    case DepthFunc::always: return body.template operator()<DepthTest::always, true>();
+    default: return body.template operator()<DepthTest::by_bits, true>();
   }
 }
 
-template <DepthFunc kFunc>
-[[gnu::always_inline]] inline unsigned depth_test_passes(float z, float stored) {
-  if constexpr (kFunc == DepthFunc::less) return z < stored;
-  else if constexpr (kFunc == DepthFunc::equal) return z == stored;
-  else if constexpr (kFunc == DepthFunc::lequal) return z <= stored;
-  else if constexpr (kFunc == DepthFunc::greater) return z > stored;
-  else if constexpr (kFunc == DepthFunc::notequal) return z != stored;
-  else if constexpr (kFunc == DepthFunc::gequal) return z >= stored;
-  else if constexpr (kFunc == DepthFunc::always) return 1;
-  return 0;
+template <DepthTest kTest>
+[[gnu::always_inline]] inline unsigned depth_test_passes(float z, float stored, const DepthBits& bits) {
+  if constexpr (kTest == DepthTest::less) return z < stored;
+  else if constexpr (kTest == DepthTest::lequal) return z <= stored;
+  else if constexpr (kTest == DepthTest::always) return 1;
+  // Bit arithmetic rather than boolean logic: GCC turns the latter into branches, which the vectoriser cannot take.
+  return (static_cast<unsigned>(z < stored) & static_cast<unsigned>(bits.lt)) |
+         (static_cast<unsigned>(z == stored) & static_cast<unsigned>(bits.eq)) |
+         (static_cast<unsigned>(z > stored) & static_cast<unsigned>(bits.gt)) |
+         ((static_cast<unsigned>(z != z) | static_cast<unsigned>(stored != stored)) &
+          static_cast<unsigned>(bits.unordered));
 }
 
 // depth_test_passes for 16 lanes: -1 where the test passes, 0 where it fails.
-template <DepthFunc kFunc, class L>
-[[gnu::always_inline]] inline simd::MaskT<L> depth_test_passes(const simd::FloatT<L>& z,
-                                                             const simd::FloatT<L>& stored) {
-  if constexpr (kFunc == DepthFunc::less) return z < stored;
-  else if constexpr (kFunc == DepthFunc::equal) return z == stored;
-  else if constexpr (kFunc == DepthFunc::lequal) return z <= stored;
-  else if constexpr (kFunc == DepthFunc::greater) return z > stored;
-  else if constexpr (kFunc == DepthFunc::notequal) return z != stored;
-  else if constexpr (kFunc == DepthFunc::gequal) return z >= stored;
-  else if constexpr (kFunc == DepthFunc::always) return simd::splat<L>(-1);
-  return simd::MaskT<L>{};
+template <DepthTest kTest, class L>
+[[gnu::always_inline]] inline simd::MaskT<L> depth_test_passes(const simd::FloatT<L>& z, const simd::FloatT<L>& stored,
+                                                             const DepthBits& bits) {
+  if constexpr (kTest == DepthTest::less) return z < stored;
+  else if constexpr (kTest == DepthTest::lequal) return z <= stored;
+  else if constexpr (kTest == DepthTest::always) return simd::splat<L>(-1);
+  return ((z < stored) & bits.lt) | ((z == stored) & bits.eq) | ((z > stored) & bits.gt) |
+         (((z != z) | (stored != stored)) & bits.unordered);
 }
 
 // An edge value the strip loop treats as "inside everywhere": far above any offset within a block (|a|, |b| < 2^22,
@@ -74,7 +95,7 @@ inline constexpr std::int32_t kEdgeInside = 1 << 30;
 // scalar (the SSE4.2 copy's pass took 5 times the AVX-512 one's time), and Clang does at every level: there the
 // lane types of the level's layout L do the same tests and arithmetic, in the same order. The coverage is exactly
 // raster_block_coverage's (see Edge for the 32-bit budget).
-template <DepthFunc kFunc, bool kDepthTest, class L>
+template <DepthTest kTest, bool kDepthTest, class L>
 [[gnu::always_inline]] inline void raster_triangle_visibility(const TriangleSetup& tri, const RenderState& state,
                                                               const TileWork& work, std::uint32_t ref) {
 #if defined(__clang__)
@@ -84,6 +105,8 @@ template <DepthFunc kFunc, bool kDepthTest, class L>
 #endif
   const bool depth_write = kDepthTest && state.depth_write;
   const float offset = state.depth_offset;
+  [[maybe_unused]] const DepthBits passing =
+      kDepthTest && kTest == DepthTest::by_bits ? depth_bits(state.depth_func) : DepthBits{};
   const float origin_x = tri.origin_x, origin_y = tri.origin_y;
   const Plane plane = tri.depth;
 
@@ -117,7 +140,7 @@ template <DepthFunc kFunc, bool kDepthTest, class L>
           const Float dy = to_float(lane_y + (by + 2 * strip)) + 0.5f - origin_y;
           z = z_x + plane.ddy * dy + offset;
           z = select(z < 0.0f, splat<L>(0.0f), select(1.0f < z, splat<L>(1.0f), z));  // as the scalar clamp
-          pass &= depth_test_passes<kFunc>(z, stored);
+          pass &= depth_test_passes<kTest>(z, stored, passing);
         }
         if (depth_write) {
           passed |= pass;
@@ -150,7 +173,7 @@ template <DepthFunc kFunc, bool kDepthTest, class L>
             const float dy = static_cast<float>(py + (k >> 3)) + 0.5f - origin_y;
             z = evaluate(plane, dx, dy) + offset;
             z = z < 0.0f ? 0.0f : (1.0f < z ? 1.0f : z);  // std::clamp(z, 0, 1), NaN kept, as shade_quad
-            pass &= depth_test_passes<kFunc>(z, depth[k]);
+            pass &= depth_test_passes<kTest>(z, depth[k], passing);
           }
           return pass;
         };
@@ -235,15 +258,11 @@ template <DepthFunc kFunc, bool kDepthTest, class L>
 // `always`, so only that one is compiled without the test.
 void raster_tile_visibility(const RenderState& state, const TileWork& work) {
   at_cpu_level([&]<class L>(L) __attribute__((always_inline)) {
-    with_depth_func(state.depth_test ? state.depth_func : DepthFunc::always,
-                    [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
-                      for_each_tile_triangle(
-                          work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
-                            if (state.depth_test) raster_triangle_visibility<kFunc, true, L>(tri, state, work, ref);
-                            else if constexpr (kFunc == DepthFunc::always)  // the one function without a test
-                              raster_triangle_visibility<kFunc, false, L>(tri, state, work, ref);
-                          });
-                    });
+    with_depth_test(state, [&]<DepthTest kTest, bool kDepthTest>() __attribute__((always_inline)) {
+      for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
+        raster_triangle_visibility<kTest, kDepthTest, L>(tri, state, work, ref);
+      });
+    });
   });
 }
 
@@ -251,17 +270,12 @@ void raster_tile_visibility_multisample(const RenderState& state, const TileWork
   at_cpu_level([&]<class L>(L) __attribute__((always_inline)) {
     const int n = work.samples;
     const SamplePattern& pattern = sample_pattern(n);
-    with_depth_func(
-        state.depth_test ? state.depth_func : DepthFunc::always, [&]<DepthFunc kFunc>() __attribute__((always_inline)) {
-          for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
-            for (int s = 0; s < n; ++s) {
-              const TriangleSetup view = at_sample(tri, pattern, s);
-              if (state.depth_test) raster_triangle_visibility<kFunc, true, L>(view, state, planes[s], ref);
-              else if constexpr (kFunc == DepthFunc::always)
-                raster_triangle_visibility<kFunc, false, L>(view, state, planes[s], ref);
-            }
-          });
-        });
+    with_depth_test(state, [&]<DepthTest kTest, bool kDepthTest>() __attribute__((always_inline)) {
+      for_each_tile_triangle(work, [&](const TriangleSetup& tri, std::uint32_t ref) __attribute__((always_inline)) {
+        for (int s = 0; s < n; ++s)
+          raster_triangle_visibility<kTest, kDepthTest, L>(at_sample(tri, pattern, s), state, planes[s], ref);
+      });
+    });
   });
 }
 

@@ -243,6 +243,29 @@ TEST(DeferredShading, SeveralDrawsAndDepthFunctionsMatchImmediate) {
   expect_deferred_matches<false>(reversed, 190, 133, 0.0f);
 }
 
+// Every depth function, where the visibility pass tests LESS and LEQUAL as constants and the others by which
+// comparisons pass: a sphere drawn with LESS, then a soup and the same sphere again in other colours (where EQUAL
+// passes) with the function under test (GREATER and GEQUAL pass where the soup lies behind the sphere), with and
+// without depth writes.
+TEST(DeferredShading, EveryDepthFunctionMatchesImmediate) {
+  for (const DepthFunc func : {DepthFunc::never, DepthFunc::less, DepthFunc::equal, DepthFunc::lequal,
+                               DepthFunc::greater, DepthFunc::notequal, DepthFunc::gequal, DepthFunc::always})
+    for (const bool write : {true, false}) {
+      RenderState first;  // front faces only, so that the sphere drawn again meets its own depths
+      RenderState tested = first;
+      tested.depth_func = func;
+      tested.depth_write = write;
+      RenderState soup = tested;
+      soup.cull = CullMode::none;
+      const ClipMesh sphere = closed_sphere(16, 20, camera({0.1f, 0.0f, -3.0f}));
+      ClipMesh again = sphere;  // the same depths in other colours, so that what EQUAL lets through shows
+      for (glm::vec3& c : again.color) c = glm::vec3(1.0f) - c;
+      const std::vector<Draw> draws{{sphere, first}, {triangle_soup(40, 5), soup}, {again, tested}};
+      SCOPED_TRACE(::testing::Message() << "depth function " << static_cast<int>(func) << (write ? "" : ", no writes"));
+      expect_deferred_matches<true>(draws, 150, 110);
+    }
+}
+
 // The visibility pass takes a huge triangle's edge values per block in 64 bits, and a smaller one's in 32 bits from
 // its corner (kSmallTriangleSpan): 1300 pixels wide, the soup has triangles of both kinds, some of the smaller kind
 // close to the span limit, and the sphere small ones.
