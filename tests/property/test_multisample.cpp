@@ -107,6 +107,19 @@ ClipMesh random_triangles(int count, int width, int height, std::uint32_t seed) 
   return m;
 }
 
+// `count` triangles whose other corners lie within `reach` pixels either way of their first, anywhere in the target.
+ClipMesh small_triangles(int count, int width, int height, std::uint32_t seed, float reach) {
+  ClipMesh m;
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<float> px(1.0f, width - 1.0f), py(1.0f, height - 1.0f), unit(-reach, reach);
+  for (int t = 0; t < count; ++t) {
+    const glm::vec2 c(px(rng), py(rng));
+    glm::vec2 corner[3] = {c, c + glm::vec2(unit(rng), unit(rng)), c + glm::vec2(unit(rng), unit(rng))};
+    add_flat_triangle(m, corner, width, height);
+  }
+  return m;
+}
+
 TEST(Multisample, EverySampleHasTheTriangleThatCoversItLast) {
   const int width = 150, height = 90;  // 3 x 2 tiles, cut short
   const ClipMesh m = random_triangles(400, width, height, 7);
@@ -221,14 +234,8 @@ TEST(Multisample, SameImageAtAnyThreadCountAndEitherShading) {
 TEST(Multisample, FramesDrawnInPartsMatchOneTilePass) {
   const int width = 90, height = 70;
   const ClipMesh soup = random_triangles(600, width, height, 21);
-  ClipMesh dense;  // small triangles, more than two batches of 65,536: the draw is cut in two
-  std::mt19937 rng(22);
-  std::uniform_real_distribution<float> px(1.0f, width - 1.0f), py(1.0f, height - 1.0f), unit(-1.5f, 1.5f);
-  for (int t = 0; t < 140000; ++t) {
-    const glm::vec2 c(px(rng), py(rng));
-    glm::vec2 corner[3] = {c, c + glm::vec2(unit(rng), unit(rng)), c + glm::vec2(unit(rng), unit(rng))};
-    add_flat_triangle(dense, corner, width, height);
-  }
+  // Small triangles, more than two batches of 65,536: the draw is cut in two.
+  const ClipMesh dense = small_triangles(140000, width, height, 22, 1.5f);
   const std::vector<ColorShader::Vertex> soup_vertices = color_vertices(soup), dense_vertices = color_vertices(dense);
   const auto draw = [&](int samples, std::size_t limit, bool keep) {
     Framebuffer fb(width, height, samples);
@@ -266,17 +273,7 @@ TEST(Multisample, FramesDrawnInPartsMatchOneTilePass) {
 // parts; a small target's draw records whole. Either way the image is the one a target holding its planes from the
 // start draws, at any thread count.
 TEST(Multisample, DrawsOutweighingLargeTargetsPlanesTakeThemFirst) {
-  const auto dense = [](int width, int height) {
-    ClipMesh m;
-    std::mt19937 rng(31);
-    std::uniform_real_distribution<float> px(1.0f, width - 1.0f), py(1.0f, height - 1.0f), unit(-2.0f, 2.0f);
-    for (int t = 0; t < 200000; ++t) {
-      const glm::vec2 c(px(rng), py(rng));
-      glm::vec2 corner[3] = {c, c + glm::vec2(unit(rng), unit(rng)), c + glm::vec2(unit(rng), unit(rng))};
-      add_flat_triangle(m, corner, width, height);
-    }
-    return m;
-  };
+  const auto dense = [](int width, int height) { return small_triangles(200000, width, height, 31, 2.0f); };
   const auto draw = [](const ClipMesh& m, int width, int height, bool keep, int threads) {
     Framebuffer fb(width, height, 4);
     fb.keep_samples(keep);

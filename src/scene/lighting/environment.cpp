@@ -75,13 +75,7 @@ constexpr std::array<float, 9> kCosineLobe = {kPi,        2.0f * kPi / 3.0f, 2.0
 std::array<glm::vec3, 9> irradiance_harmonics(const EnvironmentImage& image, const glm::mat3& world_from_image) {
   std::array<glm::vec3, 9> l{};
   const float dphi = 2.0f * kPi / static_cast<float>(image.width), dtheta = kPi / static_cast<float>(image.height);
-  // The azimuth's cosine and sine per column, taken once rather than per texel (the same values).
-  std::vector<float> cos_phi(static_cast<std::size_t>(image.width)), sin_phi(cos_phi.size());
-  for (int x = 0; x < image.width; ++x) {
-    const float phi = 2.0f * kPi * ((static_cast<float>(x) + 0.5f) / static_cast<float>(image.width) - 0.5f);
-    cos_phi[static_cast<std::size_t>(x)] = std::cos(phi);
-    sin_phi[static_cast<std::size_t>(x)] = std::sin(phi);
-  }
+  const ColumnAzimuths phi = column_azimuths(image.width);
   for (int y = 0; y < image.height; ++y) {
     const float theta = (static_cast<float>(y) + 0.5f) * dtheta;
     const float cos_theta = std::cos(theta), sin_theta = std::sin(theta);
@@ -89,7 +83,7 @@ std::array<glm::vec3, 9> irradiance_harmonics(const EnvironmentImage& image, con
     for (int x = 0; x < image.width; ++x) {
       const std::size_t column = static_cast<std::size_t>(x);
       const glm::vec3 d =
-          world_from_image * glm::vec3(cos_phi[column] * sin_theta, cos_theta, sin_phi[column] * sin_theta);
+          world_from_image * glm::vec3(phi.cos[column] * sin_theta, cos_theta, phi.sin[column] * sin_theta);
       const glm::vec3 radiance = image.texels[static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) +
                                               static_cast<std::size_t>(x)] *
                                  weight;

@@ -2,10 +2,10 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-#include <vector>
 
 #include "facet/environment.hpp"
 #include "facet/shaders/brdf.hpp"
+#include "scene/lighting/sampling.hpp"
 
 namespace facet {
 
@@ -43,19 +43,13 @@ EnvironmentImage studio_environment() {
   image.width = 256;
   image.height = 128;
   image.texels.resize(static_cast<std::size_t>(image.width) * static_cast<std::size_t>(image.height));
-  // The azimuth's cosine and sine per column, taken once rather than per texel (the same values).
-  std::vector<float> cos_phi(static_cast<std::size_t>(image.width)), sin_phi(cos_phi.size());
-  for (int x = 0; x < image.width; ++x) {
-    const float phi = 2.0f * brdf::kPi * ((static_cast<float>(x) + 0.5f) / static_cast<float>(image.width) - 0.5f);
-    cos_phi[static_cast<std::size_t>(x)] = std::cos(phi);
-    sin_phi[static_cast<std::size_t>(x)] = std::sin(phi);
-  }
+  const ColumnAzimuths phi = column_azimuths(image.width);
   for (int y = 0; y < image.height; ++y) {
     const float theta = (static_cast<float>(y) + 0.5f) / static_cast<float>(image.height) * brdf::kPi;
     const float cos_theta = std::cos(theta), sin_theta = std::sin(theta);
     for (int x = 0; x < image.width; ++x) {
       const std::size_t column = static_cast<std::size_t>(x);
-      const glm::vec3 d(cos_phi[column] * sin_theta, cos_theta, sin_phi[column] * sin_theta);
+      const glm::vec3 d(phi.cos[column] * sin_theta, cos_theta, phi.sin[column] * sin_theta);
       // The dome from 0.3 at the horizon to 0.5 overhead; the floor 0.12, blended over a few degrees.
       const float dome = 0.3f + 0.2f * std::max(d.y, 0.0f);
       const float floor_blend = std::clamp(d.y * 10.0f + 0.5f, 0.0f, 1.0f);
