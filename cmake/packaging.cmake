@@ -83,5 +83,5 @@ if(FACET_BUILD_TESTS AND NOT FACET_SANITIZE AND NOT FACET_SANITIZE_THREAD AND NO
   add_test(NAME package.deb
            COMMAND bash ${PROJECT_SOURCE_DIR}/scripts/deb_test.sh ${CMAKE_BINARY_DIR} ${PROJECT_SOURCE_DIR}
                    ${CMAKE_BINARY_DIR}/test-output/package/deb)
-  set_tests_properties(package.deb PROPERTIES TIMEOUT 600 LABELS package SKIP_RETURN_CODE 77)
+  set_tests_properties(package.deb PROPERTIES TIMEOUT 600 LABELS package SKIP_RETURN_CODE 77 COST 30)
 endif()
