@@ -48,7 +48,7 @@ void operator delete[](void* p, std::align_val_t) noexcept { std::free(p); }
 void operator delete(void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 void operator delete[](void* p, std::size_t, std::align_val_t) noexcept { std::free(p); }
 
-namespace facet::test {
+namespace facet::test::allocations_tests {
 namespace {
 
 TEST(Allocations, SteadyStateFramesDoNotTouchTheHeap) {
@@ -76,4 +76,4 @@ TEST(Allocations, SteadyStateFramesDoNotTouchTheHeap) {
 }
 
 }  // namespace
-}  // namespace facet::test
+}  // namespace facet::test::allocations_tests

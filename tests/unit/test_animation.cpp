@@ -13,7 +13,7 @@
 #include "facet/model.hpp"
 #include "facet/primitives.hpp"
 
-namespace facet {
+namespace facet::animation_tests {
 namespace {
 
 constexpr float kPi = 3.14159265358979f;
@@ -328,4 +328,4 @@ TEST(Pose, BrokenModelsAreRefusedWithTheirProblem) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::animation_tests

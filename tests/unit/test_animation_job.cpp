@@ -12,7 +12,7 @@
 #include "facet/render_job.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::animation_job_tests {
 namespace {
 
 RenderJob demo_job(Demo demo, const std::filesystem::path& color) {
@@ -101,4 +101,4 @@ TEST(DemoJob, RefusesWhatItCannotWrite) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::animation_job_tests

@@ -12,7 +12,7 @@
 #include "facet/model_io.hpp"
 #include "facet/warnings.hpp"
 
-namespace facet {
+namespace facet::assimp_animation_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -134,4 +134,4 @@ TEST(AssimpAnimation, ColladaNodesTurnAsAssimpsOwnMathsTurnThem) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::assimp_animation_tests

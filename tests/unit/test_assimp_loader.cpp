@@ -11,7 +11,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::assimp_loader_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -106,4 +106,4 @@ TEST(AssimpLoader, TheInvalidFolderIsRefusedCleanly) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::assimp_loader_tests

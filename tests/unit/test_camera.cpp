@@ -16,7 +16,7 @@
 #include "facet/transform.hpp"
 #include "support/matrix_asserts.hpp"
 
-namespace facet {
+namespace facet::camera_tests {
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
@@ -196,4 +196,4 @@ TEST(CameraTest, AzimuthElevationRejectsBadInput) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::camera_tests

@@ -9,7 +9,7 @@
 
 #include "support/draw_helpers.hpp"
 
-namespace facet::test {
+namespace facet::test::clear_tests {
 namespace {
 
 // A right triangle with legs of `size` pixels, `offset` pixels into the 64x64 tile (tile_x, tile_y) of a
@@ -168,4 +168,4 @@ TEST(Clear, DiscardedDepthKeepsTheImageAndStartsTheNextFrameFar) {
 }
 
 }  // namespace
-}  // namespace facet::test
+}  // namespace facet::test::clear_tests

@@ -21,7 +21,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::clearcoat_sheen_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -239,4 +239,4 @@ TEST(GltfLayers, ValuesOutsideTheSpecificationAreWarnedAbout) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::clearcoat_sheen_tests

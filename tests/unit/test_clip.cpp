@@ -5,7 +5,7 @@
 
 #include "core/clip/clip.hpp"
 
-namespace facet::detail {
+namespace facet::detail::clip_tests {
 namespace {
 
 // A triangle straddling frustum plane p (0..5, w +- x, y or z >= 0) with `inside` of its vertices inside; the vertices
@@ -91,4 +91,4 @@ TEST(Clip, LineSegmentsAreTrimmedToTheFrustum) {
 }
 
 }  // namespace
-}  // namespace facet::detail
+}  // namespace facet::detail::clip_tests

@@ -22,7 +22,7 @@
 #include "facet/splats.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::cloud_looks_tests {
 namespace {
 
 constexpr int kSize = 48;
@@ -161,9 +161,9 @@ TEST(EyeDomeLighting, ABareCloudGetsItByDefault) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::cloud_looks_tests
 
-namespace facet {
+namespace facet::cloud_looks_tests {
 namespace {
 
 // The height colour map: the lowest vertex blue, the highest red, the stops between at quarter heights, along the
@@ -215,9 +215,9 @@ TEST(ColorMap, IntensityRunsFromBlackToWhite) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::cloud_looks_tests
 
-namespace facet {
+namespace facet::cloud_looks_tests {
 namespace {
 
 // --world-point-size: a square of side s in the model's units at distance d along the view axis covers s P[1][1]
@@ -258,9 +258,9 @@ TEST(WorldPointSize, ASquareCoversWhatItsSizeSpansAtItsDistance) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::cloud_looks_tests
 
-namespace facet {
+namespace facet::cloud_looks_tests {
 namespace {
 
 // The default strength: the look's when it sets one, else on for a bare cloud alone (not for normals, colours,
@@ -339,4 +339,4 @@ TEST(PointMaterial, PyrenderLightsPointsWithoutNormalsAsFacingTheEye) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::cloud_looks_tests

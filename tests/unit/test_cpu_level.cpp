@@ -8,7 +8,7 @@
 
 #include "facet/cpu_level.hpp"
 
-namespace facet {
+namespace facet::cpu_level_tests {
 namespace {
 
 // Restores the level the test started with, whatever the test set.
@@ -61,4 +61,4 @@ TEST(CpuLevel, AnUnknownNameIsRefusedAndNamesTheLevels) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::cpu_level_tests

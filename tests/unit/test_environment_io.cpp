@@ -26,7 +26,7 @@
 #include "job/io/exr.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::environment_io_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -325,4 +325,4 @@ TEST(EnvironmentIo, WrongExtension) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::environment_io_tests

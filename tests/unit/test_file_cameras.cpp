@@ -22,7 +22,7 @@
 #include "support/npy.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::file_cameras_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -273,4 +273,4 @@ TEST(GltfMaterials, MaskCutsByAlpha) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::file_cameras_tests

@@ -16,7 +16,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::format_parity_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -109,4 +109,4 @@ TEST(FormatParity, OneMeshInEveryFormatDrawsTheSameImage) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::format_parity_tests

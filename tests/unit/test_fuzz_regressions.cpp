@@ -20,7 +20,7 @@
 #include "job/io/splat_loader.hpp"
 #include "scene/texture/decode.hpp"
 
-namespace facet {
+namespace facet::fuzz_regressions_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -93,4 +93,4 @@ TEST(FuzzRegressions, EveryInputEndsCleanly) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::fuzz_regressions_tests

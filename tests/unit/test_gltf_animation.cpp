@@ -22,7 +22,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::gltf_animation_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -318,9 +318,9 @@ TEST(GltfAnimation, BrokenSkinsAreRefusedNamingTheProblem) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::gltf_animation_tests
 
-namespace facet {
+namespace facet::gltf_animation_tests {
 namespace {
 
 // A skinned square: its four corners weighted to joint 0 of skin 0 (node 1, moved up by 1) with the weights given,
@@ -372,4 +372,4 @@ TEST(GltfAnimation, SkinWeightsAreMendedWithAWarningAndJointsPastTheSkinRefused)
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::gltf_animation_tests

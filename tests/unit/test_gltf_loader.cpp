@@ -24,7 +24,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::gltf_loader_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -557,9 +557,9 @@ TEST(GltfLoader, EveryAssimpModelLoadsOrThrowsInputError) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::gltf_loader_tests
 
-namespace facet {
+namespace facet::gltf_loader_tests {
 namespace {
 
 // An image whose buffer view reaches past its buffer is refused naming both, before any of its bytes are read
@@ -579,4 +579,4 @@ TEST(GltfLoader, ImageBufferViewPastItsBufferIsRefused) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::gltf_loader_tests

@@ -19,7 +19,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::gltf_specular_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -179,4 +179,4 @@ TEST(PbrShader, SpecularStrengthShiftsEnergyToTheDiffusePart) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::gltf_specular_tests

@@ -22,7 +22,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::gltf_tangents_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -169,4 +169,4 @@ TEST(GltfTangents, GiveTheNormalMapItsFrame) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::gltf_tangents_tests

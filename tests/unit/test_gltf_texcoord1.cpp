@@ -23,7 +23,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::gltf_texcoord1_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -122,4 +122,4 @@ TEST(GltfTexcoord1, BoxTexcoordsKeepsBothSets) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::gltf_texcoord1_tests

@@ -19,7 +19,7 @@
 #include "facet/warnings.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::hostile_files_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -206,4 +206,4 @@ TEST_F(HostileFiles, TriangleAndTextureLimits) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::hostile_files_tests

@@ -17,7 +17,7 @@
 #include "facet/image_io.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::image_io_tests {
 namespace {
 
 std::filesystem::path scratch_dir() { return test::scratch_dir("image_io"); }
@@ -253,4 +253,4 @@ TEST(ImageIoAnimation, ContainersFollowTheExtension) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::image_io_tests

@@ -10,7 +10,7 @@
 #include "facet/renderer.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::long_run_tests {
 namespace {
 
 // The resident set of this process in KiB, from /proc/self/statm (pages).
@@ -44,4 +44,4 @@ TEST(LongRun, TenThousandRendersKeepMemoryFlat) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::long_run_tests

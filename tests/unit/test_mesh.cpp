@@ -14,7 +14,7 @@
 #include "facet/primitives.hpp"
 #include "scene/mesh/crease_normals.hpp"
 
-namespace facet {
+namespace facet::mesh_tests {
 namespace {
 
 using Indices = std::vector<std::uint32_t>;
@@ -534,4 +534,4 @@ TEST(MeshValidate, ReportsEachProblem) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::mesh_tests

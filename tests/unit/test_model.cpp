@@ -14,7 +14,7 @@
 #include "facet/model_io.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::model_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -143,4 +143,4 @@ TEST(Model, AssimpNodesFlattenAsAssimpPreTransformsThem) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::model_tests

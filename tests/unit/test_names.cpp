@@ -7,7 +7,7 @@
 #include "facet/demo_scenes.hpp"
 #include "facet/names.hpp"
 
-namespace facet {
+namespace facet::names_tests {
 namespace {
 
 // Each name parses back to its value and each value has one name, so no face can spell a choice two ways.
@@ -63,4 +63,4 @@ TEST(Names, ListedJoinsTheNamesForMessages) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::names_tests

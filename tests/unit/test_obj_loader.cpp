@@ -15,7 +15,7 @@
 #include "facet/model_io.hpp"
 #include "support/load_problem.hpp"
 
-namespace facet {
+namespace facet::obj_loader_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -359,4 +359,4 @@ TEST_F(ObjLoader, EveryAssimpModelRenamedToObjLoadsOrThrowsInputError) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::obj_loader_tests

@@ -14,7 +14,7 @@
 #include "facet/error.hpp"
 #include "job/io/obj_parse.hpp"
 
-namespace facet {
+namespace facet::obj_parse_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -170,4 +170,4 @@ TEST(ObjParse, ProblemsNameTheLine) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::obj_parse_tests

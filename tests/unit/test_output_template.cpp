@@ -5,7 +5,7 @@
 
 #include "facet/output_template.hpp"
 
-namespace facet {
+namespace facet::output_template_tests {
 namespace {
 
 TEST(OutputTemplate, FieldsTakeTheirValues) {
@@ -29,4 +29,4 @@ TEST(OutputTemplate, OtherBracesStayAsWritten) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::output_template_tests

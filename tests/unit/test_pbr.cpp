@@ -24,7 +24,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::pbr_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -323,4 +323,4 @@ TEST(TextureLinear, IsTheDecodedSample) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::pbr_tests

@@ -14,7 +14,7 @@
 #include "job/io/loaders.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::pcd_loader_tests {
 namespace {
 
 std::string header(const std::string& fields, const std::string& sizes, const std::string& types, int points,
@@ -183,4 +183,4 @@ TEST(PcdLoader, ReadModelKnowsTheExtensionAndTheHeader) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::pcd_loader_tests

@@ -15,7 +15,7 @@
 #include "facet/warnings.hpp"
 #include "job/io/loaders.hpp"
 
-namespace facet {
+namespace facet::ply_in_two_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -152,4 +152,4 @@ TEST(PlyInTwo, AssimpModelsReadAsOneThreadReadsThem) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::ply_in_two_tests

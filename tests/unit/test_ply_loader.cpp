@@ -17,7 +17,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::ply_loader_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -528,4 +528,4 @@ TEST_F(PlyLoader, EveryPlyFileOfTheAssimpModelsLoadsOrThrowsInputError) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::ply_loader_tests

@@ -11,7 +11,7 @@
 #include "facet/mesh.hpp"
 #include "facet/primitives.hpp"
 
-namespace facet {
+namespace facet::primitives_tests {
 namespace {
 
 glm::vec3 corner(const Mesh& m, std::size_t t, int c) {
@@ -218,4 +218,4 @@ TEST(PrimitiveArguments, InvalidArgumentsThrow) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::primitives_tests

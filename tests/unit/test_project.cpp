@@ -12,7 +12,7 @@
 #include "facet/framebuffer.hpp"
 #include "core/setup/project.hpp"
 
-namespace facet::detail {
+namespace facet::detail::project_tests {
 namespace {
 
 void expect_same(const ProjectedVertex& actual, const ProjectedVertex& expected, const glm::vec4& clip) {
@@ -115,4 +115,4 @@ TEST(ProjectVertices, AgreesWithProjectVertexEverywhere) {
 }
 
 }  // namespace
-}  // namespace facet::detail
+}  // namespace facet::detail::project_tests

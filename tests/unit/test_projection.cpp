@@ -13,7 +13,7 @@
 #include "facet/transform.hpp"
 #include "support/matrix_asserts.hpp"
 
-namespace facet {
+namespace facet::projection_tests {
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
@@ -366,4 +366,4 @@ TEST(ProjectionTest, RejectsBadParameters) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::projection_tests

@@ -21,7 +21,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::punctual_lights_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -288,4 +288,4 @@ TEST(AmbientOcclusion, DarkensTheFloorBesideWhatStandsOnIt) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::punctual_lights_tests

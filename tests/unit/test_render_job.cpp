@@ -20,7 +20,7 @@
 #include "support/npy.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::render_job_tests {
 namespace {
 
 const std::filesystem::path kBox = "/usr/share/assimp/models/OBJ/box.obj";
@@ -353,4 +353,4 @@ TEST(Render, MaskDepthCameraAndImageAgree) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::render_job_tests

@@ -14,7 +14,7 @@
 #include "facet/scene.hpp"
 #include "scene/prepared_mesh.hpp"
 
-namespace facet {
+namespace facet::scene_tests {
 namespace {
 
 constexpr int kSize = 64;
@@ -421,9 +421,9 @@ TEST(SceneDepth, LinearDepthOfARenderedQuad) {
 
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::scene_tests
 
-namespace facet {
+namespace facet::scene_tests {
 namespace {
 
 // A small cloud on a sphere of radius 0.5, with or without outward normals, and a red quad behind it.
@@ -520,4 +520,4 @@ TEST(ScenePoints, ACloudIsPreparedInSpatialOrder) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::scene_tests

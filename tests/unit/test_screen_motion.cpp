@@ -14,7 +14,7 @@
 #include "support/npy.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::screen_motion_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -147,4 +147,4 @@ TEST(ScreenMotion, TheRenderJobWritesTheMotionOfTheAnimation) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::screen_motion_tests

@@ -11,7 +11,7 @@
 #include "facet/scene.hpp"
 #include "facet/shaders/stock.hpp"
 
-namespace facet {
+namespace facet::shaders_tests {
 namespace {
 
 constexpr int kSize = 64;
@@ -288,4 +288,4 @@ TEST(StockShader, LightBlockFromSceneOptions) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::shaders_tests

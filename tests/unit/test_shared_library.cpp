@@ -7,7 +7,7 @@
 
 #include "job/shared_library.hpp"
 
-namespace facet {
+namespace facet::shared_library_tests {
 namespace {
 
 TEST(SharedLibrary, FindsFunctionsInAnOpenedLibrary) {
@@ -36,4 +36,4 @@ TEST(SharedLibrary, MissingLibraryAndSymbolAreNamed) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::shared_library_tests

@@ -11,7 +11,7 @@
 
 #include "facet/simd.hpp"
 
-namespace facet {
+namespace facet::simd_tests {
 namespace {
 
 #pragma GCC diagnostic push
@@ -145,4 +145,4 @@ TEST(SimdLayouts, FloorIsStdFloorForAnyBits) {
 #pragma GCC diagnostic pop
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::simd_tests

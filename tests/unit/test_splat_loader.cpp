@@ -16,7 +16,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::splat_loader_tests {
 namespace {
 
 // The paper's property order, with `rest` f_rest properties.
@@ -176,4 +176,4 @@ TEST_F(SplatPly, SplatFilesDecodeColourOpacityAndRotation) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::splat_loader_tests

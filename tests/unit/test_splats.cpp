@@ -18,7 +18,7 @@
 #include "facet/scene.hpp"
 #include "facet/splats.hpp"
 
-namespace facet {
+namespace facet::splats_tests {
 namespace {
 
 constexpr float kSh0 = 0.28209479177387814f;
@@ -283,4 +283,4 @@ TEST(Splats, APixelTheyCoverAtLeastHalfTakesTheirBlendedDepth) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::splats_tests

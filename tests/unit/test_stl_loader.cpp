@@ -15,7 +15,7 @@
 #include "support/load_problem.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::stl_loader_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -265,4 +265,4 @@ TEST_F(StlLoader, EveryStlFileOfTheAssimpModelsLoadsOrThrowsInputError) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::stl_loader_tests

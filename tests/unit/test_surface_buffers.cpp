@@ -29,7 +29,7 @@
 #include "support/npy.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::surface_buffers_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -329,4 +329,4 @@ TEST(FloatImage, ExrHoldsTheValuesExactly) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::surface_buffers_tests

@@ -18,7 +18,7 @@
 #include "facet/texture.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::texture_tests {
 namespace {
 
 std::uint32_t rgba(std::uint32_t r, std::uint32_t g, std::uint32_t b, std::uint32_t a = 255) {
@@ -545,4 +545,4 @@ TEST(TextureLoad, DeclaredSizeMustBeBackedByTheFile) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::texture_tests

@@ -20,7 +20,7 @@
 #include "facet/view_spec.hpp"
 #include "support/scratch_dir.hpp"
 
-namespace facet {
+namespace facet::thumbnail_tests {
 namespace {
 
 namespace fs = std::filesystem;
@@ -210,4 +210,4 @@ TEST(Thumbnail, DataFilesListTheLibrarysMimeTypes) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::thumbnail_tests

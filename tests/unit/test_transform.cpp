@@ -12,7 +12,7 @@
 #include "facet/transform.hpp"
 #include "support/matrix_asserts.hpp"
 
-namespace facet {
+namespace facet::transform_tests {
 namespace {
 
 constexpr float kPi = std::numbers::pi_v<float>;
@@ -176,4 +176,4 @@ TEST(TransformTest, TransformsRejectNonFiniteInput) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::transform_tests

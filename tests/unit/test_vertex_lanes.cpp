@@ -13,7 +13,7 @@
 #include "facet/detail/vertex_stage.hpp"
 #include "core/setup/project.hpp"
 
-namespace facet::detail {
+namespace facet::detail::vertex_lanes_tests {
 namespace {
 
 using bench::BenchShader;
@@ -84,9 +84,9 @@ TEST(VertexLanes, AnyRangeMixesLaneGroupsAndSingleVertices) {
 }
 
 }  // namespace
-}  // namespace facet::detail
+}  // namespace facet::detail::vertex_lanes_tests
 
-namespace facet {
+namespace facet::vertex_lanes_tests {
 namespace {
 
 // Lane structs made in baseline code (this test is compiled without AVX-512) are read by the AVX-512 clones with
@@ -102,4 +102,4 @@ TEST(LaneTypes, StructsOfLanesAre64ByteAlignedInAnyCode) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::vertex_lanes_tests

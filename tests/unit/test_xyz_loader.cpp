@@ -7,7 +7,7 @@
 #include "facet/error.hpp"
 #include "job/io/loaders.hpp"
 
-namespace facet {
+namespace facet::xyz_loader_tests {
 namespace {
 
 std::string problem(const std::string& text) {
@@ -87,4 +87,4 @@ TEST(XyzLoader, BadRowsAreOneLineErrorsNamingTheLine) {
 }
 
 }  // namespace
-}  // namespace facet
+}  // namespace facet::xyz_loader_tests
