@@ -81,8 +81,9 @@ void Scene::Impl::draw_depth(Renderer& renderer, Framebuffer& target, const Scen
                              const glm::mat4& clip_from_world, DepthPass pass) const {
   RenderState two_sided;
   two_sided.cull = CullMode::none;  // two-sided casters: an open mesh's back faces cast too, and nothing leaks
-  // Colour is written although only depth is read: with colour writes the pipeline resolves visibility first and
-  // shades each pixel once in lanes (raster_deferred.hpp), several times faster than shading every fragment.
+  // Only depth is read: without colour writes the pipeline's visibility pass is the whole draw (raster_tile.hpp),
+  // except for masked materials, whose discarding shader is run on every fragment.
+  two_sided.color_write = false;
   for (const Instance& instance : instances) {
     const PreparedMesh& mesh = prepared.at(instance.mesh.get());
     const glm::vec4 center = instance.world_from_object * glm::vec4(mesh.center, 1.0f);
@@ -98,6 +99,7 @@ void Scene::Impl::draw_depth(Renderer& renderer, Framebuffer& target, const Scen
       if (pass == DepthPass::visible) {
         state = detail::surface_state(options, material, transforms.mirrored);
         state.blend = BlendMode::none;
+        state.color_write = false;
         state.order = DrawOrder::as_given;
         state.depth_func = DepthFunc::less;  // the nearest surface, whatever order the frame draws in
       }

@@ -266,6 +266,25 @@ TEST(DeferredShading, EveryDepthFunctionMatchesImmediate) {
     }
 }
 
+// Draws with colour writes off change depth alone, and the pipeline skips their shading: a soup drawn into depth
+// first (onto the pending clear) hides the sphere behind it, then a depth-only sphere under LEQUAL and one without
+// depth writes change nothing, and the colour the soup did not draw keeps the clear colour, as drawn immediately.
+TEST(DeferredShading, DepthOnlyDrawsMatchImmediate) {
+  RenderState depth_only;
+  depth_only.cull = CullMode::none;
+  depth_only.color_write = false;
+  RenderState depth_only_lequal = depth_only;
+  depth_only_lequal.depth_func = DepthFunc::lequal;
+  RenderState no_writes = depth_only;
+  no_writes.depth_write = false;
+  const ClipMesh sphere = closed_sphere(16, 20, camera({0.1f, 0.0f, -3.0f}));
+  const std::vector<Draw> draws{{triangle_soup(40, 5), depth_only},
+                                {sphere, RenderState{}},
+                                {closed_sphere(12, 16, camera({-0.3f, 0.1f, -2.5f})), depth_only_lequal},
+                                {triangle_soup(20, 9), no_writes}};
+  expect_deferred_matches<true>(draws, 150, 110);
+}
+
 // The visibility pass takes a huge triangle's edge values per block in 64 bits, and a smaller one's in 32 bits from
 // its corner (kSmallTriangleSpan): 1300 pixels wide, the soup has triangles of both kinds, some of the smaller kind
 // close to the span limit, and the sphere small ones.

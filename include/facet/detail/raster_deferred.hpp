@@ -404,6 +404,16 @@ template <class Copy>
       });
 }
 
+// A tile's draw that writes depth alone (colour writes off, no discard): the visibility pass is the whole draw.
+// A depth pre-pass, a shadow map or the occlusion's depth skip the shading pass, and the colour's pending clear
+// stays pending, as nothing wrote colour.
+[[gnu::always_inline]] inline void raster_tile_depth_only(const RenderState& state, const TileWork& work) {
+  begin_tile_scratch(work, true);
+  raster_tile_visibility(state, work);
+  store_tile_depth(work);
+  work.lazy_clear->depth = false;
+}
+
 // Asks memory for the varyings of every source vertex of the tile's triangles, before the visibility pass: the
 // shading pass reads them in the order its strips come, each a chain of loads (reference, triangle, vertex) that
 // would otherwise wait on memory for every vertex the tile has not read yet. Below AVX-512 only: frames of the

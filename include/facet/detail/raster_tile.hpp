@@ -16,6 +16,13 @@ template <Shader S>
 bool shades_deferred(const RenderState& state) {
   return !ShaderTraits<S>::may_discard && state.defer_shading && state.color_write && state.blend == BlendMode::none;
 }
+// With colour writes off, a shader without discard changes depth alone: with the depth test and depth writes on,
+// its visibility pass is the whole draw.
+template <Shader S>
+bool writes_depth_only(const RenderState& state) {
+  return !ShaderTraits<S>::may_discard && state.defer_shading && !state.color_write && state.depth_test &&
+         state.depth_write;
+}
 
 // The whole per-tile loop, with coverage, interpolation and the shader inlined into it, is compiled once per CPU
 // level (x86-64-v4 with AVX-512, v3 with AVX2 and FMA, and the baseline, which the SSE4.2 level runs too: see
@@ -27,6 +34,10 @@ void raster_tile(const void* draw, const TileWork& work) {
     const auto& ctx = *static_cast<const ShadeContext<S>*>(draw);
     if (shades_deferred<S>(*ctx.state)) {
       raster_tile_deferred(ctx, work, layout);
+      return;
+    }
+    if (writes_depth_only<S>(*ctx.state)) {
+      raster_tile_depth_only(*ctx.state, work);
       return;
     }
     settle_clear(work, true, true);
