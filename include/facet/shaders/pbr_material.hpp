@@ -125,37 +125,61 @@ struct PixelUvs {
   glm::vec2 uv[2], dx[2], dy[2];
 };
 
-// The material's textures at one pixel, multiplied into its inputs as glTF and its extensions define them, each
-// read with the uv set the material gives it.
-inline void multiply_textures(const PbrMaterial& m, const PixelUvs& at, PbrInputs<float>& in) {
-  const auto sample = [&](const Texture& map, std::uint32_t slot) {
-    const int set = (m.uv1_maps & slot) ? 1 : 0;
-    return map.sample(at.uv[set], at.dx[set], at.dy[set], m.sampler);
-  };
-  const auto linear_rgb = [&](const Texture& map, std::uint32_t slot, brdf::Rgb<float>& into) {
-    const int set = (m.uv1_maps & slot) ? 1 : 0;
-    const glm::vec4 t = map.sample_linear(at.uv[set], at.dx[set], at.dy[set], m.sampler);
-    into = into * brdf::Rgb<float>{t.r, t.g, t.b};
+// A texel's four channels, for one pixel or for 16 lanes.
+template <class F>
+struct TexelsOf {
+  F r, g, b, a;
+};
+
+// The material's textures multiplied into its inputs, as glTF and its extensions define them, for one pixel
+// (F = float) or 16 lanes: sample(map, slot, linear) reads a map with the uv set the material gives it, in linear
+// light (linear true: colour maps) or as stored.
+template <class F, class Sample>
+FACET_LANES_INLINE void multiply_textures(const PbrMaterial& m, Sample&& sample, PbrInputs<F>& in) {
+  const auto linear_rgb = [&](const Texture& map, std::uint32_t slot, brdf::Rgb<F>& into) {
+    const TexelsOf<F> t = sample(map, slot, true);
+    into = into * brdf::Rgb<F>{t.r, t.g, t.b};
     return t;
   };
   namespace slot = texture_slot;
-  if (m.base_color_map) in.alpha *= linear_rgb(*m.base_color_map, slot::base_color, in.base).a;
+  if (m.base_color_map) in.alpha = in.alpha * linear_rgb(*m.base_color_map, slot::base_color, in.base).a;
   if (m.metallic_roughness_map) {
-    const glm::vec4 t = sample(*m.metallic_roughness_map, slot::metallic_roughness);
-    in.roughness *= t.g;
-    in.metallic *= t.b;
+    const TexelsOf<F> t = sample(*m.metallic_roughness_map, slot::metallic_roughness, false);
+    in.roughness = in.roughness * t.g;
+    in.metallic = in.metallic * t.b;
   }
   if (m.occlusion_map)
-    in.occlusion = 1.0f + m.occlusion_strength * (sample(*m.occlusion_map, slot::occlusion).r - 1.0f);
+    in.occlusion = 1.0f + m.occlusion_strength * (sample(*m.occlusion_map, slot::occlusion, false).r - 1.0f);
   if (m.emissive_map) linear_rgb(*m.emissive_map, slot::emissive, in.emissive);
-  if (m.specular_map) in.specular *= sample(*m.specular_map, slot::specular).a;
+  if (m.specular_map) in.specular = in.specular * sample(*m.specular_map, slot::specular, false).a;
   if (m.specular_color_map) linear_rgb(*m.specular_color_map, slot::specular_color, in.specular_color);
-  if (m.clearcoat_map) in.clearcoat *= sample(*m.clearcoat_map, slot::clearcoat).r;
+  if (m.clearcoat_map) in.clearcoat = in.clearcoat * sample(*m.clearcoat_map, slot::clearcoat, false).r;
   if (m.clearcoat_roughness_map)
-    in.clearcoat_roughness *= sample(*m.clearcoat_roughness_map, slot::clearcoat_roughness).g;
+    in.clearcoat_roughness =
+        in.clearcoat_roughness * sample(*m.clearcoat_roughness_map, slot::clearcoat_roughness, false).g;
   if (m.sheen_color_map) linear_rgb(*m.sheen_color_map, slot::sheen_color, in.sheen_color);
-  if (m.sheen_roughness_map) in.sheen_roughness *= sample(*m.sheen_roughness_map, slot::sheen_roughness).a;
-  if (m.transmission_map) in.transmission *= sample(*m.transmission_map, slot::transmission).r;
+  if (m.sheen_roughness_map)
+    in.sheen_roughness = in.sheen_roughness * sample(*m.sheen_roughness_map, slot::sheen_roughness, false).a;
+  if (m.transmission_map) in.transmission = in.transmission * sample(*m.transmission_map, slot::transmission, false).r;
+}
+
+// One pixel's texel of a map, with the uv set the material gives the map's slot.
+inline glm::vec4 sample_map(const PbrMaterial& m, const Texture& map, std::uint32_t slot, bool linear,
+                            const PixelUvs& at) {
+  const int set = (m.uv1_maps & slot) ? 1 : 0;
+  return linear ? map.sample_linear(at.uv[set], at.dx[set], at.dy[set], m.sampler)
+                : map.sample(at.uv[set], at.dx[set], at.dy[set], m.sampler);
+}
+
+// The material's textures at one pixel.
+inline void multiply_textures(const PbrMaterial& m, const PixelUvs& at, PbrInputs<float>& in) {
+  multiply_textures<float>(
+      m,
+      [&](const Texture& map, std::uint32_t slot, bool linear) {
+        const glm::vec4 t = sample_map(m, map, slot, linear, at);
+        return TexelsOf<float>{t.r, t.g, t.b, t.a};
+      },
+      in);
 }
 
 // PixelUvs for 16 lanes.
@@ -173,18 +197,34 @@ struct LaneUvs {
   }
 };
 
-// The same per-pixel steps for 16 lanes, lane by lane with the scalar functions, so both paths agree exactly.
-// `primitive` is read only with face colours.
+// The same per-pixel steps for 16 lanes, with the scalar functions, so both paths agree exactly: each lane's face
+// colour, then each map's texels lane by lane, multiplied in as the lanes' values (an input is multiplied by the
+// same numbers in the same order as per pixel). `primitive` is read only with face colours.
 template <class L>
 FACET_LANES_INLINE void multiply_per_pixel(const PbrMaterial& m, const simd::UIntT<L>& primitive,
                                            const LaneUvs<L>& uvs, PbrInputs<simd::FloatT<L>>& in) {
-  for (int k = 0; k < simd::kLanes; ++k) {
-    PbrInputs<float> one;
-    in.each_number(one, [k](simd::FloatT<L>& lanes, float& v) { v = lanes[k]; });
-    if (m.face_colors) multiply_face_color(m.face_colors[primitive[k]], one);
-    if (m.textured()) multiply_textures(m, uvs.lane(k), one);
-    in.each_number(one, [k](simd::FloatT<L>& lanes, float& v) { lanes[k] = v; });
-  }
+  using Float = simd::FloatT<L>;
+  if (m.face_colors)
+    for (int k = 0; k < simd::kLanes; ++k) {
+      PbrInputs<float> one;
+      one.base = {in.base.r[k], in.base.g[k], in.base.b[k]};
+      one.alpha = in.alpha[k];
+      multiply_face_color(m.face_colors[primitive[k]], one);
+      in.base.r[k] = one.base.r, in.base.g[k] = one.base.g, in.base.b[k] = one.base.b;
+      in.alpha[k] = one.alpha;
+    }
+  if (!m.textured()) return;
+  multiply_textures<Float>(
+      m,
+      [&](const Texture& map, std::uint32_t slot, bool linear) {
+        TexelsOf<Float> t;
+        for (int k = 0; k < simd::kLanes; ++k) {
+          const glm::vec4 texel = sample_map(m, map, slot, linear, uvs.lane(k));
+          t.r[k] = texel.r, t.g[k] = texel.g, t.b[k] = texel.b, t.a[k] = texel.a;
+        }
+        return t;
+      },
+      in);
 }
 
 }  // namespace facet
