@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -76,6 +77,13 @@ class Texture {
   template <class L>
   FACET_LANES_INLINE simd::ColorT<L> sample_lanes(const simd::Vec2T<L>& uv, const Sampler& sampler) const;
 
+  // sample_linear for 16 lanes of any layout, with each lane's derivatives. The common case of colour maps (sRGB,
+  // trilinear, repeat, power-of-two) runs in lanes with the same IEEE operations as the scalar path (log2 taken
+  // lane by lane, as the scalar path takes it), so both give identical results; other textures sample lane by lane.
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> sample_linear_lanes(const simd::Vec2T<L>& uv, const simd::Vec2T<L>& duv_dx,
+                                                         const simd::Vec2T<L>& duv_dy, const Sampler& sampler) const;
+
   // Starts loading the texels sample_lanes(uv, sampler) will read, without waiting for them: call it early enough
   // and the samples find them in cache. Only the benchmark's case (bilinear, repeat, power-of-two) prefetches.
   template <class L>
@@ -111,6 +119,17 @@ class Texture {
 
   template <bool Srgb, class L>
   FACET_LANES_INLINE simd::ColorT<L> bilinear_repeat_pow2_lanes(const simd::Vec2T<L>& uv) const;
+  // sample_linear's levels of detail and its bilinear lookups in linear light, for an sRGB texture with mipmaps
+  // sampled trilinearly with repeat wrapping at power-of-two sizes.
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> trilinear_srgb_lanes(const simd::Vec2T<L>& uv, const simd::Vec2T<L>& duv_dx,
+                                                          const simd::Vec2T<L>& duv_dy) const;
+  template <class L>
+  FACET_LANES_INLINE simd::ColorT<L> bilinear_srgb_lanes(const simd::Vec2T<L>& uv, const simd::IntT<L>& level) const;
+  bool trilinear_srgb_lanes_apply(const Sampler& sampler) const {
+    return srgb_ && pow2_ && level_count_ > 1 && sampler.filter == Filter::trilinear &&
+           sampler.wrap_u == Wrap::repeat && sampler.wrap_v == Wrap::repeat;
+  }
   bool bilinear_repeat_pow2_applies(const Sampler& sampler) const {
     return pow2_ && sampler.filter != Filter::nearest && sampler.wrap_u == Wrap::repeat &&
            sampler.wrap_v == Wrap::repeat;
@@ -156,6 +175,95 @@ inline simd::ColorT<L> Texture::sample_lanes(const simd::Vec2T<L>& uv, const Sam
     c.a[k] = s.a;
   }
   return c;
+}
+
+template <class L>
+inline simd::ColorT<L> Texture::sample_linear_lanes(const simd::Vec2T<L>& uv, const simd::Vec2T<L>& duv_dx,
+                                                    const simd::Vec2T<L>& duv_dy, const Sampler& sampler) const {
+  if (trilinear_srgb_lanes_apply(sampler)) return trilinear_srgb_lanes(uv, duv_dx, duv_dy);
+  simd::ColorT<L> c;
+  for (int k = 0; k < simd::kLanes; ++k) {
+    const glm::vec4 s = sample_linear(glm::vec2(uv.x[k], uv.y[k]), glm::vec2(duv_dx.x[k], duv_dx.y[k]),
+                                      glm::vec2(duv_dy.x[k], duv_dy.y[k]), sampler);
+    c.r[k] = s.r;
+    c.g[k] = s.g;
+    c.b[k] = s.b;
+    c.a[k] = s.a;
+  }
+  return c;
+}
+
+// sample_linear's trilinear path lane by lane: lod = log2 of the longer pixel step in level-0 texels; level 0 where
+// lod <= 0 (or NaN), the last level where lod reaches it, otherwise the two levels around lod blended by its
+// fraction (a + (b - a) * f, which is a itself where f is 0).
+template <class L>
+inline simd::ColorT<L> Texture::trilinear_srgb_lanes(const simd::Vec2T<L>& uv, const simd::Vec2T<L>& duv_dx,
+                                                     const simd::Vec2T<L>& duv_dy) const {
+  using namespace simd;
+  using Float = FloatT<L>;
+  using Int = IntT<L>;
+  const float width = levels_[0].fwidth, height = levels_[0].fheight;
+  // glm::length(d * size): the square root of x * x + y * y; std::max(a, b): a < b ? b : a.
+  const Float sx = duv_dx.x * width, sy = duv_dx.y * height, tx = duv_dy.x * width, ty = duv_dy.y * height;
+  const Float along_x = simd::sqrt(Float(sx * sx + sy * sy)), along_y = simd::sqrt(Float(tx * tx + ty * ty));
+  const Float rho = select(along_x < along_y, along_y, along_x);
+  Float lod;
+  for (int k = 0; k < kLanes; ++k) lod[k] = std::log2(rho[k]);
+  const Float last = splat<L>(static_cast<float>(level_count_ - 1)), zero = splat<L>(0.0f);
+  const Float clamped = select(lod > 0.0f, select(lod < last, lod, last), zero);  // NaN to level 0
+  const Int level = truncate(clamped);
+  const Float f = select(lod < last, Float(clamped - to_float(level)), zero);
+  const Int next = blend(level < level_count_ - 1, Int(level + 1), level);
+  const ColorT<L> a = bilinear_srgb_lanes(uv, level), b = bilinear_srgb_lanes(uv, next);
+  return {a.r + (b.r - a.r) * f, a.g + (b.g - a.g) * f, a.b + (b.b - a.b) * f, a.a + (b.a - a.a) * f};
+}
+
+// sample_bilinear_linear at each lane's level, with repeat wrapping at power-of-two sizes: split_floor, the four
+// texels, red, green and blue decoded by table and alpha / 255, then glm::mix's x * (1 - a) + y * a along u and v.
+template <class L>
+inline simd::ColorT<L> Texture::bilinear_srgb_lanes(const simd::Vec2T<L>& uv, const simd::IntT<L>& level) const {
+  using namespace simd;
+  using Float = FloatT<L>;
+  using Int = IntT<L>;
+  Float fwidth, fheight;
+  Int wmask, hmask, stride, offset;
+  for (int k = 0; k < kLanes; ++k) {
+    const Level& l = levels_[static_cast<std::size_t>(level[k])];
+    fwidth[k] = l.fwidth, fheight[k] = l.fheight;
+    wmask[k] = l.width - 1, hmask[k] = l.height - 1;
+    stride[k] = l.stride, offset[k] = static_cast<int>(l.offset);
+  }
+  auto split = [&](Float v, Int & index, Float & fraction) __attribute__((always_inline)) {
+    v = clamp_texel_coordinate(v);
+    const Float lower = simd::floor(v);
+    index = truncate(lower);
+    fraction = v - lower;
+  };
+  Int i, j;
+  Float alpha, beta;
+  split(uv.x * fwidth - 0.5f, i, alpha);
+  split(uv.y * fheight - 0.5f, j, beta);
+  const Int i0 = i & wmask, i1 = Int(i + 1) & wmask;
+  const Int row0 = offset + (j & hmask) * stride, row1 = offset + (Int(j + 1) & hmask) * stride;
+  const Int at[4] = {row0 + i0, row0 + i1, row1 + i0, row1 + i1};
+  const float* decode = detail::srgb_decode_table();
+  Float c[4][4];  // [texel: 00, 10, 01, 11][channel]
+  for (int t = 0; t < 4; ++t)
+    for (int k = 0; k < kLanes; ++k) {
+      const std::uint32_t texel = texels_[static_cast<std::size_t>(at[t][k])];
+      c[t][0][k] = decode[texel & 0xffu];
+      c[t][1][k] = decode[(texel >> 8) & 0xffu];
+      c[t][2][k] = decode[(texel >> 16) & 0xffu];
+      c[t][3][k] = static_cast<float>(texel >> 24) / 255.0f;
+    }
+  const Float keep_u = 1.0f - alpha, keep_v = 1.0f - beta;
+  Float out[4];
+  for (int ch = 0; ch < 4; ++ch) {
+    const Float bottom = c[0][ch] * keep_u + c[1][ch] * alpha;
+    const Float top = c[2][ch] * keep_u + c[3][ch] * alpha;
+    out[ch] = bottom * keep_v + top * beta;
+  }
+  return {out[0], out[1], out[2], out[3]};
 }
 
 template <class L>

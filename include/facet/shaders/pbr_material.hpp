@@ -136,7 +136,8 @@ struct TexelsOf {
 // light (linear true: colour maps) or as stored.
 template <class F, class Sample>
 FACET_LANES_INLINE void multiply_textures(const PbrMaterial& m, Sample&& sample, PbrInputs<F>& in) {
-  const auto linear_rgb = [&](const Texture& map, std::uint32_t slot, brdf::Rgb<F>& into) {
+  const auto linear_rgb = [&](const Texture& map, std::uint32_t slot, brdf::Rgb<F>& into)
+                              __attribute__((always_inline)) {
     const TexelsOf<F> t = sample(map, slot, true);
     into = into * brdf::Rgb<F>{t.r, t.g, t.b};
     return t;
@@ -214,10 +215,16 @@ FACET_LANES_INLINE void multiply_per_pixel(const PbrMaterial& m, const simd::UIn
       in.alpha[k] = one.alpha;
     }
   if (!m.textured()) return;
+  // Lambdas in lane code are forced inline: one left out of line would be compiled for the baseline only.
   multiply_textures<Float>(
       m,
-      [&](const Texture& map, std::uint32_t slot, bool linear) {
+      [&](const Texture& map, std::uint32_t slot, bool linear) __attribute__((always_inline)) {
         TexelsOf<Float> t;
+        if (linear) {
+          const int set = (m.uv1_maps & slot) ? 1 : 0;
+          const simd::ColorT<L> c = map.sample_linear_lanes(uvs.uv[set], uvs.dx[set], uvs.dy[set], m.sampler);
+          return TexelsOf<Float>{c.r, c.g, c.b, c.a};
+        }
         for (int k = 0; k < simd::kLanes; ++k) {
           const glm::vec4 texel = sample_map(m, map, slot, linear, uvs.lane(k));
           t.r[k] = texel.r, t.g[k] = texel.g, t.b[k] = texel.b, t.a[k] = texel.a;
