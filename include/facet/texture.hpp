@@ -142,6 +142,20 @@ class Texture {
   // conversion to integers is defined for any uv.
   template <class L>
   FACET_LANES_INLINE static simd::FloatT<L> clamp_texel_coordinate(simd::FloatT<L> v);
+  // Texel coordinates v split into their floor, as an int, and the fraction above it, per lane.
+  template <class L>
+  FACET_LANES_INLINE static void split_lanes(simd::FloatT<L> v, simd::IntT<L>& index, simd::FloatT<L>& fraction);
+
+  // The lanes' colours from sample(k), one scalar sample per lane.
+  template <class L, class Sample>
+  FACET_LANES_INLINE static simd::ColorT<L> lane_by_lane(Sample&& sample) {
+    simd::ColorT<L> c;
+    for (int k = 0; k < simd::kLanes; ++k) {
+      const glm::vec4 s = sample(k);
+      c.r[k] = s.r, c.g[k] = s.g, c.b[k] = s.b, c.a[k] = s.a;
+    }
+    return c;
+  }
 
   void pad_level(int level);  // fills the extra column and row of a level from column 0 and row 0
   glm::vec4 sample_level0(glm::vec2 uv, const Sampler& sampler) const;
@@ -166,31 +180,19 @@ template <class L>
 inline simd::ColorT<L> Texture::sample_lanes(const simd::Vec2T<L>& uv, const Sampler& sampler) const {
   if (bilinear_repeat_pow2_applies(sampler))
     return srgb_ ? bilinear_repeat_pow2_lanes<true>(uv) : bilinear_repeat_pow2_lanes<false>(uv);
-  simd::ColorT<L> c;
-  for (int k = 0; k < simd::kLanes; ++k) {
-    const glm::vec4 s = sample(glm::vec2(uv.x[k], uv.y[k]), sampler);
-    c.r[k] = s.r;
-    c.g[k] = s.g;
-    c.b[k] = s.b;
-    c.a[k] = s.a;
-  }
-  return c;
+  return lane_by_lane<L>([&](int k) __attribute__((always_inline)) {
+    return sample(glm::vec2(uv.x[k], uv.y[k]), sampler);
+  });
 }
 
 template <class L>
 inline simd::ColorT<L> Texture::sample_linear_lanes(const simd::Vec2T<L>& uv, const simd::Vec2T<L>& duv_dx,
                                                     const simd::Vec2T<L>& duv_dy, const Sampler& sampler) const {
   if (trilinear_srgb_lanes_apply(sampler)) return trilinear_srgb_lanes(uv, duv_dx, duv_dy);
-  simd::ColorT<L> c;
-  for (int k = 0; k < simd::kLanes; ++k) {
-    const glm::vec4 s = sample_linear(glm::vec2(uv.x[k], uv.y[k]), glm::vec2(duv_dx.x[k], duv_dx.y[k]),
-                                      glm::vec2(duv_dy.x[k], duv_dy.y[k]), sampler);
-    c.r[k] = s.r;
-    c.g[k] = s.g;
-    c.b[k] = s.b;
-    c.a[k] = s.a;
-  }
-  return c;
+  return lane_by_lane<L>([&](int k) __attribute__((always_inline)) {
+    return sample_linear(glm::vec2(uv.x[k], uv.y[k]), glm::vec2(duv_dx.x[k], duv_dx.y[k]),
+                         glm::vec2(duv_dy.x[k], duv_dy.y[k]), sampler);
+  });
 }
 
 // sample_linear's trilinear path lane by lane: lod = log2 of the longer pixel step in level-0 texels; level 0 where
@@ -233,16 +235,10 @@ inline simd::ColorT<L> Texture::bilinear_srgb_lanes(const simd::Vec2T<L>& uv, co
     wmask[k] = l.width - 1, hmask[k] = l.height - 1;
     stride[k] = l.stride, offset[k] = static_cast<int>(l.offset);
   }
-  auto split = [&](Float v, Int & index, Float & fraction) __attribute__((always_inline)) {
-    v = clamp_texel_coordinate(v);
-    const Float lower = simd::floor(v);
-    index = truncate(lower);
-    fraction = v - lower;
-  };
   Int i, j;
   Float alpha, beta;
-  split(uv.x * fwidth - 0.5f, i, alpha);
-  split(uv.y * fheight - 0.5f, j, beta);
+  split_lanes(Float(uv.x * fwidth - 0.5f), i, alpha);
+  split_lanes(Float(uv.y * fheight - 0.5f), j, beta);
   const Int i0 = i & wmask, i1 = Int(i + 1) & wmask;
   const Int row0 = offset + (j & hmask) * stride, row1 = offset + (Int(j + 1) & hmask) * stride;
   const Int at[4] = {row0 + i0, row0 + i1, row1 + i0, row1 + i1};
@@ -266,6 +262,16 @@ inline simd::ColorT<L> Texture::bilinear_srgb_lanes(const simd::Vec2T<L>& uv, co
   return {out[0], out[1], out[2], out[3]};
 }
 
+// split_floor's values for lanes: within the clamp's +-2^30, floor(v) converts to an int exactly. One rounding
+// instruction instead of a truncation corrected by one where it rounded up (a compare and a masked add).
+template <class L>
+inline void Texture::split_lanes(simd::FloatT<L> v, simd::IntT<L>& index, simd::FloatT<L>& fraction) {
+  v = clamp_texel_coordinate(v);
+  const simd::FloatT<L> lower = simd::floor(v);
+  index = simd::truncate(lower);
+  fraction = v - lower;
+}
+
 template <class L>
 inline simd::FloatT<L> Texture::clamp_texel_coordinate(simd::FloatT<L> v) {
   using namespace simd;
@@ -281,19 +287,9 @@ inline simd::IntT<L> Texture::bilinear_repeat_pow2_first(const simd::Vec2T<L>& u
   using Float = FloatT<L>;
   using Int = IntT<L>;
   const Level& l = levels_[0];
-  // Lambdas over lane types are forced inline, like every lane function: one left out of line would be compiled
-  // for the baseline ISA only.
-  auto split = [&](Float v, Int & index, Float & fraction) __attribute__((always_inline)) {
-    v = clamp_texel_coordinate(v);
-    // split_floor's values: within the clamp's +-2^30, floor(v) converts to an int exactly. One rounding
-    // instruction instead of a truncation corrected by one where it rounded up (a compare and a masked add).
-    const Float lower = simd::floor(v);
-    index = truncate(lower);
-    fraction = v - lower;
-  };
   Int i, j;
-  split(uv.x * l.fwidth - 0.5f, i, alpha);
-  split(uv.y * l.fheight - 0.5f, j, beta);
+  split_lanes(Float(uv.x * l.fwidth - 0.5f), i, alpha);
+  split_lanes(Float(uv.y * l.fheight - 0.5f), j, beta);
   return (j & (l.height - 1)) * l.stride + (i & (l.width - 1));
 }
 
