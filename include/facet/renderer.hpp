@@ -99,8 +99,8 @@ class Renderer {
   // stores of the tiles each extra part touches. A multisampled target without sample planes records up to the
   // limit itself, as holding them costs fresh memory (66 MB for 4 samples at 1920x1080), unless a draw would bring
   // the frame's recorded work past the planes' weight on a target whose planes weigh 16 MiB or more: it then takes
-  // the planes and goes on in cached parts (a million-point cloud at 4 samples peaks at 221 MiB instead of 345). Consecutive draws in the painter's order,
-  // which are composited together per tile, record up to the limit.
+  // the planes and goes on in cached parts (a million-point cloud at 4 samples peaks at 221 MiB instead of 345).
+  // Consecutive draws in the painter's order, which are composited together per tile, record up to the limit.
   static constexpr std::size_t kDefaultRecordedBytes = std::size_t{128} << 20;
   static constexpr std::size_t kCachedRecordedBytes = std::size_t{2} << 20;
   void set_recorded_bytes_limit(std::size_t bytes);
