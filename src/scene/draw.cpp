@@ -103,6 +103,8 @@ void draw_group(const GroupDraw& draw, const FrameContext& frame, const Instance
       // A blended surface lies in front of the opaque surfaces the occlusion was measured on.
       if (material.alpha_mode != AlphaMode::blend) {
         shader.screen_occlusion = frame.occlusion;
+        shader.screen_occlusion_x = frame.occlusion_x;
+        shader.screen_occlusion_y = frame.occlusion_y;
         shader.screen_occlusion_width = frame.occlusion_width;
         shader.screen_occlusion_height = frame.occlusion_height;
       }

@@ -18,9 +18,10 @@ struct FrameContext {
   glm::vec3 eye;  // world space
   LightBlock lights;                     // the classic shadings'
   std::vector<PunctualLight> punctual;  // the physically based look's
-  // Ambient occlusion, 1 open to 0 occluded, per 2 x 2 pixels of the target, top row first; nullptr: none.
+  // Ambient occlusion, 1 open to 0 occluded, per 2 x 2 pixels of the target, top row first, over a region of
+  // width x height of them from (x, y) on; nullptr: none.
   const float* occlusion = nullptr;
-  int occlusion_width = 0, occlusion_height = 0;
+  int occlusion_x = 0, occlusion_y = 0, occlusion_width = 0, occlusion_height = 0;
 };
 
 // The largest factor by which world_from_object stretches a length: scales a bounding sphere's radius.

@@ -136,11 +136,20 @@ FACET_LANES_INLINE simd::FloatT<L> at(const float* row, const simd::IntT<L>& x) 
   return simd::gather(row, x);
 }
 
+// Where the grids lie in the target the depth was drawn into: its size, and the place of the grids' first pixel.
+// The region is a multiple of 16 pixels across and 4 down from the target's corner, so that its strips and the
+// spiral's 4 x 4 pattern fall on the same pixels as the whole target's would.
+struct Window {
+  int width, height;
+  int x0 = 0, y0 = 0;
+};
+
 // View-space positions rebuilt from a projection's depth: z from the window depth, x and y from the pixel's
-// normalized device coordinates (any projection without shear: perspective, orthographic, off-centre).
+// normalized device coordinates (any projection without shear: perspective, orthographic, off-centre). Pixels are
+// counted from the window's region.
 struct Unprojection {
   glm::mat4 p;
-  int width, height;
+  Window window;
   float inverse_x = 1.0f / p[0][0], inverse_y = 1.0f / p[1][1];
 
   // View-space z of window depth d (negative in front of the eye), or 0 where nothing was drawn (d = 1).
@@ -152,8 +161,8 @@ struct Unprojection {
   // For a pixel, or lanes: x and y as ints or lanes of ints, z as float or lanes.
   template <class F, class Y>
   FACET_LANES_INLINE Vec3Of<F> position(const IntOf<F>& x, const Y& y, const F& z) const {
-    const F ndc_x = 2.0f * (to_float(x) + 0.5f) / static_cast<float>(width) - 1.0f;
-    const auto ndc_y = 1.0f - 2.0f * (to_float(y) + 0.5f) / static_cast<float>(height);
+    const F ndc_x = 2.0f * (to_float(x + window.x0) + 0.5f) / static_cast<float>(window.width) - 1.0f;
+    const auto ndc_y = 1.0f - 2.0f * (to_float(y + window.y0) + 0.5f) / static_cast<float>(window.height);
     const F w = p[2][3] * z + p[3][3];
     return {(ndc_x * w - p[2][0] * z - p[3][0]) * inverse_x, (ndc_y * w - p[2][1] * z - p[3][1]) * inverse_y, z};
   }
@@ -168,11 +177,12 @@ struct Sampling {
   float strength;  // the sum's weight: 5 / (samples r^6)
   const Spiral& spiral;
 
-  Sampling(const Grid& g, const glm::mat4& clip_from_view, float world_radius, const Spiral& s)
+  // The grid covers the region of `window` from its origin on.
+  Sampling(const Grid& g, const glm::mat4& clip_from_view, float world_radius, const Spiral& s, const Window& window)
       : grid(g),
-        unproject{clip_from_view, g.width, g.height},
+        unproject{clip_from_view, window},
         radius(world_radius),
-        scale(0.5f * static_cast<float>(g.height) * std::abs(clip_from_view[1][1])),
+        scale(0.5f * static_cast<float>(window.height) * std::abs(clip_from_view[1][1])),
         strength(5.0f / (kSamples * radius * radius * radius * radius * radius * radius)),
         spiral(s) {}
 

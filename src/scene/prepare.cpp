@@ -257,6 +257,7 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
     out.textures[static_cast<std::size_t>(g.material)] = texture && !texture->empty() ? texture : nullptr;
   }
 
+  out.box = box;
   out.center = box.center();
   out.radius = box.radius();
   return out;

@@ -47,6 +47,7 @@ struct PreparedMesh {
   std::vector<std::uint32_t> first_copy;
   std::vector<const Texture*> textures;  // per material; nullptr = none or failed to load
   bool tangents = false;                 // the vertices carry the file's tangents
+  Bounds box;                            // of the positions, object space
   glm::vec3 center{0.0f};                // bounding sphere, object space
   float radius = 0.0f;
 };

@@ -155,6 +155,8 @@ std::size_t Scene::render(Renderer& renderer, Framebuffer& target, const View& v
     impl_->ambient_occlusion(renderer, options, view, target.width(), target.height(),
                              kOcclusionRadius * impl_->bounding_radius());
     frame.occlusion = impl_->occlusion.open.data();
+    frame.occlusion_x = impl_->occlusion.window.x0;
+    frame.occlusion_y = impl_->occlusion.window.y0;
     frame.occlusion_width = impl_->occlusion.z.width;
     frame.occlusion_height = impl_->occlusion.z.height;
   }

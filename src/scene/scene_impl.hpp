@@ -52,6 +52,7 @@ struct Scene::Impl {
   struct AmbientOcclusion {
     std::unique_ptr<Framebuffer> target;
     detail::occlusion::Grid z, raw;  // their width and height are the occlusion's
+    detail::occlusion::Window window;  // the target's, and the grids' place in it
     std::vector<float> open;
   } occlusion;
 

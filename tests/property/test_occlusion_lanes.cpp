@@ -1,6 +1,7 @@
 // test_occlusion_lanes.cpp - ambient occlusion's lane stages give the scalar reference's values, bit for bit.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <vector>
 
@@ -46,7 +47,7 @@ struct Occlusion {
   Frame frame;
   Grid z, raw;
   Spiral spiral;
-  Sampling sampling{sized(z), frame.clip_from_view, 0.8f, spiral};
+  Sampling sampling{sized(z), frame.clip_from_view, 0.8f, spiral, Window{Frame::kWidth, Frame::kHeight}};
   std::vector<float> open = std::vector<float>(static_cast<std::size_t>(Frame::kWidth) * Frame::kHeight);
 
   static const Grid& sized(Grid& grid) {
@@ -94,6 +95,44 @@ TEST(OcclusionLanes, TheFloorIsOccludedAtTheWallsFootAndOpenElsewhere) {
   EXPECT_LT(at(101, foot + 1), 0.8f);          // the floor at the wall's foot
   EXPECT_GT(at(101, Frame::kHeight - 1), 0.95f);  // the floor near the eye
   EXPECT_GT(at(5, foot + 1), 0.95f);           // the floor beside the wall, at the same depth
+}
+
+// A frame's occlusion over a region that holds every drawn pixel (its origin a multiple of 16 across and 4 down,
+// as the frame's is) gives the whole frame's values there, and the whole frame is open outside it.
+TEST(OcclusionLanes, ARegionHoldingEveryDrawnPixelGivesTheWholeFramesValues) {
+  Occlusion whole;
+  // The wall and the floor at its foot: everything outside [37, 180) x [9, height - 3) left undrawn.
+  const int x_lo = 37, x_hi = 179, y_lo = 9, y_hi = Frame::kHeight - 4;
+  for (int y = 0; y < Frame::kHeight; ++y)
+    for (int x = 0; x < Frame::kWidth; ++x)
+      if (x < x_lo || x > x_hi || y < y_lo || y > y_hi)
+        whole.frame.depth[static_cast<std::size_t>(y) * Frame::kWidth + x] = 1.0f;
+  whole.run();
+
+  const Window window{Frame::kWidth, Frame::kHeight, (x_lo - 1) / 16 * 16, (y_lo - 1) / 4 * 4};
+  const int width = x_hi + 2 - window.x0, height = std::min(Frame::kHeight, y_hi + 2) - window.y0;
+  Grid z, raw;
+  z.resize(width, height);
+  raw.resize(width, height);
+  const Sampling sampling{z, whole.frame.clip_from_view, 0.8f, whole.spiral, window};
+  std::vector<float> open(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
+  for (int y = 0; y < height; ++y) depth_row(sampling.unproject, whole.depth(window.y0 + y) + window.x0, width, z.row(y));
+  for (int y = 0; y < height; ++y) openness_row(sampling, y, raw);
+  for (int y = 0; y < height; ++y) blurred_row(sampling, raw, y, open.data() + static_cast<std::size_t>(y) * width);
+
+  int occluded = 0;
+  for (int y = 0; y < Frame::kHeight; ++y)
+    for (int x = 0; x < Frame::kWidth; ++x) {
+      const int rx = x - window.x0, ry = y - window.y0;
+      if (rx < 0 || ry < 0 || rx >= width || ry >= height) {
+        ASSERT_EQ(whole.open_row(y)[x], 1.0f) << x << "," << y;
+        continue;
+      }
+      ASSERT_EQ(open[static_cast<std::size_t>(ry) * width + rx], whole.open_row(y)[x]) << x << "," << y;
+      ASSERT_EQ(raw.row(ry)[rx], whole.raw.row(y)[x]) << x << "," << y;
+      occluded += whole.open_row(y)[x] < 0.99f;
+    }
+  EXPECT_GT(occluded, 0);  // the wall's edges and the hole's rims occlude something
 }
 
 }  // namespace

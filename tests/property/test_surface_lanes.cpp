@@ -215,8 +215,9 @@ TEST(SurfaceLanes, PbrMatchesTheScalarFragment) {
                              glm::lookAt(glm::vec3(-0.6f, 1.0f, 1.6f), glm::vec3(0.0f), glm::vec3(0.0f, 1.0f, 0.0f)),
                          64, std::span<const float>(depths), 0.01f);
   lights[0].shadow = &shadow;
-  // Screen-space occlusion of the target's size (203 is no multiple of the 8-pixel strip: edge lanes clamp).
-  std::vector<float> open(203 * 151);
+  // Screen-space occlusion over a region of 60 x 40 values from (13, 9) on, within the 102 x 76 of the target: the
+  // lanes outside it clamp on every side.
+  std::vector<float> open(60 * 40);
   for (float& o : open) o = std::uniform_real_distribution<float>(0.3f, 1.0f)(random);
   for (const Case& c : cases) {
     PbrShader shader;
@@ -228,8 +229,10 @@ TEST(SurfaceLanes, PbrMatchesTheScalarFragment) {
     shader.lights = lights;
     shader.ambient = glm::vec3(0.12f);
     shader.screen_occlusion = open.data();
-    shader.screen_occlusion_width = 203;
-    shader.screen_occlusion_height = 151;
+    shader.screen_occlusion_x = 13;
+    shader.screen_occlusion_y = 9;
+    shader.screen_occlusion_width = 60;
+    shader.screen_occlusion_height = 40;
     shader.environment = c.environment;
     shader.eye = eye;
     shader.tone_mapping = c.tone_mapping;

@@ -70,10 +70,11 @@ struct PbrUniforms {
   glm::vec3 eye{0.0f};  // world space
   ToneMapping tone_mapping = ToneMapping::neutral;
   float exposure = 1.0f;
-  // Screen-space ambient occlusion, 1 open to 0 occluded, per 2 x 2 pixels of the target (width x height values,
-  // top row first); multiplies the material's occlusion. nullptr: none.
+  // Screen-space ambient occlusion, 1 open to 0 occluded, per 2 x 2 pixels of the target, over a region of
+  // width x height of them (top row first) whose first is at (x, y); multiplies the material's occlusion. Pixels
+  // outside the region take its nearest value. nullptr: none.
   const float* screen_occlusion = nullptr;
-  int screen_occlusion_width = 0, screen_occlusion_height = 0;
+  int screen_occlusion_x = 0, screen_occlusion_y = 0, screen_occlusion_width = 0, screen_occlusion_height = 0;
   // Each vertex's normal is the direction towards the eye: points without normals, as pyrender lights them.
   bool normal_towards_eye = false;
 };
@@ -385,10 +386,11 @@ struct BasicPbrShader : PbrUniforms {
     return {l.x, l.y, l.z};
   }
 
-  // The screen-space occlusion at a pixel centre; helper lanes past the target's edge read its last column or row.
+  // The screen-space occlusion at a pixel centre; pixels outside the region (helper lanes, the target's edges)
+  // read its nearest column and row.
   float screen_open(float x, float y) const {
-    const int column = std::min(static_cast<int>(x) >> 1, screen_occlusion_width - 1);
-    const int row = std::min(static_cast<int>(y) >> 1, screen_occlusion_height - 1);
+    const int column = std::clamp((static_cast<int>(x) >> 1) - screen_occlusion_x, 0, screen_occlusion_width - 1);
+    const int row = std::clamp((static_cast<int>(y) >> 1) - screen_occlusion_y, 0, screen_occlusion_height - 1);
     return screen_occlusion[static_cast<std::size_t>(row) * static_cast<std::size_t>(screen_occlusion_width) +
                             static_cast<std::size_t>(column)];
   }
@@ -396,10 +398,12 @@ struct BasicPbrShader : PbrUniforms {
   FACET_LANES_INLINE simd::FloatT<L> screen_open(const simd::FloatT<L>& x, const simd::FloatT<L>& y) const {
     using namespace simd;
     FACET_LANE_TYPES(L);
-    const Int column = truncate(x) >> 1, row = truncate(y) >> 1;
-    const int last_column = screen_occlusion_width - 1, last_row = screen_occlusion_height - 1;
-    const Int c = blend(column < last_column, column, splat<L>(last_column));
-    const Int r = blend(row < last_row, row, splat<L>(last_row));
+    const auto within = [](const Int& v, int last) {
+      const Int low = blend(v < last, v, splat<L>(last));
+      return blend(low > 0, low, splat<L>(0));
+    };
+    const Int c = within((truncate(x) >> 1) - screen_occlusion_x, screen_occlusion_width - 1);
+    const Int r = within((truncate(y) >> 1) - screen_occlusion_y, screen_occlusion_height - 1);
     return gather(screen_occlusion, r * screen_occlusion_width + c);
   }
 
