@@ -56,6 +56,13 @@ FACET_LANES_INLINE F saturate(const F& v) {
   return min(max(v, constant<F>(0.0f)), constant<F>(1.0f));
 }
 
+// Whether no pixel (or lane) of v lies above 0; NaN does not.
+inline bool none_positive(float v) { return !(v > 0.0f); }
+template <class F>
+FACET_LANES_INLINE bool none_positive(const F& v) {
+  return simd::lane_bits(v > 0.0f) == 0;
+}
+
 inline constexpr float kPi = 3.14159265358979f;
 
 // A linear RGB colour, per pixel or per lane.

@@ -5,6 +5,7 @@
 #include <array>
 #include <cstdint>
 #include <span>
+#include <type_traits>
 
 #include "facet/environment.hpp"
 #include "facet/fragment_lanes.hpp"
@@ -220,15 +221,27 @@ struct BasicPbrShader : PbrUniforms {
     const F n_dot_v = brdf::saturate(dot(n, v));
     const Layers<F> layer = layers(in, n_dot_v, n_coat, v);
     Rgb<F> lit = brdf::black<F>(), coat = brdf::black<F>();
+    // Light from behind the surface reflects nothing, save through a sheen or a coat: without them it is skipped
+    // (its shadow lookup too) where no pixel of the call faces it, and zeroed in the lanes that do not face it, so
+    // that each pixel's sum is the same whichever way it is shaded.
+    const bool plain = !material.sheened() && !material.coated();
     for (const PunctualLight& light : lights) {
       V3 l;
       F falloff;
       incident_light(light, world, l, falloff);
+      const F n_dot_l = brdf::saturate(dot(n, l));
+      if (plain && brdf::none_positive(n_dot_l)) continue;
       if (light.shadow) falloff = falloff * light.shadow->visibility<F>(world, n);
       const V3 h = normalize(v + l);
-      const F n_dot_l = brdf::saturate(dot(n, l)), n_dot_h = brdf::saturate(dot(n, h));
-      const F v_dot_h = brdf::saturate(dot(v, h));
+      const F n_dot_h = brdf::saturate(dot(n, h)), v_dot_h = brdf::saturate(dot(v, h));
       Rgb<F> r = brdf::reflect_light(s, n_dot_l, n_dot_v, n_dot_h, v_dot_h);
+      if constexpr (!std::is_same_v<F, float>) {
+        if (plain) {
+          const F zero = brdf::constant<F>(0.0f);
+          r = {brdf::select(n_dot_l > 0.0f, r.r, zero), brdf::select(n_dot_l > 0.0f, r.g, zero),
+               brdf::select(n_dot_l > 0.0f, r.b, zero)};
+        }
+      }
       if (material.sheened()) {
         const F albedo = brdf::max(layer.sheen_albedo, brdf::sheen_albedo(n_dot_l, layer.sheen_roughness));
         r = r * (1.0f - layer.sheen_max * albedo) +
