@@ -2,6 +2,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <cstdint>
@@ -79,10 +80,13 @@ class Texture {
 
   // sample_linear for 16 lanes of any layout, with each lane's derivatives. The common case of colour maps (sRGB,
   // trilinear, repeat, power-of-two) runs in lanes with the same IEEE operations as the scalar path (log2 taken
-  // lane by lane, as the scalar path takes it), so both give identical results; other textures sample lane by lane.
+  // lane by lane, as the scalar path takes it), so both give identical results; other textures sample lane by lane,
+  // only the lanes set in `lanes` (the pixels a shader call colours; the others come out 0).
+  static constexpr unsigned kAllLanes = (1u << simd::kLanes) - 1u;
   template <class L>
   FACET_LANES_INLINE simd::ColorT<L> sample_linear_lanes(const simd::Vec2T<L>& uv, const simd::Vec2T<L>& duv_dx,
-                                                         const simd::Vec2T<L>& duv_dy, const Sampler& sampler) const;
+                                                         const simd::Vec2T<L>& duv_dy, const Sampler& sampler,
+                                                         unsigned lanes = kAllLanes) const;
 
   // Starts loading the texels sample_lanes(uv, sampler) will read, without waiting for them: call it early enough
   // and the samples find them in cache. Only the benchmark's case (bilinear, repeat, power-of-two) prefetches.
@@ -146,11 +150,12 @@ class Texture {
   template <class L>
   FACET_LANES_INLINE static void split_lanes(simd::FloatT<L> v, simd::IntT<L>& index, simd::FloatT<L>& fraction);
 
-  // The lanes' colours from sample(k), one scalar sample per lane.
+  // The colours of the lanes set in `lanes` from sample(k), one scalar sample per lane; the others 0.
   template <class L, class Sample>
-  FACET_LANES_INLINE static simd::ColorT<L> lane_by_lane(Sample&& sample) {
-    simd::ColorT<L> c;
-    for (int k = 0; k < simd::kLanes; ++k) {
+  FACET_LANES_INLINE static simd::ColorT<L> lane_by_lane(Sample&& sample, unsigned lanes) {
+    simd::ColorT<L> c{};
+    for (unsigned left = lanes & kAllLanes; left; left &= left - 1) {
+      const int k = std::countr_zero(left);
       const glm::vec4 s = sample(k);
       c.r[k] = s.r, c.g[k] = s.g, c.b[k] = s.b, c.a[k] = s.a;
     }
@@ -180,19 +185,21 @@ template <class L>
 inline simd::ColorT<L> Texture::sample_lanes(const simd::Vec2T<L>& uv, const Sampler& sampler) const {
   if (bilinear_repeat_pow2_applies(sampler))
     return srgb_ ? bilinear_repeat_pow2_lanes<true>(uv) : bilinear_repeat_pow2_lanes<false>(uv);
-  return lane_by_lane<L>([&](int k) __attribute__((always_inline)) {
-    return sample(glm::vec2(uv.x[k], uv.y[k]), sampler);
-  });
+  return lane_by_lane<L>([&](int k) __attribute__((always_inline)) { return sample(glm::vec2(uv.x[k], uv.y[k]), sampler); },
+                         kAllLanes);
 }
 
 template <class L>
 inline simd::ColorT<L> Texture::sample_linear_lanes(const simd::Vec2T<L>& uv, const simd::Vec2T<L>& duv_dx,
-                                                    const simd::Vec2T<L>& duv_dy, const Sampler& sampler) const {
+                                                    const simd::Vec2T<L>& duv_dy, const Sampler& sampler,
+                                                    unsigned lanes) const {
   if (trilinear_srgb_lanes_apply(sampler)) return trilinear_srgb_lanes(uv, duv_dx, duv_dy);
-  return lane_by_lane<L>([&](int k) __attribute__((always_inline)) {
-    return sample_linear(glm::vec2(uv.x[k], uv.y[k]), glm::vec2(duv_dx.x[k], duv_dx.y[k]),
-                         glm::vec2(duv_dy.x[k], duv_dy.y[k]), sampler);
-  });
+  return lane_by_lane<L>(
+      [&](int k) __attribute__((always_inline)) {
+        return sample_linear(glm::vec2(uv.x[k], uv.y[k]), glm::vec2(duv_dx.x[k], duv_dx.y[k]),
+                             glm::vec2(duv_dy.x[k], duv_dy.y[k]), sampler);
+      },
+      lanes);
 }
 
 // sample_linear's trilinear path lane by lane: lod = log2 of the longer pixel step in level-0 texels; level 0 where

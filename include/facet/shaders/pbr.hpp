@@ -200,7 +200,7 @@ struct BasicPbrShader : PbrUniforms {
         const LaneUvs<L> uvs{{f.get(&Varyings::uv), f.get(&Varyings::uv1)},
                           {{f.ddx[u0], f.ddx[u0 + 1]}, {f.ddx[u1], f.ddx[u1 + 1]}},
                           {{f.ddy[u0], f.ddy[u0 + 1]}, {f.ddy[u1], f.ddy[u1 + 1]}}};
-        multiply_per_pixel(material, f.primitive, uvs, in);
+        multiply_per_pixel(material, f.primitive, uvs, in, simd::lane_bits(f.active));
       }
     } else if (material.face_colors) {
       multiply_per_pixel(material, f.primitive, LaneUvs<L>{}, in);  // no textures: the uvs go unread

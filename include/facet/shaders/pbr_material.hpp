@@ -1,6 +1,7 @@
 // pbr_material.hpp - PbrMaterial and what it is at one pixel: glTF's material factors times its textures.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
 #include <glm/glm.hpp>
@@ -200,10 +201,13 @@ struct LaneUvs {
 
 // The same per-pixel steps for 16 lanes, with the scalar functions, so both paths agree exactly: each lane's face
 // colour, then each map's texels lane by lane, multiplied in as the lanes' values (an input is multiplied by the
-// same numbers in the same order as per pixel). `primitive` is read only with face colours.
+// same numbers in the same order as per pixel). `primitive` is read only with face colours. Maps read lane by lane
+// are read in the lanes set in `lanes` only (the pixels the call colours: on a multisampled edge, a shading round
+// may colour a few of them), and give the others 0.
 template <class L>
 FACET_LANES_INLINE void multiply_per_pixel(const PbrMaterial& m, const simd::UIntT<L>& primitive,
-                                           const LaneUvs<L>& uvs, PbrInputs<simd::FloatT<L>>& in) {
+                                           const LaneUvs<L>& uvs, PbrInputs<simd::FloatT<L>>& in,
+                                           unsigned lanes = Texture::kAllLanes) {
   using Float = simd::FloatT<L>;
   if (m.face_colors)
     for (int k = 0; k < simd::kLanes; ++k) {
@@ -222,10 +226,13 @@ FACET_LANES_INLINE void multiply_per_pixel(const PbrMaterial& m, const simd::UIn
         TexelsOf<Float> t;
         if (linear) {
           const int set = (m.uv1_maps & slot) ? 1 : 0;
-          const simd::ColorT<L> c = map.sample_linear_lanes(uvs.uv[set], uvs.dx[set], uvs.dy[set], m.sampler);
+          const simd::ColorT<L> c =
+              map.sample_linear_lanes(uvs.uv[set], uvs.dx[set], uvs.dy[set], m.sampler, lanes);
           return TexelsOf<Float>{c.r, c.g, c.b, c.a};
         }
-        for (int k = 0; k < simd::kLanes; ++k) {
+        t = {Float{}, Float{}, Float{}, Float{}};
+        for (unsigned left = lanes; left; left &= left - 1) {
+          const int k = std::countr_zero(left);
           const glm::vec4 texel = sample_map(m, map, slot, linear, uvs.lane(k));
           t.r[k] = texel.r, t.g[k] = texel.g, t.b[k] = texel.b, t.a[k] = texel.a;
         }
