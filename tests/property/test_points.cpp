@@ -190,6 +190,45 @@ TEST(Points, TheImageIsTheSameAtAnyThreadCountAndSampleCount) {
     }
 }
 
+// Deferred shading's visibility pass takes small squares pixel by pixel (raster_visibility.cpp); immediate shading
+// takes every square through the triangles' block coverage. Both give the same colours and depths, for squares
+// below and above that size, under each depth function, with and without depth writes, at 1 and 4 samples.
+TEST(Points, DeferredAndImmediateShadingAgreeForSquaresOfEverySize) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> x(-4.0f, kWidth + 4.0f), y(-4.0f, kHeight + 4.0f), z(-0.9f, 0.9f), c(0, 1);
+  std::vector<ColorShader::Vertex> points(1500);
+  for (auto& p : points) p = {clip_at(x(rng), y(rng), z(rng)), glm::vec3(c(rng), c(rng), c(rng))};
+  std::vector<std::uint32_t> indices(points.size());
+  for (std::uint32_t i = 0; i < indices.size(); ++i) indices[i] = i;
+  const auto draw = [&](RenderState state, bool deferred, int samples) {
+    Framebuffer target(kWidth, kHeight, samples);
+    Renderer renderer(2);
+    renderer.clear(target, glm::vec4(0, 0, 0, 1), 0.5f);  // GREATER and LESS both pass somewhere
+    state.defer_shading = deferred;
+    renderer.draw_points(target, ColorShader{}, std::span<const ColorShader::Vertex>(points), indices, state);
+    renderer.finish(target);
+    return std::pair{std::vector<std::uint32_t>(target.color().begin(), target.color().end()),
+                     std::vector<float>(target.depth().begin(), target.depth().end())};
+  };
+  int differing = 0;
+  for (const float size : {1.0f, 2.0f, 2.5f, 7.5f, 12.0f})
+    for (const DepthFunc func : {DepthFunc::less, DepthFunc::lequal, DepthFunc::greater, DepthFunc::notequal,
+                                 DepthFunc::always})
+      for (const bool write : {true, false})
+        for (const int samples : {1, 4}) {
+          RenderState state = point_state(size);
+          state.depth_func = func;
+          state.depth_write = write;
+          const auto deferred = draw(state, true, samples), immediate = draw(state, false, samples);
+          ASSERT_EQ(deferred.first, immediate.first)
+              << "size " << size << ", function " << static_cast<int>(func) << ", writes " << write << ", samples "
+              << samples;
+          ASSERT_EQ(deferred.second, immediate.second) << "size " << size << ", function " << static_cast<int>(func);
+          differing += deferred.first != draw(point_state(size), true, samples).first;
+        }
+  EXPECT_GT(differing, 0);  // the depth functions draw different pictures
+}
+
 TEST(Points, MultisamplingCoversWholePixelsInsideAndBlendsTheEdges) {
   // A 3-pixel square at a pixel corner: 3x3 pixels fully inside at 4 samples take the whole colour; the ring
   // around it is partly covered.

@@ -53,7 +53,13 @@ template <Shader S>
           const float nearest = range(s).nearest;
           if (less ? nearest - kDepthBoundMargin >= bound : nearest - kDepthBoundMargin > bound) continue;
         }
-        mask[s] = raster_block_coverage(views[s], bx, by, i0, i1, j0, j1);
+        // Within the sample's own bounds: a rectangle's edges (a point's square) pass everywhere, and only those
+        // bounds shape it, which may be a pixel narrower than the bounds over all samples.
+        const TriangleSetup& view = views[s];
+        const int si0 = std::max(i0, view.min_x - bx), si1 = std::min(i1, view.max_x - bx);
+        const int sj0 = std::max(j0, view.min_y - by), sj1 = std::min(j1, view.max_y - by);
+        if (si0 > si1 || sj0 > sj1) continue;
+        mask[s] = raster_block_coverage(view, bx, by, si0, si1, sj0, sj1);
         any |= mask[s];
       }
       if (!any) continue;
