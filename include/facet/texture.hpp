@@ -185,8 +185,8 @@ template <class L>
 inline simd::ColorT<L> Texture::sample_lanes(const simd::Vec2T<L>& uv, const Sampler& sampler) const {
   if (bilinear_repeat_pow2_applies(sampler))
     return srgb_ ? bilinear_repeat_pow2_lanes<true>(uv) : bilinear_repeat_pow2_lanes<false>(uv);
-  return lane_by_lane<L>([&](int k) __attribute__((always_inline)) { return sample(glm::vec2(uv.x[k], uv.y[k]), sampler); },
-                         kAllLanes);
+  return lane_by_lane<L>(
+      [&](int k) __attribute__((always_inline)) { return sample(glm::vec2(uv.x[k], uv.y[k]), sampler); }, kAllLanes);
 }
 
 template <class L>

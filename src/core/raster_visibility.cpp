@@ -5,6 +5,7 @@
 #include <cstddef>
 #include <cstdint>
 
+#include "facet/detail/bits.hpp"
 #include "facet/detail/dispatch.hpp"
 #include "facet/detail/multisample.hpp"
 #include "facet/detail/raster.hpp"
@@ -83,6 +84,17 @@ template <DepthTest kTest, class L>
 // so offsets stay within 2^26) and far below overflow.
 inline constexpr std::int32_t kEdgeInside = 1 << 30;
 
+
+// Whether the primitive is a screen-aligned rectangle (setup's `rectangle`, a point's square: edges that pass
+// everywhere, which no triangle has, and a flat depth) of at most kSmallRectangle pixels each way. Such a point's
+// pixels are few: a loop over them costs less than the strips' 16 lanes and their edge set-up.
+inline constexpr int kSmallRectangle = 8;
+inline bool is_small_rectangle(const TriangleSetup& tri) {
+  const Edge* e = tri.edge;
+  return (e[0].a | e[0].b | e[1].a | e[1].b | e[2].a | e[2].b) == 0 && (e[0].q | e[1].q | e[2].q) >= 0 &&
+         tri.depth.ddx == 0.0f &&
+         tri.depth.ddy == 0.0f && tri.max_x - tri.min_x < kSmallRectangle && tri.max_y - tri.min_y < kSmallRectangle;
+}
 
 // Visibility of one triangle in one tile. Per 8x8 block: hierarchical depth rejects hidden blocks, and then each 8x2
 // strip of the block's rectangle runs one branch-free loop over its 16 pixels that does the three edge tests, the
@@ -195,6 +207,40 @@ template <DepthTest kTest, bool kDepthTest, class L>
       return any;
     }
   };
+
+  if (is_small_rectangle(tri)) {
+    // One depth everywhere (the plane is flat: 0 times any pixel's offset), as the strips would compute it.
+    float z = 0.0f;
+    if constexpr (kDepthTest) {
+      z = evaluate(plane, static_cast<float>(tri.min_x) + 0.5f - origin_x,
+                   static_cast<float>(tri.min_y) + 0.5f - origin_y) + offset;
+      z = z < 0.0f ? 0.0f : (1.0f < z ? 1.0f : z);
+    }
+    raster_blocks(
+        tri, work, kDepthTest, state,
+        [&](int bx, int by, int i0, int i1, int j0, int j1) __attribute__((always_inline)) {
+          const std::size_t block = scratch_index((bx - work.x0) / kScratchBlock, (by - work.y0) / kScratchBlock);
+          unsigned any = 0;
+          for (int j = j0; j <= j1; ++j)
+            for (int i = i0; i <= i1; ++i) {
+              // The scratch holds a block's pixels row by row (two rows a strip).
+              const std::size_t at = block + static_cast<std::size_t>(j * kScratchBlock + i);
+              float& depth = work.scratch->depth[at];
+              std::uint32_t& triangle = work.scratch->triangle[at];
+              unsigned pass = 1;
+              if constexpr (kDepthTest) pass = depth_test_passes<kTest>(z, depth, passing);
+              // Selects by mask, not branches: whether a point's pixel passes is a coin toss in a dense cloud.
+              const std::uint32_t keep = pass - 1u;  // all ones where it fails
+              if (depth_write) {
+                any |= pass;
+                depth = bit_cast<float>((bit_cast<std::uint32_t>(z) & ~keep) | (bit_cast<std::uint32_t>(depth) & keep));
+              }
+              triangle = (ref & ~keep) | (triangle & keep);
+            }
+          return BlockCoverage{any != 0, i0 == 0 && j0 == 0 && i1 == kBlockSize - 1 && j1 == kBlockSize - 1};
+        });
+    return;
+  }
 
   if (tri.max_x - tri.min_x <= kSmallTriangleSpan && tri.max_y - tri.min_y <= kSmallTriangleSpan) {
     std::int32_t at_min[3], step_x[3], step_y[3];

@@ -116,7 +116,8 @@ TEST(OcclusionLanes, ARegionHoldingEveryDrawnPixelGivesTheWholeFramesValues) {
   raw.resize(width, height);
   const Sampling sampling{z, whole.frame.clip_from_view, 0.8f, whole.spiral, window};
   std::vector<float> open(static_cast<std::size_t>(width) * static_cast<std::size_t>(height));
-  for (int y = 0; y < height; ++y) depth_row(sampling.unproject, whole.depth(window.y0 + y) + window.x0, width, z.row(y));
+  for (int y = 0; y < height; ++y)
+    depth_row(sampling.unproject, whole.depth(window.y0 + y) + window.x0, width, z.row(y));
   for (int y = 0; y < height; ++y) openness_row(sampling, y, raw);
   for (int y = 0; y < height; ++y) blurred_row(sampling, raw, y, open.data() + static_cast<std::size_t>(y) * width);
 

@@ -277,9 +277,8 @@ TEST(TextureSampling, LinearLanesSampleOnlyTheLanesAskedFor) {
     lanes = t.sample_linear_lanes(uv, dx, dy, sampler, asked);
   });
   for (int k = 0; k < simd::kLanes; ++k) {
-    const glm::vec4 scalar = (asked >> k & 1u) ? t.sample_linear(glm::vec2(uv.x[k], uv.y[k]), glm::vec2(dx.x[k], dx.y[k]),
-                                                                glm::vec2(dy.x[k], dy.y[k]), sampler)
-                                               : glm::vec4(0.0f);
+    const glm::vec2 at(uv.x[k], uv.y[k]), step_x(dx.x[k], dx.y[k]), step_y(dy.x[k], dy.y[k]);
+    const glm::vec4 scalar = (asked >> k & 1u) ? t.sample_linear(at, step_x, step_y, sampler) : glm::vec4(0.0f);
     EXPECT_EQ(lanes.r[k], scalar.r) << k;
     EXPECT_EQ(lanes.g[k], scalar.g) << k;
     EXPECT_EQ(lanes.b[k], scalar.b) << k;
