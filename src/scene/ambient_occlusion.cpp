@@ -3,6 +3,8 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <span>
+#include <vector>
 
 #include "facet/detail/dispatch.hpp"
 #include "scene/occlusion_kernel.hpp"
@@ -70,65 +72,40 @@ void blurred_row(const Sampling& sampling, const Grid& raw, int y, float* open) 
   });
 }
 
-}  // namespace detail::occlusion
-
-namespace {
-
-namespace occlusion = detail::occlusion;
-
-// A w x h target, and the part of it the occlusion's grids cover.
-struct Region {
-  occlusion::Window window;
-  int width, height;
-};
-
-// The region of a w x h target that a depth pass of the instances can draw: the pixels within the screen rectangle
-// of every visible instance's box (its corners' projections bound it), widened by a pixel for rounding, its origin
-// moved to a multiple of 16 across and 4 down (occlusion::Window); the whole target if a corner lies behind the
-// eye. A model that fills a fifth of the frame leaves the occlusion's passes four fifths less to sweep, with the
-// same values inside, since every read beyond the region finds nothing drawn there, as it would in the target.
-Region occlusion_region(const std::vector<Instance>& instances,
-                        const std::unordered_map<const Mesh*, detail::PreparedMesh>& prepared,
-                        const glm::mat4& clip_from_world, int w, int h) {
+Region region_of(std::span<const ClipBox> boxes, int w, int h) {
   const Region whole{{w, h, 0, 0}, w, h};
   float x_lo = std::numeric_limits<float>::infinity(), x_hi = -x_lo, y_lo = x_lo, y_hi = -x_lo;
-  for (const Instance& instance : instances) {
-    const detail::PreparedMesh& mesh = prepared.at(instance.mesh.get());
-    if (mesh.box.empty() || mesh.groups.empty()) continue;
-    const glm::vec4 center = instance.world_from_object * glm::vec4(mesh.center, 1.0f);
-    if (!sphere_in_frustum(clip_from_world, glm::vec3(center),
-                           mesh.radius * detail::max_scale(instance.world_from_object)))
-      continue;
-    const glm::mat4 clip_from_object = clip_from_world * instance.world_from_object;
+  for (const ClipBox& box : boxes)
     for (int corner = 0; corner < 8; ++corner) {
-      const Bounds& box = mesh.box;
       const glm::vec3 p((corner & 1) ? box.max.x : box.min.x, (corner & 2) ? box.max.y : box.min.y,
                         (corner & 4) ? box.max.z : box.min.z);
-      const glm::vec4 clip = clip_from_object * glm::vec4(p, 1.0f);
+      const glm::vec4 clip = box.clip_from_object * glm::vec4(p, 1.0f);
       if (!(clip.w > 0.0f)) return whole;
       const float x = (clip.x / clip.w * 0.5f + 0.5f) * static_cast<float>(w);
       const float y = (0.5f - clip.y / clip.w * 0.5f) * static_cast<float>(h);
       if (!std::isfinite(x) || !std::isfinite(y)) return whole;
       x_lo = std::min(x_lo, x), x_hi = std::max(x_hi, x), y_lo = std::min(y_lo, y), y_hi = std::max(y_hi, y);
     }
-  }
-  // Pixel centres within [lo, hi], less or more one for rounding, clamped to the target.
-  const auto first = [](float lo, int size) { return std::clamp(static_cast<int>(std::floor(lo)) - 1, 0, size); };
-  const auto end = [](float hi, int size) {
-    return std::clamp(static_cast<int>(std::ceil(std::min(hi, static_cast<float>(size)))) + 1, 0, size);
+  // Pixel centres within [lo, hi], less or more one for rounding, within the target (the values clamped before
+  // they become ints: a corner near the eye's plane projects far off).
+  const auto pixel = [](float v, int size) {
+    return static_cast<int>(std::clamp(v, -2.0f, static_cast<float>(size) + 2.0f));
   };
+  const auto first = [&](float lo, int size) { return std::clamp(pixel(std::floor(lo), size) - 1, 0, size); };
+  const auto end = [&](float hi, int size) { return std::clamp(pixel(std::ceil(hi), size) + 1, 0, size); };
   if (!(x_lo <= x_hi) || end(x_hi, w) <= first(x_lo, w) || end(y_hi, h) <= first(y_lo, h))
     return {{w, h, 0, 0}, std::min(w, 16), std::min(h, 4)};  // nothing to draw: a strip of background
-  const int x0 = first(std::max(x_lo, -1.0f), w) / 16 * 16, y0 = first(std::max(y_lo, -1.0f), h) / 4 * 4;
+  const int x0 = first(x_lo, w) / 16 * 16, y0 = first(y_lo, h) / 4 * 4;
   return {{w, h, x0, y0}, end(x_hi, w) - x0, end(y_hi, h) - y0};
 }
 
-}  // namespace
+}  // namespace detail::occlusion
 
 // At half the frame's resolution, from a depth pre-pass: the openness of each pixel's surface within `radius`,
 // then a 4 x 4 blur among pixels of similar depth (scene/occlusion_kernel.hpp), over the region the pass can draw.
 void Scene::Impl::ambient_occlusion(Renderer& renderer, const SceneOptions& options, const View& view, int width,
                                     int height, float radius) {
+  namespace occlusion = detail::occlusion;
   AmbientOcclusion& ao = this->occlusion;
   const int w = (width + 1) / 2, h = (height + 1) / 2;
   if (!ao.target || ao.target->width() != w || ao.target->height() != h)
@@ -138,7 +115,17 @@ void Scene::Impl::ambient_occlusion(Renderer& renderer, const SceneOptions& opti
   draw_depth(renderer, *ao.target, options, clip_from_world, DepthPass::visible);
   renderer.finish(*ao.target);
 
-  const Region region = occlusion_region(instances, prepared, clip_from_world, w, h);
+  // The boxes of the instances the pass draws: those with triangles that meet the frustum.
+  std::vector<occlusion::ClipBox> boxes;
+  for (const Instance& instance : instances) {
+    const detail::PreparedMesh& mesh = prepared.at(instance.mesh.get());
+    if (mesh.box.empty() || mesh.groups.empty()) continue;
+    const glm::vec4 center = instance.world_from_object * glm::vec4(mesh.center, 1.0f);
+    const float radius = mesh.radius * detail::max_scale(instance.world_from_object);
+    if (sphere_in_frustum(clip_from_world, glm::vec3(center), radius))
+      boxes.push_back({clip_from_world * instance.world_from_object, mesh.box.min, mesh.box.max});
+  }
+  const occlusion::Region region = occlusion::region_of(boxes, w, h);
   ao.window = region.window;
   // The grids' padding stays zero while their size does; every row is written below.
   if (ao.z.width != region.width || ao.z.height != region.height) {

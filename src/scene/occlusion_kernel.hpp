@@ -5,11 +5,13 @@
 #include <cstddef>
 #include <limits>
 #include <numbers>
+#include <span>
 #include <type_traits>
 #include <vector>
 
 #include <glm/mat4x4.hpp>
 #include <glm/vec2.hpp>
+#include <glm/vec3.hpp>
 
 #include "facet/shaders/brdf.hpp"
 #include "facet/simd.hpp"
@@ -268,6 +270,24 @@ struct Sampling {
     return brdf::select(z < 0.0f, F(sum / brdf::select(z < 0.0f, count, one)), one);
   }
 };
+
+// The part of a w x h target the grids cover: the target and the region's place in it, and its size.
+struct Region {
+  Window window;
+  int width, height;
+};
+// A box of an object (its corners, object space) and the matrix that takes them to clip space.
+struct ClipBox {
+  glm::mat4 clip_from_object;
+  glm::vec3 min, max;
+};
+// The region of a w x h target within which a depth pass of the boxes' contents can draw: the pixels within the
+// screen rectangle of every box's corners, widened by a pixel for rounding, its origin moved to a multiple of 16
+// across and 4 down (Window); the whole target if a corner lies behind the eye, a strip of background without boxes.
+// A model that fills a fifth of the frame leaves the occlusion's passes four fifths less to sweep, with the same
+// values inside, since every read beyond the region finds nothing drawn there, as it would in the target. Defined
+// in ambient_occlusion.cpp.
+Region region_of(std::span<const ClipBox> boxes, int w, int h);
 
 // The stages of a frame's occlusion for row y, 16 lanes at a time, with the values the templates above give pixel
 // by pixel: the view-space depths from the window depths of the row (`depth`, width values) into the sampling's

@@ -3,10 +3,15 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <random>
+#include <span>
 #include <vector>
 
 #include <glm/gtc/matrix_transform.hpp>
 
+#include "facet/renderer.hpp"
+#include "facet/shaders/stock.hpp"
 #include "scene/occlusion_kernel.hpp"
 
 namespace facet::detail::occlusion {
@@ -134,6 +139,56 @@ TEST(OcclusionLanes, ARegionHoldingEveryDrawnPixelGivesTheWholeFramesValues) {
       occluded += whole.open_row(y)[x] < 0.99f;
     }
   EXPECT_GT(occluded, 0);  // the wall's edges and the hole's rims occlude something
+}
+
+// region_of bounds what a depth pass draws: every pixel that random triangles within a box cover, seen from
+// cameras around the box and inside it, lies in the region of the box's corners; with the eye inside the box (a
+// corner behind it), the region is the whole target.
+TEST(OcclusionRegion, HoldsEveryPixelADepthPassDraws) {
+  std::mt19937 rng(17);
+  std::uniform_real_distribution<float> unit(-1.0f, 1.0f), distance(2.5f, 8.0f);
+  const glm::vec3 lo(-1.0f, -0.5f, -0.8f), hi(1.0f, 0.5f, 0.8f);
+  std::vector<MeshVertex> vertices(600);
+  for (MeshVertex& v : vertices)
+    v.position = lo + (hi - lo) * (glm::vec3(unit(rng), unit(rng), unit(rng)) * 0.5f + 0.5f);
+  std::vector<std::uint32_t> indices(vertices.size());
+  for (std::uint32_t i = 0; i < indices.size(); ++i) indices[i] = i;
+  constexpr int kW = 160, kH = 96;
+  Renderer renderer(2);
+  Framebuffer target(kW, kH, 1);
+  RenderState two_sided;
+  two_sided.cull = CullMode::none;
+  int partial = 0, whole = 0, drawn = 0;
+  for (int view = 0; view < 40; ++view) {
+    const glm::vec3 direction = glm::normalize(glm::vec3(unit(rng), unit(rng) * 0.7f, unit(rng)));
+    const glm::vec3 eye = view < 4 ? glm::vec3(unit(rng), unit(rng), unit(rng)) * 0.3f : direction * distance(rng);
+    const glm::vec3 looked_at(unit(rng) * 1.5f, unit(rng), unit(rng));
+    const glm::mat4 clip_from_world =
+        glm::perspective(0.9f, static_cast<float>(kW) / kH, 0.05f, 50.0f) *
+        glm::lookAt(eye, looked_at, glm::vec3(0.0f, 1.0f, 0.0f));
+    const ClipBox box{clip_from_world, lo, hi};
+    const Region region = region_of(std::span<const ClipBox>(&box, 1), kW, kH);
+    ASSERT_EQ(region.window.x0 % 16, 0);
+    ASSERT_EQ(region.window.y0 % 4, 0);
+    renderer.clear(target, glm::vec4(0.0f), 1.0f);
+    renderer.draw(target, DepthShader{clip_from_world}, std::span<const MeshVertex>(vertices), indices, two_sided);
+    renderer.finish(target);
+    for (int y = 0; y < kH; ++y)
+      for (int x = 0; x < kW; ++x) {
+        if (target.depth_at(x, y) >= 1.0f) continue;
+        ++drawn;
+        ASSERT_TRUE(x >= region.window.x0 && x < region.window.x0 + region.width && y >= region.window.y0 &&
+                    y < region.window.y0 + region.height)
+            << "view " << view << ": pixel " << x << "," << y << " outside the region from " << region.window.x0
+            << "," << region.window.y0 << " of " << region.width << " x " << region.height;
+      }
+    const bool all = region.width == kW && region.height == kH;
+    whole += all, partial += !all;
+    EXPECT_TRUE(all || view >= 4) << "view " << view << ": the eye is inside the box";
+  }
+  EXPECT_GT(partial, 20);  // most views see the box within part of the frame
+  EXPECT_GT(drawn, 10000);
+  EXPECT_GE(whole, 4);
 }
 
 }  // namespace
