@@ -91,9 +91,10 @@ inline constexpr std::int32_t kEdgeInside = 1 << 30;
 inline constexpr int kSmallRectangle = 8;
 inline bool is_small_rectangle(const TriangleSetup& tri) {
   const Edge* e = tri.edge;
-  return (e[0].a | e[0].b | e[1].a | e[1].b | e[2].a | e[2].b) == 0 && (e[0].q | e[1].q | e[2].q) >= 0 &&
-         tri.depth.ddx == 0.0f &&
-         tri.depth.ddy == 0.0f && tri.max_x - tri.min_x < kSmallRectangle && tri.max_y - tri.min_y < kSmallRectangle;
+  const bool passes_everywhere =
+      (e[0].a | e[0].b | e[1].a | e[1].b | e[2].a | e[2].b) == 0 && (e[0].q | e[1].q | e[2].q) >= 0;
+  return passes_everywhere && tri.depth.ddx == 0.0f && tri.depth.ddy == 0.0f &&
+         tri.max_x - tri.min_x < kSmallRectangle && tri.max_y - tri.min_y < kSmallRectangle;
 }
 
 // Visibility of one triangle in one tile. Per 8x8 block: hierarchical depth rejects hidden blocks, and then each 8x2

@@ -1,4 +1,4 @@
-// test_occlusion_lanes.cpp - ambient occlusion's lane stages give the scalar reference's values, bit for bit.
+// test_occlusion_lanes.cpp - ambient occlusion: lanes equal the scalar reference, a region the whole frame.
 #include <gtest/gtest.h>
 
 #include <algorithm>
