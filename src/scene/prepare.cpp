@@ -64,13 +64,17 @@ std::uint32_t morton_code(const glm::vec3& p, const Bounds& box) {
 std::vector<std::uint32_t> points_in_space_order(const Mesh& mesh, const Bounds& box) {
   const std::size_t count = mesh.points.size(), n = mesh.positions.size();
   std::vector<std::uint32_t> key(count), order(count), sorted(count);
+  bool all_named = true;
   for (std::size_t i = 0; i < count; ++i) {
     const std::uint32_t v = mesh.points[i];
+    all_named &= v < n;
     key[i] = v < n ? morton_code(mesh.positions[v], box) : std::uint32_t{1} << 30;
     order[i] = static_cast<std::uint32_t>(i);
   }
   constexpr std::uint32_t kBuckets = 1024;
-  for (int shift = 0; shift <= 30; shift += 10) {
+  // The codes take 30 bits; the fourth pass only moves the points naming no vertex, when there are any.
+  const int last_shift = all_named ? 20 : 30;
+  for (int shift = 0; shift <= last_shift; shift += 10) {
     std::array<std::uint32_t, kBuckets + 1> start{};
     for (const std::uint32_t i : order) ++start[((key[i] >> shift) & (kBuckets - 1)) + 1];
     for (std::uint32_t b = 0; b < kBuckets; ++b) start[b + 1] += start[b];
@@ -122,6 +126,7 @@ PreparedMesh prepare_mesh(const Mesh& mesh, TextureCache& textures) {
   if (mesh.indices.empty()) {
     std::vector<std::uint32_t> place(n, kNoVertex);
     out.points.indices.reserve(mesh.points.size());
+    placed.reserve(std::min(n, mesh.points.size()));
     for (const std::uint32_t p : points_in_space_order(mesh, box)) {
       const std::uint32_t v = mesh.points[p];
       if (v >= n) {
