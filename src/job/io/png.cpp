@@ -117,7 +117,7 @@ void filter_row(const Rows& rows, std::size_t y, std::uint8_t* out) {
 // is not the last ends with a sync flush (an empty stored block, byte-aligned, not final), so the parts of an image
 // concatenate into one deflate stream. ISA-L's level 1 (igzip), not zlib: on 1920x1080 renders it deflates the
 // filtered rows in a ninth of zlib's fastest time (Z_RLE at level 1), and its Adler-32 takes a third of zlib's, for
-// files 3-40% larger (docs/PERFORMANCE.md, "Writing images").
+// files 3-40% larger (docs/PERFORMANCE.md, "Other measures").
 struct DeflatedPart {
   std::vector<std::uint8_t> bytes;
   std::uint32_t adler = 1;
