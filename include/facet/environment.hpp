@@ -122,17 +122,16 @@ class Environment {
     const Float s = coordinate(n_dot_v), r = coordinate(roughness);
     const Int i = truncate(s), j = truncate(r);
     const Float a = s - to_float(i), b = r - to_float(j);
-    Vec2 t00, t10, t01, t11;
-    for (int k = 0; k < kLanes; ++k) {
-      const int i1 = i[k] + 1 < kBrdfTableSize ? i[k] + 1 : i[k], j1 = j[k] + 1 < kBrdfTableSize ? j[k] + 1 : j[k];
-      const glm::vec2 c00 = table_[j[k] * kBrdfTableSize + i[k]], c10 = table_[j[k] * kBrdfTableSize + i1];
-      const glm::vec2 c01 = table_[j1 * kBrdfTableSize + i[k]], c11 = table_[j1 * kBrdfTableSize + i1];
-      t00.x[k] = c00.x, t00.y[k] = c00.y, t10.x[k] = c10.x, t10.y[k] = c10.y;
-      t01.x[k] = c01.x, t01.y[k] = c01.y, t11.x[k] = c11.x, t11.y[k] = c11.y;
-    }
+    const Int i1 = blend(i + 1 < kBrdfTableSize, i + 1, i), j1 = blend(j + 1 < kBrdfTableSize, j + 1, j);
+    // Each entry is two floats (A, B): one record per lane and corner.
+    const float* table = &table_[0].x;
+    const auto corner = [&](const Int& column, const Int& row) {
+      return gather_records<2>(table, (row * kBrdfTableSize + column) * 2);
+    };
+    const auto t00 = corner(i, j), t10 = corner(i1, j), t01 = corner(i, j1), t11 = corner(i1, j1);
     const auto lerp = [](const Float& p, const Float& q, const Float& w) { return p + (q - p) * w; };
-    const Float bottom_x = lerp(t00.x, t10.x, a), bottom_y = lerp(t00.y, t10.y, a);
-    const Float top_x = lerp(t01.x, t11.x, a), top_y = lerp(t01.y, t11.y, a);
+    const Float bottom_x = lerp(t00[0], t10[0], a), bottom_y = lerp(t00[1], t10[1], a);
+    const Float top_x = lerp(t01[0], t11[0], a), top_y = lerp(t01[1], t11[1], a);
     return {lerp(bottom_x, top_x, b), lerp(bottom_y, top_y, b)};
   }
   glm::vec2 split_sum(float n_dot_v, float roughness) const {
@@ -170,17 +169,13 @@ class Environment {
     const Float a = s - to_float(i), b = t - to_float(j);
     const Int i1 = blend(i + 1 < size, i + 1, splat<L>(size - 1)), j1 = blend(j + 1 < size, j + 1, splat<L>(size - 1));
     const Int row0 = j * size, row1 = j1 * size;
-    const glm::vec4* texels = map.texels();
-    Vec3 t00, t10, t01, t11;
-    for (int k = 0; k < kLanes; ++k) {
-      const glm::vec4 c00 = texels[row0[k] + i[k]], c10 = texels[row0[k] + i1[k]];
-      const glm::vec4 c01 = texels[row1[k] + i[k]], c11 = texels[row1[k] + i1[k]];
-      t00.x[k] = c00.x, t00.y[k] = c00.y, t00.z[k] = c00.z;
-      t10.x[k] = c10.x, t10.y[k] = c10.y, t10.z[k] = c10.z;
-      t01.x[k] = c01.x, t01.y[k] = c01.y, t01.z[k] = c01.z;
-      t11.x[k] = c11.x, t11.y[k] = c11.y, t11.z[k] = c11.z;
-    }
-    return bilinear(t00, t10, t01, t11, a, b);
+    // Each texel is four floats: one record per lane and corner.
+    const float* texels = &map.texels()->x;
+    const auto corner = [&](const Int& column, const Int& row) {
+      const std::array<Float, 4> t = gather_records<4>(texels, (row + column) * 4);
+      return Vec3{t[0], t[1], t[2]};
+    };
+    return bilinear(corner(i, row0), corner(i1, row0), corner(i, row1), corner(i1, row1), a, b);
   }
   // The bilinear blend of four corners' texels at fractions a (along a row) and b (down), as OctahedralMap::sample
   // takes it.

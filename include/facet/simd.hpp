@@ -59,6 +59,7 @@ struct VectorOf;
 #define FACET_NATIVE_VECTORS_(Scalar) \
   FACET_NATIVE_VECTOR_(Scalar, 16) FACET_NATIVE_VECTOR_(Scalar, 8) FACET_NATIVE_VECTOR_(Scalar, 4)
 FACET_NATIVE_VECTORS_(float)
+FACET_NATIVE_VECTOR_(float, 2)  // a record of two floats (gather_records)
 FACET_NATIVE_VECTORS_(std::int32_t)
 FACET_NATIVE_VECTORS_(std::uint32_t)
 #undef FACET_NATIVE_VECTORS_

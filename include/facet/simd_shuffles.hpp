@@ -1,6 +1,9 @@
 // simd_shuffles.hpp - moving values between lanes: within a 2x2 quad, across a pair of lane values, by a pattern.
 #pragma once
 
+#include <array>
+#include <cstdint>
+#include <cstring>
 #include <utility>
 
 #include "facet/simd.hpp"
@@ -78,6 +81,58 @@ FACET_LANES_INLINE Lanes<Scalar, L> deinterleave(const Lanes<Scalar, L>& a, cons
     };
     return shuffle_part<decltype(index)>(source(2 * i), source(2 * i + 1), std::make_integer_sequence<int, L::width>{});
   });
+}
+
+// Two vectors of n floats side by side: one vector of 2n.
+template <int kFloats, int... k>
+FACET_LANES_INLINE native::Vector<float, 2 * kFloats> join(const native::Vector<float, kFloats>& a,
+                                                           const native::Vector<float, kFloats>& b,
+                                                           std::integer_sequence<int, k...>) {
+  return __builtin_shufflevector(a, b, k...);
+}
+
+// kCount records of kFloats floats, base + at[first], base + at[first + 1], ..., side by side in one vector: one
+// load per record, then joins.
+template <int kCount, int kFloats>
+FACET_LANES_INLINE native::Vector<float, kCount * kFloats> records_side_by_side(const float* base,
+                                                                              const std::int32_t* at, int first) {
+  if constexpr (kCount == 1) {
+    native::Vector<float, kFloats> record;
+    std::memcpy(&record, base + at[first], sizeof record);
+    return record;
+  } else {
+    constexpr int kHalf = kCount / 2;
+    return join<kHalf * kFloats>(records_side_by_side<kHalf, kFloats>(base, at, first),
+                                 records_side_by_side<kHalf, kFloats>(base, at, first + kHalf),
+                                 std::make_integer_sequence<int, kCount * kFloats>{});
+  }
+}
+
+// Records of kFloats (2 or 4) consecutive floats, one per lane: lane k of result c is base[offset[k] + c]. Each
+// lane's record is one load, and the 16 records are transposed by shuffles (two rounds of deinterleave), where
+// reading them as floats, lane by lane, costs a load and an insert per float. The same values either way.
+template <int kFloats, class L>
+FACET_LANES_INLINE std::array<FloatT<L>, kFloats> gather_records(const float* base, const IntT<L>& offset) {
+  static_assert(kFloats == 2 || kFloats == 4);
+  using Float = FloatT<L>;
+  alignas(kLaneAlign) std::int32_t at[kLanes];
+  store(at, offset);
+  // Block q holds the records of lanes q * (16 / kFloats) onwards, in order: 16 floats, kFloats to a lane.
+  constexpr int kBlockLanes = kLanes / kFloats, kPartRecords = L::width / kFloats;
+  std::array<Float, kFloats> block;
+  for (int q = 0; q < kFloats; ++q)
+    block[static_cast<std::size_t>(q)] = Float::by_part([&](int i) __attribute__((always_inline)) {
+      return records_side_by_side<kPartRecords, kFloats>(base, at, q * kBlockLanes + i * kPartRecords);
+    });
+  if constexpr (kFloats == 2) {
+    return {deinterleave<0>(block[0], block[1]), deinterleave<1>(block[0], block[1])};
+  } else {
+    // Even floats (x, z of each record) and odd ones (y, w), then each of those split again.
+    const Float even_low = deinterleave<0>(block[0], block[1]), odd_low = deinterleave<1>(block[0], block[1]);
+    const Float even_high = deinterleave<0>(block[2], block[3]), odd_high = deinterleave<1>(block[2], block[3]);
+    return {deinterleave<0>(even_low, even_high), deinterleave<0>(odd_low, odd_high),
+            deinterleave<1>(even_low, even_high), deinterleave<1>(odd_low, odd_high)};
+  }
 }
 
 }  // namespace facet::simd

@@ -298,8 +298,8 @@ struct BasicPbrShader : PbrUniforms {
       Int i = truncate(f);
       i = blend(i < detail::kSrgbEncodeSteps, i, splat<L>(detail::kSrgbEncodeSteps - 1));
       const Float w = f - to_float(i);
-      const Float t0 = gather(table, i), t1 = gather(table + 1, i);
-      return t0 + (t1 - t0) * w;
+      const std::array<Float, 2> t = gather_records<2>(table, i);  // entries i and i + 1
+      return t[0] + (t[1] - t[0]) * w;
     };
     return {channel(c.r), channel(c.g), channel(c.b)};
   }

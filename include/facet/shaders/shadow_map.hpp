@@ -2,6 +2,7 @@
 #pragma once
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <cstddef>
 #include <limits>
@@ -27,7 +28,8 @@ class ShadowMap {
       : clip_from_world_(clip_from_world),
         size_(size),
         stride_(size + 2 * kBorder),
-        depth_(static_cast<std::size_t>(stride_) * static_cast<std::size_t>(stride_),
+        // One more texel past the last row's border: a row of the tent is read as four texels (texel_row).
+        depth_(static_cast<std::size_t>(stride_) * static_cast<std::size_t>(stride_) + 1,
                std::numeric_limits<float>::infinity()),
         normal_offset_(normal_offset) {
     for (int y = 0; y < size; ++y)
@@ -66,11 +68,10 @@ class ShadowMap {
     const F wv[3] = {(1.0f - fv) * 0.5f, constant<F>(0.5f), fv * 0.5f};
     F lit = constant<F>(0.0f);
     for (int j = 0; j < 3; ++j) {
+      const std::array<F, 4> stored = texel_row(u0, v0, j);
       F row_lit = constant<F>(0.0f);
-      for (int i = 0; i < 3; ++i) {
-        const F stored = texels(u0, v0, i, j);
-        row_lit = row_lit + brdf::select(depth <= stored, wu[i], constant<F>(0.0f));
-      }
+      for (int i = 0; i < 3; ++i)
+        row_lit = row_lit + brdf::select(depth <= stored[static_cast<std::size_t>(i)], wu[i], constant<F>(0.0f));
       lit = lit + row_lit * wv[j];
     }
     return brdf::select(inside < 0.0f, lit, constant<F>(1.0f));
@@ -86,21 +87,24 @@ class ShadowMap {
   // one off the map reads the border alone.
   static constexpr int kBorder = 3;
 
-  // The stored depth of texel (u0 + i, v0 + j), per pixel or per lane.
-  float texels(float u0, float v0, int i, int j) const {
-    const int x = std::clamp(static_cast<int>(u0), -kBorder, size_) + kBorder + i;
+  // The stored depths of texels (u0, v0 + j) to (u0 + 3, v0 + j), per pixel or per lane: the tent's row j and
+  // one texel more, which the lanes read with the row as one record.
+  std::array<float, 4> texel_row(float u0, float v0, int j) const {
+    const int x = std::clamp(static_cast<int>(u0), -kBorder, size_) + kBorder;
     const int y = std::clamp(static_cast<int>(v0), -kBorder, size_) + kBorder + j;
-    return depth_[static_cast<std::size_t>(y * stride_ + x)];
+    const float* row = depth_.data() + static_cast<std::size_t>(y * stride_ + x);
+    return {row[0], row[1], row[2], row[3]};
   }
   template <class L>
-  FACET_LANES_INLINE simd::FloatT<L> texels(const simd::FloatT<L>& u0, const simd::FloatT<L>& v0, int i, int j) const {
+  FACET_LANES_INLINE std::array<simd::FloatT<L>, 4> texel_row(const simd::FloatT<L>& u0, const simd::FloatT<L>& v0,
+                                                             int j) const {
     using Int = simd::IntT<L>;
     const auto clamp = [this](Int t) {
       t = simd::blend(t < -kBorder, simd::splat<L>(-kBorder), t);
       return simd::blend(t > size_, simd::splat<L>(size_), t);
     };
-    const Int index = (clamp(simd::truncate(v0)) + (kBorder + j)) * stride_ + (clamp(simd::truncate(u0)) + (kBorder + i));
-    return simd::gather(depth_.data(), index);
+    const Int index = (clamp(simd::truncate(v0)) + (kBorder + j)) * stride_ + (clamp(simd::truncate(u0)) + kBorder);
+    return simd::gather_records<4>(depth_.data(), index);
   }
 
   glm::mat4 clip_from_world_{1.0f};
