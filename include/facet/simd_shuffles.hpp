@@ -1,4 +1,4 @@
-// simd_shuffles.hpp - moving values between lanes: within a 2x2 quad, across a pair of lane values, by a pattern.
+// simd_shuffles.hpp - moving values between lanes: within a 2x2 quad, across a pair, by a pattern; records transposed.
 #pragma once
 
 #include <array>
